@@ -1,0 +1,42 @@
+# mcar: two entry points for a fresh machine (see README):
+#   make demo   install, then build and check the bundled mobile car
+#   make test   install (with test tools and urdfdom's check_urdf), then run the tests
+# Debian packages installed here when missing: liburdfdom-tools (check_urdf, the peer
+# the tests compare against).
+
+PYTHON ?= python3
+VENV   ?= .venv
+BIN    := $(VENV)/bin
+SUDO   := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+APT_PACKAGES := liburdfdom-tools
+
+.PHONY: demo test install system-deps build clean
+
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+
+install: $(BIN)/python
+	$(BIN)/pip install --quiet ".[test]"
+
+system-deps:
+	@missing=""; for p in $(APT_PACKAGES); do \
+	  dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing Debian packages:$$missing"; \
+	  $(SUDO) apt-get update -qq && \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
+	fi
+
+demo: install system-deps
+	$(BIN)/mcar build
+	check_urdf build/mobile_robot.urdf
+
+test: install system-deps
+	$(BIN)/pytest
+
+build: install
+	$(BIN)/mcar build
+
+clean:
+	rm -rf build renders .pytest_cache

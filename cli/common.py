@@ -1,0 +1,54 @@
+"""What every command shares: the package-path option and turning errors into exit codes."""
+
+from __future__ import annotations
+
+import functools
+import os
+import sys
+
+import click
+
+from mobile_car.errors import EXIT_USAGE, McarError
+
+package_path_option = click.option(
+    "--package-path", "package_paths", multiple=True, metavar="DIR",
+    type=click.Path(file_okay=False, exists=True),
+    help="Also look for ROS packages (package.xml) under DIR; repeatable. Searched after the "
+         "package holding INPUT and before ROS_PACKAGE_PATH, AMENT_PREFIX_PATH and the "
+         "bundled mobile_car_description.")
+
+
+def report(error: McarError) -> None:
+    """Print an error as one `FILE:LINE: error: message` line, then its context lines."""
+    where = error.location()
+    prefix = f"{where}: error: " if where else "mcar: error: "
+    click.echo(prefix + error.message, err=True)
+    for line in error.details:
+        click.echo(f"  {line}", err=True)
+
+
+def handle_errors(func):
+    """Run a command body; McarError becomes its message and exit code, Ctrl-C exits 130."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        try:
+            return func(*args, **kwargs)
+        except McarError as error:
+            report(error)
+            sys.exit(error.exit_code)
+        except KeyboardInterrupt:
+            click.echo("mcar: interrupted", err=True)
+            sys.exit(130)
+        except BrokenPipeError:
+            # The reader (head, a closed pipe) went away: not our failure to report.
+            sys.stderr.close()
+            sys.exit(0)
+        except Exception as error:  # a bug in mcar: say so in one line, no traceback
+            if os.environ.get("MCAR_DEBUG"):
+                raise
+            click.echo(f"mcar: internal error: {type(error).__name__}: {error} "
+                       "(set MCAR_DEBUG=1 for a traceback, and please report it)", err=True)
+            sys.exit(EXIT_USAGE)
+
+    return wrapper

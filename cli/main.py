@@ -1,0 +1,48 @@
+"""The ``mcar`` command group. Commands are imported only when run, to keep start-up light."""
+
+from __future__ import annotations
+
+import importlib
+
+import click
+
+from mobile_car import __version__
+
+# name -> (module under mobile_car.cli, one-line help shown by `mcar --help`)
+COMMANDS = {
+    "build": ("build", "Expand xacro into URDF (the bundled robot when no INPUT)."),
+}
+
+EXIT_CODES_HELP = """\b
+Exit codes (every command):
+  0  success
+  1  problems found in the input (xacro error, failed check)
+  2  usage, I/O or environment error (bad option, missing file, unknown package)
+  130 interrupted (Ctrl-C)
+"""
+
+
+class LazyGroup(click.Group):
+    def list_commands(self, ctx):
+        return sorted(COMMANDS)
+
+    def get_command(self, ctx, name):
+        if name not in COMMANDS:
+            return None
+        module = importlib.import_module(f"mobile_car.cli.{COMMANDS[name][0]}")
+        return module.command
+
+    def format_commands(self, ctx, formatter):
+        rows = [(name, COMMANDS[name][1]) for name in self.list_commands(ctx)]
+        with formatter.section("Commands"):
+            formatter.write_dl(rows)
+
+
+@click.group(cls=LazyGroup, epilog=EXIT_CODES_HELP,
+             context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, "-V", "--version", prog_name="mcar")
+def main():
+    """mcar: build, check and render the mobile car's URDF/xacro description, without ROS.
+
+    Run `mcar COMMAND --help` for the options of one command.
+    """

@@ -1,0 +1,53 @@
+"""The exceptions the library raises, and the exit code each stands for.
+
+Every error knows the file (and line, where known) it is about, so the command line can
+print it as one ``FILE:LINE: message`` line. Exit codes: 1 means the input has problems,
+2 means the command could not run (usage, I/O, environment).
+"""
+
+from __future__ import annotations
+
+EXIT_OK = 0
+EXIT_PROBLEMS = 1
+EXIT_USAGE = 2
+
+
+class McarError(Exception):
+    """Base of every error mcar reports; ``exit_code`` says how the command ends."""
+
+    exit_code = EXIT_USAGE
+
+    def __init__(self, message: str, file: str | None = None, line: int | None = None,
+                 details: list[str] | None = None):
+        super().__init__(message)
+        self.message = message
+        self.file = file
+        self.line = line
+        self.details = list(details or [])
+
+    def location(self) -> str:
+        if self.file is None:
+            return ""
+        return f"{self.file}:{self.line}" if self.line else str(self.file)
+
+    def __str__(self) -> str:
+        where = self.location()
+        return f"{where}: {self.message}" if where else self.message
+
+
+class UsageError(McarError):
+    """The command was called wrongly (unknown argument, bad option value)."""
+
+
+class InputError(McarError):
+    """An input or output file cannot be read or written (missing, a directory, no permission)."""
+
+
+class PackageNotFoundError(McarError):
+    """``$(find PKG)`` or ``package://PKG`` names a package that is nowhere on the search path."""
+
+
+class BuildError(McarError):
+    """xacro could not expand the input; ``details`` holds the macro and include stack."""
+
+    exit_code = EXIT_PROBLEMS

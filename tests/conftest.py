@@ -1,0 +1,72 @@
+"""Fixtures every test module shares: the installed mcar, the real check_urdf, the repo."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+REPO = Path(__file__).resolve().parent.parent
+TESTS = REPO / "tests"
+# The installed console script next to the interpreter running the tests (the venv's).
+MCAR = Path(sys.executable).parent / "mcar"
+
+
+@pytest.fixture(scope="session")
+def repo() -> Path:
+    return REPO
+
+
+@pytest.fixture(scope="session")
+def mcar_bin() -> Path:
+    if not MCAR.exists():
+        pytest.fail(f"mcar is not installed next to {sys.executable}; run `make install`")
+    return MCAR
+
+
+@pytest.fixture
+def run_mcar(mcar_bin):
+    """Run the installed `mcar` as a subprocess: run_mcar("build", "x.xacro", cwd=...)."""
+
+    def run(*args, cwd=None, input=None, env=None, timeout=120):
+        full_env = dict(os.environ)
+        full_env.pop("ROS_PACKAGE_PATH", None)
+        full_env.pop("AMENT_PREFIX_PATH", None)
+        full_env.update(env or {})
+        return subprocess.run([str(mcar_bin), *map(str, args)], cwd=cwd, input=input,
+                              capture_output=True, text=True, env=full_env, timeout=timeout)
+
+    return run
+
+
+@pytest.fixture
+def cli():
+    """Invoke the click group in-process; returns click's Result (output, exit_code)."""
+    from mobile_car.cli.main import main
+
+    runner = CliRunner()
+
+    def invoke(*args, **kwargs):
+        return runner.invoke(main, [str(a) for a in args], catch_exceptions=False, **kwargs)
+
+    return invoke
+
+
+@pytest.fixture(scope="session")
+def check_urdf() -> str:
+    """Path of urdfdom's check_urdf; `make test` installs it (Debian liburdfdom-tools)."""
+    path = shutil.which("check_urdf")
+    if path is None:
+        pytest.skip("check_urdf not installed (Debian package liburdfdom-tools; `make test` "
+                    "installs it with apt-get)")
+    return path
+
+
+def run_check_urdf(check_urdf: str, path: Path, timeout=60) -> subprocess.CompletedProcess:
+    return subprocess.run([check_urdf, str(path)], capture_output=True, text=True,
+                          timeout=timeout)

@@ -97,7 +97,8 @@ class PackageSearch:
     def where_looked(self) -> list[str]:
         places = []
         if self.origin is not None:
-            places.append(f"the package containing {self.origin}")
+            own = enclosing_package(self.origin)
+            places.append(f"the package holding {self.origin} ({own[0] if own else 'none'})")
         places += [f"--package-path {p}" for p in self.package_paths]
         ros = self._env.get("ROS_PACKAGE_PATH")
         places.append(f"ROS_PACKAGE_PATH={ros}" if ros else "ROS_PACKAGE_PATH (unset)")

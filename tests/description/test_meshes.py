@@ -28,7 +28,7 @@ def regenerated(tmp_path_factory):
 
 def test_script_makes_exactly_the_committed_meshes(regenerated):
     made = sorted(p.name for p in regenerated.iterdir())
-    committed = sorted(p.name for p in MESHES.iterdir())
+    committed = sorted(p.name for p in MESHES.iterdir() if p.suffix != ".md")  # not its README
     assert made == committed
     for name in made:
         assert (regenerated / name).read_bytes() == (MESHES / name).read_bytes(), (

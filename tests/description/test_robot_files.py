@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from lxml import etree
 
-from tests.conftest import run_check_urdf
+from conftest import run_check_urdf
 from tests.description.conftest import (COMPLETE_ROBOT, FRAME_ONLY_LINKS, URDF, built_name,
                                         description_files)
 

@@ -9,12 +9,13 @@ import click
 
 from mobile_car.atomic import atomic_write
 from mobile_car.build import build_file, display_path, parse_mapping_args
+from mobile_car.config import CONFIG_ARG, override_mappings, resolve_overrides
 from mobile_car.discover import output_name, robot_files, source_base
 from mobile_car.errors import EXIT_OK, EXIT_PROBLEMS, McarError, UsageError
 from mobile_car.packages import PackageSearch
 from mobile_car.resources import PACKAGE_NAME
 
-from .common import handle_errors, package_path_option, report
+from .common import config_options, handle_errors, package_path_option, report
 
 HELP = """Expand xacro into URDF.
 
@@ -36,9 +37,21 @@ $(find) put into attributes are written back as package:// URIs, so the output i
 the same on every machine. NAME:=VALUE sets a <xacro:arg>; a name the files never
 declare is an error (plain xacro ignores it silently).
 
+--set NAME=VALUE and --config FILE.yaml change the robot's dimensions (see
+`mcar config`); they are checked before anything is built (exit 2 when they
+cannot make a working robot) and apply to every file that includes config.xacro.
+
 Outputs are written atomically: a failed build leaves an earlier output untouched.
 Errors are printed as FILE:LINE: error: message, then xacro's macro/include stack.
 """
+
+
+def _overrides(origin: Path, package_paths, sets, config_files) -> dict[str, float]:
+    """Validated dimension overrides for builds starting at origin ({} when none given)."""
+    if not sets and not config_files:
+        return {}
+    search = PackageSearch(package_paths=list(package_paths), origin=origin)
+    return resolve_overrides(search, sets, config_files)[1]
 
 
 def _write_or_print(xml: str, output: str | None) -> None:
@@ -65,7 +78,8 @@ def _build_tree(root: Path, outdir: Path, mappings: dict[str, str], package_path
     for source in sources:
         search = PackageSearch(package_paths=list(package_paths), origin=source)
         try:
-            result = build_file(source, mappings, search)
+            # Dimension overrides reach only the files that include config.xacro.
+            result = build_file(source, mappings, search, optional_args=frozenset({CONFIG_ARG}))
         except UsageError:
             raise
         except McarError as error:
@@ -95,11 +109,14 @@ def _build_tree(root: Path, outdir: Path, mappings: dict[str, str], package_path
 @click.option("--deps", "deps_only", is_flag=True,
               help="Print the files the expansion reads, one per line (for Make); build nothing.")
 @click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
+@config_options
 @package_path_option
 @handle_errors
-def command(words, output, deps_only, quiet, package_paths):
+def command(words, output, deps_only, quiet, package_paths, sets, config_files):
     inputs = [w for w in words if ":=" not in w]
     mappings = parse_mapping_args([w for w in words if ":=" in w])
+    if CONFIG_ARG in mappings and (sets or config_files):
+        raise UsageError(f"{CONFIG_ARG}:= and --set/--config both give overrides; use one")
     if len(inputs) > 1:
         raise UsageError(f"one INPUT at a time, got {len(inputs)}: {' '.join(inputs)}")
     if not inputs or Path(inputs[0]).is_dir():
@@ -109,11 +126,20 @@ def command(words, output, deps_only, quiet, package_paths):
             # The checkout the user stands in wins over the bundled copy.
             search = PackageSearch(package_paths=list(package_paths), origin=Path.cwd())
             root = search.find(PACKAGE_NAME)
+        overrides = _overrides(root, package_paths, sets, config_files)
         outdir = Path(output) if output else Path("build")
-        sys.exit(_build_tree(root, outdir, mappings, package_paths, deps_only, quiet))
+        with override_mappings(overrides) as extra:
+            sys.exit(_build_tree(root, outdir, {**mappings, **extra}, package_paths,
+                                 deps_only, quiet))
     source = Path(inputs[0])
     search = PackageSearch(package_paths=list(package_paths), origin=source)
-    result = build_file(source, mappings, search)
+    overrides = _overrides(source, package_paths, sets, config_files)
+    with override_mappings(overrides) as extra:
+        result = build_file(source, {**mappings, **extra}, search,
+                            optional_args=frozenset({CONFIG_ARG}))
+    if overrides and CONFIG_ARG not in result.known_args:
+        raise UsageError(f"--set/--config change {PACKAGE_NAME}'s config.xacro, which "
+                         f"{display_path(source)} does not include")
     for warning in result.warnings:
         click.echo(f"{display_path(source)}: {warning}", err=True)
     if deps_only:

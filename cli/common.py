@@ -18,6 +18,22 @@ package_path_option = click.option(
          "bundled mobile_car_description.")
 
 
+def config_options(func):
+    """--set and --config: override the robot's dimensions (see `mcar config`)."""
+    func = click.option(
+        "--config", "config_files", multiple=True, metavar="FILE.yaml",
+        type=click.Path(dir_okay=True),
+        help="Dimension overrides from a YAML/JSON file: `name: value` pairs (only what "
+             "differs), or a document `mcar config --format json` wrote. Repeatable; "
+             "--set wins.")(func)
+    func = click.option(
+        "--set", "sets", multiple=True, metavar="NAME=VALUE",
+        help="Override one dimension of config.xacro, e.g. --set wheel_radius=40mm. A bare "
+             "number is SI (m, kg); units like mm, cm, in, g, deg are converted. Repeatable.")(
+        func)
+    return func
+
+
 def report(error: McarError) -> None:
     """Print an error as one `FILE:LINE: error: message` line, then its context lines."""
     where = error.location()

@@ -43,6 +43,7 @@ class BuildResult:
     xml: str
     deps: list[Path] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
+    known_args: set[str] = field(default_factory=set)  # args the files declare or use
 
 
 def display_path(path: str | os.PathLike) -> str:
@@ -255,6 +256,8 @@ def _error_from(exc: BaseException, session: _Session, source: Path) -> McarErro
         return BuildError("recursion too deep: a macro or an include that calls itself?",
                           file=file, line=line, details=_stack_details())
     message = " ".join(str(exc).split()) or type(exc).__name__
+    # xacro.fatal("...") is the author's own message: xacro's "when evaluating" adds noise.
+    message = re.sub(r" when evaluating expression 'xacro\.fatal\(.*$", "", message)
     file, line = _locate(session, source, needles)
     return BuildError(message, file=file, line=line, details=_stack_details())
 
@@ -276,8 +279,13 @@ def _locate(session: _Session, source: Path, needles: list[str]) -> tuple[str, i
 
 
 def build_file(path: str | os.PathLike, mappings: dict[str, str] | None = None,
-               search: PackageSearch | None = None) -> BuildResult:
-    """Expand one xacro (or plain URDF) file; raises BuildError, UsageError or InputError."""
+               search: PackageSearch | None = None,
+               optional_args: frozenset[str] = frozenset()) -> BuildResult:
+    """Expand one xacro (or plain URDF) file; raises BuildError, UsageError or InputError.
+
+    A mapping the files do not know is a UsageError, except the ``optional_args`` (for
+    arguments offered to every file of a package, such as the dimension overrides).
+    """
     source = Path(path)
     if not source.exists():
         raise InputError("no such file", file=display_path(source))
@@ -297,15 +305,14 @@ def build_file(path: str | os.PathLike, mappings: dict[str, str] | None = None,
         except (Exception, RecursionError) as exc:  # xacro raises many kinds; all become one
             error = _error_from(exc, session, source)
         deps = [source] + [Path(p) for p in dict.fromkeys(xacro.all_includes)]
-    if mappings:
-        known = known_args(deps)
-        unknown = [name for name in mappings if name not in known]
-        if unknown:
-            raise _unknown_arg_error(unknown, known, source)
+    known = known_args(deps)
+    unknown = [name for name in mappings if name not in known and name not in optional_args]
+    if unknown:
+        raise _unknown_arg_error(unknown, known, source)
     if error is not None:
         raise error
     _relocate_package_paths(doc, session.found)
     _set_banner(doc, banner_name(source))
     warnings = [line for line in session.stderr.getvalue().splitlines() if line.strip()]
     return BuildResult(source=source, xml=doc.toprettyxml(indent="  "),
-                       deps=deps, warnings=warnings)
+                       deps=deps, warnings=warnings, known_args=known)

@@ -10,7 +10,7 @@ BIN    := $(VENV)/bin
 SUDO   := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := liburdfdom-tools
 
-.PHONY: demo test install system-deps build clean
+.PHONY: demo test install system-deps build bench clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -34,6 +34,9 @@ demo: install system-deps
 
 test: install system-deps
 	$(BIN)/pytest
+
+bench: install system-deps
+	$(BIN)/python bench/run.py
 
 build: install
 	$(BIN)/mcar build

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import sys
 from pathlib import Path
 
@@ -9,11 +10,13 @@ import click
 
 from mobile_car.atomic import atomic_write
 from mobile_car.build import build_file, display_path, parse_mapping_args
-from mobile_car.config import CONFIG_ARG, override_mappings, resolve_overrides
 from mobile_car.discover import output_name, robot_files, source_base
 from mobile_car.errors import EXIT_OK, EXIT_PROBLEMS, McarError, UsageError
 from mobile_car.packages import PackageSearch
 from mobile_car.resources import PACKAGE_NAME
+
+# Kept here, not imported from mobile_car.config, to keep a plain build's start-up light.
+CONFIG_ARG = "config"
 
 from .common import config_options, handle_errors, package_path_option, report
 
@@ -50,8 +53,18 @@ def _overrides(origin: Path, package_paths, sets, config_files) -> dict[str, flo
     """Validated dimension overrides for builds starting at origin ({} when none given)."""
     if not sets and not config_files:
         return {}
+    from mobile_car.config import resolve_overrides
+
     search = PackageSearch(package_paths=list(package_paths), origin=origin)
     return resolve_overrides(search, sets, config_files)[1]
+
+
+def _override_mappings(overrides: dict[str, float]):
+    if not overrides:
+        return contextlib.nullcontext({})
+    from mobile_car.config import override_mappings
+
+    return override_mappings(overrides)
 
 
 def _write_or_print(xml: str, output: str | None) -> None:
@@ -128,13 +141,13 @@ def command(words, output, deps_only, quiet, package_paths, sets, config_files):
             root = search.find(PACKAGE_NAME)
         overrides = _overrides(root, package_paths, sets, config_files)
         outdir = Path(output) if output else Path("build")
-        with override_mappings(overrides) as extra:
+        with _override_mappings(overrides) as extra:
             sys.exit(_build_tree(root, outdir, {**mappings, **extra}, package_paths,
                                  deps_only, quiet))
     source = Path(inputs[0])
     search = PackageSearch(package_paths=list(package_paths), origin=source)
     overrides = _overrides(source, package_paths, sets, config_files)
-    with override_mappings(overrides) as extra:
+    with _override_mappings(overrides) as extra:
         result = build_file(source, {**mappings, **extra}, search,
                             optional_args=frozenset({CONFIG_ARG}))
     if overrides and CONFIG_ARG not in result.known_args:

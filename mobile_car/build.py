@@ -13,7 +13,6 @@ What this adds to ``xacro.process_file``:
 from __future__ import annotations
 
 import contextlib
-import difflib
 import io
 import os
 import re
@@ -90,6 +89,8 @@ def known_args(files: list[Path]) -> set[str]:
 
 
 def _unknown_arg_error(unknown: list[str], known: set[str], source: Path) -> UsageError:
+    import difflib  # only on this error path: keeps start-up light
+
     parts = []
     for name in unknown:
         close = difflib.get_close_matches(name, sorted(known), n=1)

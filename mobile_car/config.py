@@ -21,7 +21,6 @@ import re
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
-from xml.sax.saxutils import quoteattr
 
 from .errors import BuildError, InputError, UsageError
 from .packages import PackageSearch
@@ -34,6 +33,12 @@ COMMENT_RE = re.compile(
     r"^ (?P<unit>m|kg|kg/m\^3|rad/s|rad|N\*m|Hz|1)(?: \((?P<flag>>=0|any sign|mesh)\))?; "
     r"(?P<source>datasheet|listing|estimate|design|derived): (?P<meaning>\S.*\S) $")
 _KIND = {"m": "a length", "kg": "a mass"}
+
+
+def quoteattr(value: str) -> str:
+    """A double-quoted XML attribute value (xml.sax.saxutils would import urllib: slow)."""
+    return '"' + (value.replace("&", "&amp;").replace("<", "&lt;").replace('"', "&quot;")
+                  .replace("\n", "&#10;")) + '"'
 
 
 @dataclass(frozen=True)

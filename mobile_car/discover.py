@@ -10,11 +10,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from lxml import etree
-
 
 def is_robot_file(path: Path) -> bool:
     """True if the file's root element is a ``<robot>`` with a ``name`` attribute."""
+    from lxml import etree  # only folder builds need it: keep one-file builds light
+
     try:
         for _event, element in etree.iterparse(str(path), events=("start",),
                                                resolve_entities=False, no_network=True):

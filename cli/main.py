@@ -11,6 +11,7 @@ from mobile_car import __version__
 # name -> (module under mobile_car.cli, one-line help shown by `mcar --help`)
 COMMANDS = {
     "build": ("build", "Expand xacro into URDF (the bundled robot when no INPUT)."),
+    "render": ("render", "Draw robot descriptions as PNG pictures, headless."),
 }
 
 EXIT_CODES_HELP = """\b

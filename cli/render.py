@@ -86,7 +86,7 @@ def _classify(words: list[str]) -> tuple[str, list[Path] | list[str]]:
 
 def _progress(jobs, quiet: bool):
     """A progress bar on stderr, only on a terminal and not with --quiet."""
-    stream = click.get_text_stream("stderr")
+    stream = sys.stderr
     if quiet or len(jobs) < 2 or not stream.isatty():
         return None
     return click.progressbar(length=len(jobs), label="rendering", file=stream,

@@ -198,7 +198,8 @@ def _flatten(graph_scene: trimesh.Scene, link_colors: dict[str, tuple]) -> Scene
             mesh.visual = _material_colors(mesh)
         if link_colors:
             rgba = link_colors.get(parents.get(node), NO_MATERIAL_RGBA)
-            mesh.visual.face_colors = np.round(np.array(rgba) * 255).astype(np.uint8)
+            # int(255 * c), as yourdfpy converts visual colours, so both agree exactly
+            mesh.visual.face_colors = (np.array(rgba) * 255).astype(np.uint8)
         elif not mesh.visual.defined:
             mesh.visual.face_colors = np.round(np.array(NO_MATERIAL_RGBA) * 255).astype(np.uint8)
         mesh.apply_transform(transform)

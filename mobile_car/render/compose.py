@@ -39,10 +39,10 @@ def nice_step(length: float) -> float:
 
 def format_length(metres: float) -> str:
     """A grid spacing for people: ``5 cm``, ``2 mm``, ``1 m``."""
-    for unit, scale in (("m", 1.0), ("cm", 0.01), ("mm", 0.001)):
+    for unit, scale in (("m", 1.0), ("cm", 0.01)):
         if metres >= scale * (1 - 1e-9):
             return f"{metres / scale:g} {unit}"
-    return f"{metres * 1e6:g} µm"
+    return f"{metres / 0.001:g} mm"
 
 
 def font(size: int):

@@ -2,9 +2,10 @@
 
 The manifest (``.mcar-render.json`` in the output folder) maps each output, by its path
 relative to that folder, to a fingerprint of everything that decides its pixels: the URDF
-bytes, the bytes of every mesh it reads, the render options, the renderer asked for and the
-version of the drawing code, plus a hash of the PNG written, so that a picture edited or
-replaced by hand is rendered again. A missing or unreadable manifest just means that
+bytes, the bytes of every mesh it reads, the render options and the version of the drawing
+code; plus the renderer that drew it (a picture drawn by OpenGL does not satisfy
+``--renderer raycast``, either satisfies ``auto``) and a hash of the PNG written, so that a
+picture edited or replaced by hand is rendered again. A missing or unreadable manifest just means that
 everything is rendered.
 """
 
@@ -57,19 +58,25 @@ class Manifest:
         """The output's name in the manifest: its path relative to the folder."""
         return Path(os.path.relpath(Path(target).resolve(), self.folder.resolve())).as_posix()
 
-    def is_current(self, target: Path, fingerprint: str) -> bool:
-        """True if ``target`` was rendered from this fingerprint and is still as written."""
+    def is_current(self, target: Path, fingerprint: str, renderer: str = "auto") -> bool:
+        """True if ``target`` was drawn from this fingerprint by an acceptable renderer
+        (``auto``: any) and is still as written."""
         entry = self.entries.get(self.key(target))
         if not entry or entry.get("input") != fingerprint:
+            return False
+        if renderer != "auto" and entry.get("renderer") != renderer:
             return False
         try:
             return sha256(Path(target).read_bytes()) == entry.get("png")
         except OSError:
             return False
 
-    def record(self, target: Path, fingerprint: str, png: bytes, caption: str) -> None:
-        self.entries[self.key(target)] = {"input": fingerprint, "png": sha256(png),
-                                          "caption": caption}
+    def record(self, target: Path, fingerprint: str, png: bytes, caption: str,
+               renderer: str | None = None) -> None:
+        entry = {"input": fingerprint, "png": sha256(png), "caption": caption}
+        if renderer is not None:
+            entry["renderer"] = renderer
+        self.entries[self.key(target)] = entry
         self._changed = True
 
     def forget_all_but(self, keys: set[str]) -> None:

@@ -153,7 +153,7 @@ class RenderSession:
         return self.renderer
 
     def settings(self) -> dict:
-        return {"options": self.options.fingerprint(), "renderer": self.renderer_choice}
+        return {"options": self.options.fingerprint()}
 
     def render_one(self, job: RenderJob, manifest: Manifest | None) -> JobResult:
         """Render a job unless unchanged; errors in the input become a failed result."""
@@ -164,19 +164,20 @@ class RenderSession:
             meshes = mesh_files(parse_urdf(source), source, search, self.options.collision)
             fingerprint = input_fingerprint(source.xml, meshes, self.settings())
             if (manifest is not None and job.target is not None and not self.force
-                    and manifest.is_current(job.target, fingerprint)):
+                    and manifest.is_current(job.target, fingerprint, self.renderer_choice)):
                 return JobResult(job, "unchanged", warnings=warnings,
                                  seconds=time.perf_counter() - started)
             scene = load_scene(source, search, collision=self.options.collision)
             if not scene.triangle_count:
                 kind = "collision" if self.options.collision else "visual"
                 warnings.append(f"no {kind} geometry to draw")
-            image = draw_picture(self._renderer(), scene, self.options)
+            renderer = self._renderer()
+            image = draw_picture(renderer, scene, self.options)
             png = png_bytes(image)
             if job.target is not None:
                 atomic_write(job.target, png)
                 if manifest is not None:
-                    manifest.record(job.target, fingerprint, png, job.caption)
+                    manifest.record(job.target, fingerprint, png, job.caption, renderer.name)
                     self.thumbnails[manifest.key(job.target)] = image
         except RendererUnavailableError:
             raise  # nothing else can be rendered either: the whole run stops

@@ -73,41 +73,38 @@ def _line_width(camera: Camera) -> int:
     return max(1, round(min(camera.width, camera.height) / 400)) * SUPERSAMPLE
 
 
-def _downsample(layer: Image.Image) -> Image.Image:
-    # Premultiplied while averaging, so transparent pixels do not darken line edges.
-    return layer.convert("RGBa").reduce(SUPERSAMPLE).convert("RGBA")
-
-
-def _grid_layer(camera: Camera, bounds: np.ndarray, background) -> tuple[Image.Image, float]:
-    size = (camera.width * SUPERSAMPLE, camera.height * SUPERSAMPLE)
-    layer = Image.new("RGBA", size, (0, 0, 0, 0))
-    draw = ImageDraw.Draw(layer)
+def _grid_mask(camera: Camera, bounds: np.ndarray) -> tuple[Image.Image, float]:
+    """Coverage (mode L, 0..255) of the grid lines, and the grid spacing in metres."""
+    mask = Image.new("L", (camera.width * SUPERSAMPLE, camera.height * SUPERSAMPLE), 0)
+    draw = ImageDraw.Draw(mask)
     segments, step = _grid_segments(camera, bounds)
     ends = camera.to_pixels(np.array(segments, dtype=float).reshape(-1, 3)) * SUPERSAMPLE
-    color = tuple(int(c * 0.78) for c in background) + (255,)
     width = _line_width(camera) // 2 or 1
     for start, end in ends.reshape(-1, 2, 2):
-        draw.line([tuple(start), tuple(end)], fill=color, width=width)
-    return _downsample(layer), step
+        draw.line([tuple(start), tuple(end)], fill=255, width=width)
+    return mask.reduce(SUPERSAMPLE), step
 
 
-def _overlay_layer(camera: Camera, axes: bool, grid_step: float | None) -> Image.Image:
-    """The axis triad in the lower left corner and the grid spacing in the lower right."""
+def _overlay_strip(camera: Camera, axes: bool, grid_step: float | None):
+    """The axis triad (lower left) and the grid spacing (lower right), drawn on a
+    transparent strip along the bottom edge; returns (strip, its top row)."""
     scale = SUPERSAMPLE
-    size = (camera.width * scale, camera.height * scale)
-    layer = Image.new("RGBA", size, (0, 0, 0, 0))
-    draw = ImageDraw.Draw(layer)
     short_side = min(camera.width, camera.height)
-    text_font = font(max(9, round(short_side / 32)) * scale)
-    length = max(12.0, short_side * 0.07) * scale
-    margin = max(6.0, short_side * 0.03) * scale
-    origin = np.array([margin + length, size[1] - margin - length])
+    text_size = max(9, round(short_side / 32))
+    length = max(12.0, short_side * 0.07)
+    margin = max(6.0, short_side * 0.03)
+    strip_height = min(camera.height, int(math.ceil(margin + 2.4 * length + text_size)))
+    top = camera.height - strip_height
+    layer = Image.new("RGBA", (camera.width * scale, strip_height * scale), (0, 0, 0, 0))
+    draw = ImageDraw.Draw(layer)
+    text_font = font(text_size * scale)
+    origin = np.array([margin + length, strip_height - margin - length]) * scale
     width = _line_width(camera)
     right, up, back = camera.rotation
     # Farthest axis first, so the nearer ones are drawn over it.
     for index in sorted(range(3), key=lambda i: back[i]) if axes else ():
         name = "xyz"[index]
-        tip = origin + np.array([right[index], -up[index]]) * length
+        tip = origin + np.array([right[index], -up[index]]) * length * scale
         if np.hypot(right[index], up[index]) < 0.2:  # pointing at the viewer: draw a dot
             radius = width * 1.8
             draw.ellipse([*(origin - radius), *(origin + radius)], fill=AXIS_COLORS[name])
@@ -117,27 +114,36 @@ def _overlay_layer(camera: Camera, axes: bool, grid_step: float | None) -> Image
             label_at = origin + (tip - origin) * 1.28
         draw.text(tuple(label_at), name, fill=AXIS_COLORS[name], font=text_font, anchor="mm")
     if grid_step is not None:
-        draw.text((size[0] - margin, size[1] - margin), f"grid {format_length(grid_step)}",
-                  fill=TEXT_COLOR, font=text_font, anchor="rs")
-    return _downsample(layer)
+        draw.text((layer.width - margin * scale, layer.height - margin * scale),
+                  f"grid {format_length(grid_step)}", fill=TEXT_COLOR, font=text_font,
+                  anchor="rs")
+    # Premultiplied while averaging, so transparent pixels do not darken line edges.
+    return layer.convert("RGBa").reduce(scale).convert("RGBA"), top
 
 
 def compose(model: np.ndarray, camera: Camera, bounds: np.ndarray | None,
             options: RenderOptions) -> Image.Image:
-    """The final RGB picture: background, grid, the premultiplied model, then the triad."""
-    background = Image.new("RGBA", (camera.width, camera.height), options.background + (255,))
+    """The final RGB picture: background, grid, the model, then the triad.
+
+    ``model`` is (H, W, 4) uint8 with colour premultiplied by coverage, as drawn.
+    """
+    image = Image.new("RGB", (camera.width, camera.height), options.background)
     grid_step = None
     if options.grid:
         grid_bounds = bounds if bounds is not None else np.array([[-0.1] * 3, [0.1] * 3])
-        grid, grid_step = _grid_layer(camera, grid_bounds, options.background)
-        background.alpha_composite(grid)
-    base = np.asarray(background.convert("RGB"), dtype=np.float32) / 255.0
-    alpha = model[..., 3:4]
-    pixels = model[..., :3] + base * (1.0 - alpha)
-    image = Image.fromarray(np.clip(np.rint(pixels * 255.0), 0, 255).astype(np.uint8), "RGB")
+        mask, grid_step = _grid_mask(camera, grid_bounds)
+        image.paste(tuple(int(c * 0.78) for c in options.background), mask=mask)
+    base = np.asarray(image, dtype=np.uint16)
+    alpha = model[..., 3:4].astype(np.uint16)
+    # "over" in 8-bit integers, rounded; cannot exceed 255 since colour <= alpha.
+    pixels = model[..., :3] + (base * (255 - alpha) + 127) // 255
+    image = Image.fromarray(pixels.astype(np.uint8), "RGB")
     if options.axes or grid_step is not None:
-        overlay = _overlay_layer(camera, options.axes, grid_step)
-        image = Image.alpha_composite(image.convert("RGBA"), overlay).convert("RGB")
+        strip, top = _overlay_strip(camera, options.axes, grid_step)
+        box = (0, top, camera.width, camera.height)
+        region = image.crop(box).convert("RGBA")
+        region.alpha_composite(strip)
+        image.paste(region.convert("RGB"), box)
     return image
 
 

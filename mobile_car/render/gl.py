@@ -68,7 +68,7 @@ class GLRenderer:
         return self._targets[size]
 
     def draw(self, scene: Scene, camera: Camera) -> np.ndarray:
-        """The model alone, (H, W, 4) float32 in 0..1, colour premultiplied by coverage."""
+        """The model alone, (H, W, 4) uint8, colour premultiplied by coverage."""
         size = (camera.width, camera.height)
         multisampled, resolved = self._framebuffers(size)
         multisampled.use()
@@ -89,8 +89,7 @@ class GLRenderer:
                 buffer.release()
         self.ctx.copy_framebuffer(resolved, multisampled)
         pixels = np.frombuffer(resolved.read(components=4, alignment=1), dtype=np.uint8)
-        image = pixels.reshape(camera.height, camera.width, 4)[::-1]  # GL rows go bottom-up
-        return image.astype(np.float32) / 255.0
+        return pixels.reshape(camera.height, camera.width, 4)[::-1]  # GL rows go bottom-up
 
     def close(self) -> None:
         for multisampled, resolved in self._targets.values():

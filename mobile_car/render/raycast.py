@@ -33,11 +33,11 @@ class RaycastRenderer:
     description = "ray casting (trimesh + embreex)"
 
     def draw(self, scene: Scene, camera: Camera) -> np.ndarray:
-        """The model alone, (H, W, 4) float32 in 0..1, colour premultiplied by coverage."""
+        """The model alone, (H, W, 4) uint8, colour premultiplied by coverage."""
         height, width = camera.height, camera.width
         image = np.zeros((height, width, 4), dtype=np.float32)
         if not scene.triangle_count:
-            return image
+            return image.astype(np.uint8)
         faces = np.arange(len(scene.positions)).reshape(-1, 3)
         mesh = trimesh.Trimesh(vertices=scene.positions.astype(np.float64), faces=faces,
                                process=False, validate=False)
@@ -63,7 +63,7 @@ class RaycastRenderer:
                 total[:, :3] += s_rgb * s_hit[:, None]
                 total[:, 3] += s_hit
             image[rows, columns] = (total / len(MSAA_OFFSETS)).astype(np.float32)
-        return image
+        return np.rint(image * 255.0).astype(np.uint8)
 
     @staticmethod
     def _cast(caster, scene: Scene, camera: Camera, origins: np.ndarray, direction):

@@ -16,6 +16,7 @@ its file and line instead of being dropped silently (yourdfpy only logs a warnin
 
 from __future__ import annotations
 
+import hashlib
 import io
 import logging
 import math
@@ -36,6 +37,9 @@ from ..packages import PackageSearch
 SMOOTH_ANGLE = math.radians(30)
 # trimesh's colour for geometry without any material (rviz uses a similar grey).
 NO_MATERIAL_RGBA = (0.6, 0.6, 0.62, 1.0)
+# Smoothed meshes kept for reuse within a process (see _smooth_corners).
+_SMOOTHED: dict[str, tuple] = {}
+_SMOOTHED_LIMIT = 64
 
 
 @dataclass
@@ -185,6 +189,26 @@ def _material_colors(mesh: trimesh.Trimesh) -> trimesh.visual.ColorVisuals:
     return trimesh.visual.ColorVisuals(mesh, face_colors=face_colors)
 
 
+def _smooth_corners(mesh: trimesh.Trimesh) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Triangle corners of a coloured mesh, in its own frame: positions, smooth normals,
+    RGBA 0..1. Cached by content: the same motor mesh twice in a robot, or in every file
+    of a package, is smoothed once (the costly part for large meshes)."""
+    visual = mesh.visual
+    colours = visual.vertex_colors if visual.kind == "vertex" else visual.face_colors
+    key = hashlib.sha1(b"".join(np.ascontiguousarray(a).tobytes() for a in (
+        mesh.vertices, mesh.faces, colours))).hexdigest()
+    cached = _SMOOTHED.get(key)
+    if cached is None:
+        smooth = trimesh.graph.smooth_shade(mesh, angle=SMOOTH_ANGLE, facet_minarea=None)
+        corners = smooth.faces.reshape(-1)
+        cached = (smooth.vertices[corners], smooth.vertex_normals[corners],
+                  smooth.visual.vertex_colors[corners, :4] / 255.0)
+        if len(_SMOOTHED) >= _SMOOTHED_LIMIT:
+            _SMOOTHED.pop(next(iter(_SMOOTHED)))
+        _SMOOTHED[key] = cached
+    return cached
+
+
 def _flatten(graph_scene: trimesh.Scene, link_colors: dict[str, tuple]) -> Scene:
     positions, normals, colors = [], [], []
     parents = graph_scene.graph.transforms.parents
@@ -202,12 +226,13 @@ def _flatten(graph_scene: trimesh.Scene, link_colors: dict[str, tuple]) -> Scene
             mesh.visual.face_colors = (np.array(rgba) * 255).astype(np.uint8)
         elif not mesh.visual.defined:
             mesh.visual.face_colors = np.round(np.array(NO_MATERIAL_RGBA) * 255).astype(np.uint8)
-        mesh.apply_transform(transform)
-        smooth = trimesh.graph.smooth_shade(mesh, angle=SMOOTH_ANGLE, facet_minarea=None)
-        corners = smooth.faces.reshape(-1)
-        positions.append(smooth.vertices[corners])
-        normals.append(smooth.vertex_normals[corners])
-        colors.append(smooth.visual.vertex_colors[corners, :4] / 255.0)
+        local_positions, local_normals, corner_colors = _smooth_corners(mesh)
+        linear, offset = transform[:3, :3], transform[:3, 3]
+        positions.append(local_positions @ linear.T + offset)
+        # Normals go with the inverse transpose, which also covers scaled meshes.
+        turned = local_normals @ np.linalg.inv(linear)
+        normals.append(turned / np.maximum(np.linalg.norm(turned, axis=1, keepdims=True), 1e-12))
+        colors.append(corner_colors)
     if not positions:
         empty = np.zeros((0, 3), np.float32)
         return Scene(empty, empty.copy(), np.zeros((0, 4), np.float32))

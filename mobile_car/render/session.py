@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import io
 import time
+from collections import deque
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Iterable, Iterator
@@ -26,11 +28,13 @@ from .backend import GLProbe, open_renderer
 from .compose import png_bytes
 from .manifest import DRAWING_VERSION, Manifest, input_fingerprint, sha256
 from .options import RenderOptions
-from .picture import draw_picture
+from .picture import DrawnView, draw_views, finish_picture
 from .scene import ModelSource, load_scene, mesh_files, parse_urdf
 from .sheet import contact_sheet
 
 CONTACT_SHEET = "index.png"
+# Pictures finished (overlays, PNG, write) in parallel with drawing the next ones.
+FINISH_THREADS = 1
 URDF_SUFFIXES = (".urdf.xacro", ".xacro", ".urdf")
 
 
@@ -53,6 +57,27 @@ class JobResult:
     warnings: list[str] = field(default_factory=list)
     png: bytes | None = None
     seconds: float = 0.0
+
+
+@dataclass
+class _Drawn:
+    """A job between the two stages: drawn, not yet composed and written."""
+
+    job: RenderJob
+    views: list[DrawnView]
+    bounds: object
+    fingerprint: str
+    renderer: str
+    warnings: list[str]
+    started: float
+
+
+def _ready(item) -> bool:
+    return not isinstance(item, Future) or item.done()
+
+
+def _result(item) -> JobResult:
+    return item.result() if isinstance(item, Future) else item
 
 
 def picture_name(path: Path) -> str:
@@ -155,8 +180,11 @@ class RenderSession:
     def settings(self) -> dict:
         return {"options": self.options.fingerprint()}
 
-    def render_one(self, job: RenderJob, manifest: Manifest | None) -> JobResult:
-        """Render a job unless unchanged; errors in the input become a failed result."""
+    def _draw(self, job: RenderJob, manifest: Manifest | None) -> JobResult | _Drawn:
+        """First stage, on the calling thread: expand, check for changes, load, draw.
+
+        Returns a finished JobResult (unchanged, or failed) or the drawn views to finish.
+        """
         started = time.perf_counter()
         try:
             search = PackageSearch(package_paths=list(self.package_paths), origin=job.source)
@@ -172,27 +200,59 @@ class RenderSession:
                 kind = "collision" if self.options.collision else "visual"
                 warnings.append(f"no {kind} geometry to draw")
             renderer = self._renderer()
-            image = draw_picture(renderer, scene, self.options)
-            png = png_bytes(image)
-            if job.target is not None:
-                atomic_write(job.target, png)
-                if manifest is not None:
-                    manifest.record(job.target, fingerprint, png, job.caption, renderer.name)
-                    self.thumbnails[manifest.key(job.target)] = image
+            views = draw_views(renderer, scene, self.options)
         except RendererUnavailableError:
             raise  # nothing else can be rendered either: the whole run stops
         except McarError as error:
             return JobResult(job, "failed", error=error, seconds=time.perf_counter() - started)
-        return JobResult(job, "rendered", warnings=warnings, png=png,
-                         seconds=time.perf_counter() - started)
+        return _Drawn(job, views, scene.bounds, fingerprint, renderer.name, warnings, started)
+
+    def _finish(self, drawn: _Drawn, manifest: Manifest | None) -> JobResult:
+        """Second stage, on any thread: overlays, PNG encoding, atomic write, manifest."""
+        job = drawn.job
+        try:
+            image = finish_picture(drawn.views, drawn.bounds, self.options)
+            png = png_bytes(image)
+            if job.target is not None:
+                atomic_write(job.target, png)
+                if manifest is not None:
+                    manifest.record(job.target, drawn.fingerprint, png, job.caption,
+                                    drawn.renderer)
+                    self.thumbnails[manifest.key(job.target)] = image
+        except McarError as error:
+            return JobResult(job, "failed", error=error,
+                             seconds=time.perf_counter() - drawn.started)
+        return JobResult(job, "rendered", warnings=drawn.warnings, png=png,
+                         seconds=time.perf_counter() - drawn.started)
+
+    def render_one(self, job: RenderJob, manifest: Manifest | None) -> JobResult:
+        """Render a job unless unchanged; errors in the input become a failed result."""
+        outcome = self._draw(job, manifest)
+        return outcome if isinstance(outcome, JobResult) else self._finish(outcome, manifest)
 
     def run(self, jobs: list[RenderJob], manifest: Manifest | None) -> Iterator[JobResult]:
-        """Render every job in order, yielding results; the manifest is saved at the end,
-        also when interrupted (Ctrl-C), so finished pictures count as done next time."""
+        """Render every job, yielding results in order.
+
+        Two stages overlap on the two cores: while one picture is finished (overlays, PNG,
+        write) on a worker thread, the next file is expanded and drawn here. The manifest is
+        saved at the end, also when interrupted (Ctrl-C): pictures whose write completed
+        count as done next time, and nothing half-written is left (atomic writes).
+        """
+        pending: deque = deque()
+        pool = ThreadPoolExecutor(max_workers=FINISH_THREADS, thread_name_prefix="mcar-finish")
         try:
             for job in jobs:
-                yield self.render_one(job, manifest)
+                outcome = self._draw(job, manifest)
+                if isinstance(outcome, _Drawn):
+                    outcome = pool.submit(self._finish, outcome, manifest)
+                pending.append(outcome)
+                # Hand back what is finished; keep at most two pictures in flight.
+                while pending and (len(pending) > FINISH_THREADS + 1 or _ready(pending[0])):
+                    yield _result(pending.popleft())
+            while pending:
+                yield _result(pending.popleft())
         finally:
+            pool.shutdown(wait=True)  # a write in flight completes (atomically) or not at all
             if manifest is not None:
                 manifest.save()
 

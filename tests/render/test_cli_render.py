@@ -191,7 +191,7 @@ def test_ctrl_c_exits_130_and_leaves_only_whole_pictures(cli, pkg_copy, tmp_path
                                                           px):
     import mobile_car.render.session as session
 
-    real_draw = session.draw_picture
+    real_draw = session.draw_views
     calls = []
 
     def interrupted_on_the_third_picture(*args, **kwargs):
@@ -200,7 +200,7 @@ def test_ctrl_c_exits_130_and_leaves_only_whole_pictures(cli, pkg_copy, tmp_path
             raise KeyboardInterrupt
         return real_draw(*args, **kwargs)
 
-    monkeypatch.setattr(session, "draw_picture", interrupted_on_the_third_picture)
+    monkeypatch.setattr(session, "draw_views", interrupted_on_the_third_picture)
     monkeypatch.chdir(tmp_path)
     result = cli("render", pkg_copy, *SMALL)
     assert result.exit_code == 130
@@ -211,7 +211,7 @@ def test_ctrl_c_exits_130_and_leaves_only_whole_pictures(cli, pkg_copy, tmp_path
     for name in ("caster/test_caster.png", "chassis/steps/step_1_plate.png"):
         assert px.read_png(written[name]).shape == (120, 160, 3)
     # The two finished pictures count as done for the next run.
-    monkeypatch.setattr(session, "draw_picture", real_draw)
+    monkeypatch.setattr(session, "draw_views", real_draw)
     assert "3 rendered, 2 unchanged" in cli("render", pkg_copy, *SMALL).stderr
 
 

@@ -89,6 +89,10 @@ def parse_urdf(source: ModelSource) -> etree._Element:
     if etree.QName(root).localname != "robot":
         raise RenderError(f"root element is <{etree.QName(root).localname}>, not <robot>",
                           file=display_path(source.path), line=_line(root, source))
+    if not root.get("name"):
+        raise RenderError("<robot> has no name: a macro file is not a robot; render a file "
+                          "that includes it", file=display_path(source.path),
+                          line=_line(root, source))
     return root
 
 

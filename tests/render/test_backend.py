@@ -95,7 +95,7 @@ def test_no_renderer_at_all_exits_2_naming_what_to_install(run_mcar, repo, tmp_p
     assert not (tmp_path / "r.png").exists()
 
 
-def test_nothing_to_draw_never_opens_a_renderer(run_mcar, repo, tmp_path, shims):
+def test_nothing_to_draw_never_opens_a_renderer(run_mcar, repo, tmp_path, shims, needs_gl):
     """An up-to-date picture is skipped before any renderer is needed."""
     out = tmp_path / "r.png"
     assert run_mcar("render", MODEL, "-o", out, *SMALL, cwd=repo).returncode == 0
@@ -105,7 +105,8 @@ def test_nothing_to_draw_never_opens_a_renderer(run_mcar, repo, tmp_path, shims)
     assert "0 rendered, 1 unchanged" in result.stderr
 
 
-def test_a_picture_is_redrawn_when_another_renderer_is_required(run_mcar, repo, tmp_path):
+def test_a_picture_is_redrawn_when_another_renderer_is_required(run_mcar, repo, tmp_path,
+                                                                 needs_gl):
     out = tmp_path / "r.png"
     assert run_mcar("render", MODEL, "-o", out, *SMALL, cwd=repo).returncode == 0  # auto: GL
     forced = run_mcar("render", MODEL, "-o", out, *SMALL, "--renderer", "raycast", cwd=repo)

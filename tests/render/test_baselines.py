@@ -21,7 +21,7 @@ def case_args(path: Path) -> list[str]:
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c.stem for c in CASES])
-def test_gl_picture_matches_baseline(case, render, px):
+def test_gl_picture_matches_baseline(case, render, px, needs_gl):
     picture = render(*case_args(case), "--renderer", "gl")
     px.compare_with_baseline(case.stem, picture, px.GL_MISMATCH_FRACTION)
 

@@ -33,7 +33,7 @@ def tree(folder: Path) -> dict[str, bytes]:
 
 
 def test_package_folder_is_mirrored_with_a_contact_sheet(cli, pkg_copy, tmp_path, px,
-                                                         monkeypatch):
+                                                         monkeypatch, needs_gl):
     monkeypatch.chdir(tmp_path)
     result = cli("render", pkg_copy, *SMALL)
     assert result.exit_code == 0, result.output
@@ -119,9 +119,10 @@ def test_one_file_with_output_and_default_output(cli, in_repo, tmp_path, px, mon
     assert px.read_png(tmp_path / "renders/03_color.png").shape == (120, 160, 3)
 
 
-def test_output_dash_writes_the_png_to_stdout(run_mcar, repo, tmp_path):
+def test_output_dash_writes_the_png_to_stdout(run_mcar, repo, tmp_path, quiet_renderer):
     result = subprocess.run([str(Path(sys.executable).parent / "mcar"), "render",
-                             "urdf/tutorial/03_color.urdf", "-o", "-", *SMALL, "-q"],
+                             "urdf/tutorial/03_color.urdf", "-o", "-", *SMALL, "-q",
+                             *quiet_renderer],
                             cwd=repo, capture_output=True, timeout=120)
     assert result.returncode == 0, result.stderr
     assert result.stdout.startswith(b"\x89PNG\r\n\x1a\n") and result.stderr == b""
@@ -215,9 +216,9 @@ def test_ctrl_c_exits_130_and_leaves_only_whole_pictures(cli, pkg_copy, tmp_path
     assert "3 rendered, 2 unchanged" in cli("render", pkg_copy, *SMALL).stderr
 
 
-def test_quiet_prints_nothing_on_success(cli, pkg_copy, tmp_path, monkeypatch):
+def test_quiet_prints_nothing_on_success(cli, pkg_copy, tmp_path, monkeypatch, quiet_renderer):
     monkeypatch.chdir(tmp_path)
-    result = cli("render", pkg_copy, *SMALL, "-q")
+    result = cli("render", pkg_copy, *SMALL, "-q", *quiet_renderer)
     assert result.exit_code == 0 and result.output == ""
 
 
@@ -240,13 +241,14 @@ def run_on_a_terminal(args, cwd) -> tuple[int, str]:
     return process.wait(timeout=120), b"".join(chunks).decode(errors="replace")
 
 
-def test_progress_bar_only_on_a_terminal(pkg_copy, tmp_path, run_mcar):
-    code, printed = run_on_a_terminal(["render", pkg_copy, *SMALL], cwd=tmp_path)
+def test_progress_bar_only_on_a_terminal(pkg_copy, tmp_path, run_mcar, quiet_renderer):
+    code, printed = run_on_a_terminal(["render", pkg_copy, *SMALL, *quiet_renderer],
+                                      cwd=tmp_path)
     assert code == 0
     assert "rendering" in printed and "5/5" in printed
     assert "5 pictures in renders: 5 rendered" in printed
 
-    piped = run_mcar("render", pkg_copy, *SMALL, "--force", cwd=tmp_path)
+    piped = run_mcar("render", pkg_copy, *SMALL, "--force", *quiet_renderer, cwd=tmp_path)
     assert piped.returncode == 0
     assert len(piped.stderr.splitlines()) == 1 and "rendering" not in piped.stderr
 

@@ -114,6 +114,12 @@ def test_malformed_xml_names_its_line():
     assert caught.value.line == 3 and "not well-formed" in caught.value.message
 
 
+def test_a_macro_file_is_not_a_robot():
+    with pytest.raises(RenderError) as caught:
+        scene_of(PKG / "urdf/define.xacro")
+    assert caught.value.message.startswith("<robot> has no name: a macro file is not a robot")
+
+
 def test_a_joint_to_a_missing_link_is_an_error_not_a_traceback():
     text = ('<robot name="r"><link name="a"/><joint name="j" type="fixed">'
             '<parent link="a"/><child link="ghost"/></joint></robot>')

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import contextlib
+import signal
 import sys
 import time
 from dataclasses import dataclass, field
@@ -60,6 +62,29 @@ def _color(ctx, param, value):
         return parse_color(value)
     except UsageError as error:
         raise click.BadParameter(error.message.split(" ", 1)[1]) from None
+
+
+@contextlib.contextmanager
+def _ctrl_c_survives_imports():
+    """Re-raise a Ctrl-C that arrived while importing: trimesh guards its optional imports
+    with ``except BaseException``, which would swallow it and render everything anyway."""
+    pressed = []
+
+    def on_ctrl_c(signum, frame):
+        pressed.append(signum)
+        raise KeyboardInterrupt
+
+    try:
+        previous = signal.signal(signal.SIGINT, on_ctrl_c)
+    except ValueError:  # not the main thread (an embedding program): nothing to guard
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    if pressed:
+        raise KeyboardInterrupt
 
 
 def _classify(words: list[str]) -> tuple[str, list[Path] | list[str]]:
@@ -131,9 +156,16 @@ def command(words, output, view, size, collision, background, grid, axes, render
     from mobile_car.render.backend import GLProbe
 
     probe = GLProbe() if renderer != "raycast" else None
-    from mobile_car.packages import PackageSearch
-    from mobile_car.render.manifest import Manifest
-    from mobile_car.render.session import RenderSession, file_job, package_jobs, picture_name
+    try:
+        with _ctrl_c_survives_imports():
+            from mobile_car.packages import PackageSearch
+            from mobile_car.render.manifest import Manifest
+            from mobile_car.render.session import (RenderSession, file_job, package_jobs,
+                                                   picture_name)
+    except KeyboardInterrupt:
+        if probe is not None:
+            probe.cancel()
+        raise
 
     with RenderSession(options, renderer=renderer, package_paths=package_paths, force=force,
                        probe=probe) as session:

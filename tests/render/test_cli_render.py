@@ -6,8 +6,10 @@ import os
 import pty
 import re
 import shutil
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -272,3 +274,25 @@ def test_help_does_not_import_numpy_or_gl(repo):
                             timeout=60, cwd=repo / "tests")
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == "[]"
+
+
+def test_a_real_ctrl_c_mid_run_exits_130_with_whole_pictures_only(pkg_copy, tmp_path, px,
+                                                                  quiet_renderer):
+    """SIGINT as soon as the first picture appears: four more are still to come."""
+    process = subprocess.Popen(
+        [str(Path(sys.executable).parent / "mcar"), "render", pkg_copy, "--size", "1600x1200",
+         *quiet_renderer], cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+        text=True)
+    deadline = time.monotonic() + 60
+    while not list((tmp_path / "renders").rglob("*.png")) and time.monotonic() < deadline:
+        time.sleep(0.005)
+    process.send_signal(signal.SIGINT)
+    _, stderr = process.communicate(timeout=60)
+    assert process.returncode == 130, stderr
+    assert stderr.endswith("mcar: interrupted\n")
+    written = [p for p in (tmp_path / "renders").rglob("*") if p.is_file()]
+    pictures = [p for p in written if p.suffix == ".png"]
+    assert 1 <= len(pictures) < 5 and not (tmp_path / "renders/index.png").exists()
+    assert all(p.suffix == ".png" or p.name == ".mcar-render.json" for p in written)
+    for picture in pictures:
+        assert px.read_png(picture).shape == (1200, 1600, 3)

@@ -158,35 +158,16 @@ def command(words, output, view, size, collision, background, grid, axes, render
     probe = GLProbe() if renderer != "raycast" else None
     try:
         with _ctrl_c_survives_imports():
-            from mobile_car.packages import PackageSearch
             from mobile_car.render.manifest import Manifest
-            from mobile_car.render.session import (RenderSession, file_job, package_jobs,
-                                                   picture_name)
+            from mobile_car.render.session import RenderSession
     except KeyboardInterrupt:
         if probe is not None:
             probe.cancel()
         raise
 
     with RenderSession(options, renderer=renderer, package_paths=package_paths, force=force,
-                       probe=probe) as session:
-        if kind == "files":
-            if len(inputs) == 1 and output and (output == "-" or not Path(output).is_dir()):
-                target = None if output == "-" else Path(output)
-                jobs = [file_job(inputs[0], target)]
-                outdir = None if target is None else target.parent
-            else:
-                outdir = Path(output) if output else Path("renders")
-                jobs = [file_job(path, outdir / picture_name(path)) for path in inputs]
-            sheet = False
-        else:
-            if kind == "dir":
-                root = inputs[0]
-            else:
-                search = PackageSearch(package_paths=list(package_paths), origin=Path.cwd())
-                root = search.find(PACKAGE_NAME)
-            outdir = Path(output) if output else Path("renders")
-            jobs = package_jobs(root, outdir, inputs if kind == "parts" else ())
-            sheet = True
+                       probe=probe) as session:  # closing it stops the probe if unneeded
+        jobs, outdir, sheet = _plan(kind, inputs, output, package_paths)
         manifest = Manifest(outdir) if outdir is not None else None
         outcome = _run(session, jobs, manifest, quiet)
         if output == "-" and outcome.last_png is not None:
@@ -200,6 +181,32 @@ def command(words, output, view, size, collision, background, grid, axes, render
         if not quiet:
             _summary(session, outcome, len(jobs), outdir, sheet, time.perf_counter() - started)
     sys.exit(outcome.exit_code)
+
+
+def _plan(kind: str, inputs: list, output: str | None, package_paths):
+    """The jobs, the output folder (None for stdout) and whether to make a contact sheet."""
+    from mobile_car.packages import PackageSearch
+    from mobile_car.render.session import file_job, package_jobs, picture_name
+
+    if kind == "files":
+        if len(inputs) == 1 and output and (output == "-" or not Path(output).is_dir()):
+            target = None if output == "-" else Path(output)
+            return [file_job(inputs[0], target)], None if target is None else target.parent, False
+        outdir = Path(output) if output else Path("renders")
+        jobs = [file_job(path, outdir / picture_name(path)) for path in inputs]
+        names = [job.target.name for job in jobs]
+        clashes = sorted({name for name in names if names.count(name) > 1})
+        if clashes:
+            raise UsageError(f"several inputs would all be drawn to {', '.join(clashes)}; "
+                             "render them one at a time with -o")
+        return jobs, outdir, False
+    if kind == "dir":
+        root = inputs[0]
+    else:
+        search = PackageSearch(package_paths=list(package_paths), origin=Path.cwd())
+        root = search.find(PACKAGE_NAME)
+    outdir = Path(output) if output else Path("renders")
+    return package_jobs(root, outdir, inputs if kind == "parts" else ()), outdir, True
 
 
 @dataclass

@@ -12,8 +12,15 @@ from pathlib import Path
 import click
 
 from mobile_car.errors import EXIT_OK, UsageError
-from mobile_car.render.options import (DEFAULT_BACKGROUND, RENDERER_ENV, RENDERERS,
-                                       VIEW_CHOICES, RenderOptions, parse_color, parse_size)
+from mobile_car.render.options import (
+    DEFAULT_BACKGROUND,
+    RENDERER_ENV,
+    RENDERERS,
+    VIEW_CHOICES,
+    RenderOptions,
+    parse_color,
+    parse_size,
+)
 from mobile_car.resources import PACKAGE_NAME
 
 from .common import handle_errors, package_path_option, report

@@ -93,7 +93,7 @@ def _overlay_strip(camera: Camera, axes: bool, grid_step: float | None):
     text_size = max(9, round(short_side / 32))
     length = max(12.0, short_side * 0.07)
     margin = max(6.0, short_side * 0.03)
-    strip_height = min(camera.height, int(math.ceil(margin + 2.4 * length + text_size)))
+    strip_height = min(camera.height, math.ceil(margin + 2.4 * length + text_size))
     top = camera.height - strip_height
     layer = Image.new("RGBA", (camera.width * scale, strip_height * scale), (0, 0, 0, 0))
     draw = ImageDraw.Draw(layer)

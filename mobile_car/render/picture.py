@@ -34,7 +34,7 @@ class DrawnView:
 def draw_views(renderer, scene: Scene, options: RenderOptions) -> list[DrawnView]:
     """Draw the model for the requested view, or for each of the four with ``all``."""
     if options.view == "all":
-        quarter = dict(width=options.width // 2, height=options.height // 2)
+        quarter = {"width": options.width // 2, "height": options.height // 2}
         wanted = [replace(options, view=view, **quarter) for view in VIEWS]
     else:
         wanted = [options]

@@ -42,7 +42,7 @@ class RaycastRenderer:
         mesh = trimesh.Trimesh(vertices=scene.positions.astype(np.float64), faces=faces,
                                process=False, validate=False)
         caster = RayMeshIntersector(mesh)
-        right, up, back = camera.rotation
+        right, up, _ = camera.rotation
 
         origins, direction = camera.pixel_rays()
         origins = origins.reshape(-1, 3)

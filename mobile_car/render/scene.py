@@ -108,7 +108,7 @@ def mesh_files(root: etree._Element, source: ModelSource, search: PackageSearch,
     for mesh in root.iterfind(f"link/{kind}/geometry/mesh"):
         uri = (mesh.get("filename") or "").strip()
         link = mesh.getparent().getparent().getparent().get("name", "?")
-        where = dict(file=display_path(source.path), line=_line(mesh, source))
+        where = {"file": display_path(source.path), "line": _line(mesh, source)}
         if not uri:
             raise RenderError(f"link '{link}': <mesh> without a filename", **where)
         try:

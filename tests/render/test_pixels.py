@@ -80,13 +80,13 @@ def grey_pixels(image: np.ndarray) -> np.ndarray:
 
 def test_side_view_shows_the_caster_at_the_front_on_the_right(render):
     """The caster ball sits at +x under the plate; x points right in the side view."""
-    rows, cols = np.nonzero(grey_pixels(render(CHASSIS, "--view", "side", "--size", "400x300",
+    _, cols = np.nonzero(grey_pixels(render(CHASSIS, "--view", "side", "--size", "400x300",
                                                *PLAIN)))
     assert len(cols) > 50 and cols.min() > 300
 
 
 def test_front_view_shows_the_caster_in_the_middle(render):
-    rows, cols = np.nonzero(grey_pixels(render(CHASSIS, "--view", "front", "--size", "400x300",
+    _, cols = np.nonzero(grey_pixels(render(CHASSIS, "--view", "front", "--size", "400x300",
                                                *PLAIN)))
     assert len(cols) > 50 and cols.mean() == pytest.approx(200, abs=5)
 
@@ -108,7 +108,9 @@ def test_collision_differs_from_visual_only_where_the_geometry_differs(render, p
     post_rows = slice(0, 110)
     assert not changed[post_rows].any()
     assert px.foreground(visual[post_rows]).mean() > 0.02  # the post is really up there
-    teal = lambda image: ((image[..., 1].astype(int) > image[..., 0] + 40)).sum()  # noqa: E731
+    def teal(image):
+        return (image[..., 1].astype(int) > image[..., 0] + 40).sum()
+
     assert teal(collision) < teal(visual)  # a disc covers less than the square around it
 
 

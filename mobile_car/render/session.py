@@ -30,7 +30,7 @@ from .manifest import DRAWING_VERSION, Manifest, input_fingerprint, sha256
 from .options import RenderOptions
 from .picture import DrawnView, draw_views, finish_picture
 from .scene import ModelSource, load_scene, mesh_files, parse_urdf
-from .sheet import contact_sheet
+from .sheet import THUMBNAIL_WIDTH, contact_sheet
 
 CONTACT_SHEET = "index.png"
 # Pictures finished (overlays, PNG, write) in parallel with drawing the next ones.
@@ -78,6 +78,14 @@ def _ready(item) -> bool:
 
 def _result(item) -> JobResult:
     return item.result() if isinstance(item, Future) else item
+
+
+def _sheet_copy(image: Image.Image) -> Image.Image:
+    """A picture reduced for the contact sheet, the same whether it was just drawn or read
+    back from disk (so the sheet's bytes do not depend on which pictures were redrawn)."""
+    copy = image.copy()
+    copy.thumbnail((2 * THUMBNAIL_WIDTH, 2 * THUMBNAIL_WIDTH))
+    return copy
 
 
 def picture_name(path: Path) -> str:
@@ -218,7 +226,7 @@ class RenderSession:
                 if manifest is not None:
                     manifest.record(job.target, drawn.fingerprint, png, job.caption,
                                     drawn.renderer)
-                    self.thumbnails[manifest.key(job.target)] = image
+                    self.thumbnails[manifest.key(job.target)] = _sheet_copy(image)
         except McarError as error:
             return JobResult(job, "failed", error=error,
                              seconds=time.perf_counter() - drawn.started)
@@ -274,7 +282,7 @@ class RenderSession:
             if image is None:
                 try:
                     with Image.open(io.BytesIO((manifest.folder / key).read_bytes())) as opened:
-                        image = opened.convert("RGB")
+                        image = _sheet_copy(opened.convert("RGB"))
                 except (OSError, ValueError):
                     continue  # a damaged picture is left out, and redrawn when its input changes
             pictures.append((entry.get("caption") or key, image))

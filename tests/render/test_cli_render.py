@@ -69,6 +69,12 @@ def test_second_run_skips_unchanged_pictures_and_a_mesh_change_redraws_one(
     assert tree(tmp_path / "renders") == first
     assert stamps == {n: (tmp_path / "renders" / n).stat().st_mtime_ns for n in PICTURES}
 
+    # A lost contact sheet is made again from the pictures on disk, to the same bytes as
+    # when it was made from freshly drawn ones.
+    (tmp_path / "renders/index.png").unlink()
+    assert "0 rendered, 5 unchanged" in cli("render", pkg_copy, *SMALL).stderr
+    assert (tmp_path / "renders/index.png").read_bytes() == first["index.png"]
+
     # The motor's mesh changes (same shape, one more byte in the STL header): only the
     # motor picture depends on it.
     stl = pkg_copy / "meshes/motor.stl"

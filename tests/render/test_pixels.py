@@ -141,3 +141,12 @@ def test_same_input_gives_identical_png_bytes(cli, in_repo, tmp_path):
     assert cli("render", CHASSIS, "-o", first).exit_code == 0
     assert cli("render", CHASSIS, "-o", second).exit_code == 0
     assert first.read_bytes() == second.read_bytes()
+
+
+def test_library_render_file_gives_the_same_bytes_as_the_command(cli, in_repo, tmp_path):
+    from mobile_car.render import RenderOptions, render_file
+
+    png = render_file(TUTORIAL, RenderOptions(view="side", width=120, height=90))
+    out = tmp_path / "cli.png"
+    assert cli("render", TUTORIAL, "--view", "side", "--size", "120x90", "-o", out).exit_code == 0
+    assert png == out.read_bytes()

@@ -1,14 +1,15 @@
 # mcar: two entry points for a fresh machine (see README):
-#   make demo   install, then build and check the bundled mobile car
+#   make demo   install, then build, check and render the bundled mobile car
 #   make test   install (with test tools and urdfdom's check_urdf), then run the tests
 # Debian packages installed here when missing: liburdfdom-tools (check_urdf, the peer
-# the tests compare against).
+# the tests compare against); libegl1 libegl-mesa0 libgl1-mesa-dri libgl1 (headless
+# OpenGL through EGL and Mesa's llvmpipe, for mcar render).
 
 PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 SUDO   := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
-APT_PACKAGES := liburdfdom-tools
+APT_PACKAGES := liburdfdom-tools libegl1 libegl-mesa0 libgl1-mesa-dri libgl1
 
 .PHONY: demo test install system-deps build bench clean
 
@@ -31,6 +32,7 @@ system-deps:
 demo: install system-deps
 	$(BIN)/mcar build
 	check_urdf build/mobile_robot.urdf
+	$(BIN)/mcar render
 
 test: install system-deps
 	$(BIN)/pytest

@@ -12,6 +12,7 @@ from mobile_car import __version__
 COMMANDS = {
     "build": ("build", "Expand xacro into URDF (the bundled robot when no INPUT)."),
     "config": ("config", "Show the robot's dimensions, with overrides applied."),
+    "render": ("render", "Draw robot descriptions as PNG pictures, headless."),
 }
 
 EXIT_CODES_HELP = """\b

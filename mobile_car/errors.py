@@ -51,3 +51,13 @@ class BuildError(McarError):
     """xacro could not expand the input; ``details`` holds the macro and include stack."""
 
     exit_code = EXIT_PROBLEMS
+
+
+class RenderError(McarError):
+    """A URDF cannot be drawn: broken XML, a missing or unreadable mesh, a bad joint tree."""
+
+    exit_code = EXIT_PROBLEMS
+
+
+class RendererUnavailableError(McarError):
+    """Neither OpenGL (EGL) nor the ray-casting fallback can run on this machine."""

@@ -1,0 +1,274 @@
+"""``mcar render``: robot descriptions as PNG pictures, offscreen, for shells and CI."""
+
+from __future__ import annotations
+
+import contextlib
+import signal
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import click
+
+from mobile_car.errors import EXIT_OK, UsageError
+from mobile_car.render.options import (
+    DEFAULT_BACKGROUND,
+    RENDERER_ENV,
+    RENDERERS,
+    VIEW_CHOICES,
+    RenderOptions,
+    parse_color,
+    parse_size,
+)
+from mobile_car.resources import PACKAGE_NAME
+
+from .common import handle_errors, package_path_option, report
+
+HELP = f"""Draw robot descriptions as PNG pictures, with no display and no GPU.
+
+\b
+  mcar render                        every robot file of {PACKAGE_NAME}
+                                     into renders/, plus the contact sheet
+                                     renders/index.png
+  mcar render wheel chassis          only the files of those part folders
+  mcar render DIR [-o OUTDIR]        every robot file of a package folder
+  mcar render FILE [-o OUT.png]      one .urdf or .xacro file (default:
+                                     renders/NAME.png; -o - writes to stdout)
+
+Pictures mirror the urdf/ tree: urdf/wheel/test_wheel.urdf.xacro ->
+renders/wheel/test_wheel.png. A picture whose inputs (URDF, meshes, options) have not
+changed since it was drawn is not drawn again (--force draws it anyway); the record is
+renders/.mcar-render.json.
+
+Views are orthographic, in ROS axes (x forward, y left, z up): iso (front-left-above,
+like rviz), front (from +x), side (from -y), top (x right, y up); all = the four in
+a 2x2 picture. The camera fits the model; a ground grid (spacing printed in the
+corner) and an x/y/z triad (red/green/blue) show scale and orientation. URDF material
+colours are used; COLLADA meshes keep their own; meshes (package://, file://,
+relative paths) are found as by mcar build.
+
+Renderer: OpenGL through EGL (Mesa's llvmpipe on machines with no GPU; Debian packages
+libegl1 libegl-mesa0 libgl1-mesa-dri libgl1). With --renderer auto, if no OpenGL context
+can be made within a few seconds, pictures are ray-cast with trimesh + embreex instead
+(same camera and lighting). Exit 2 when neither can run, naming what to install.
+"""
+
+
+def _size(ctx, param, value):
+    try:
+        return parse_size(value)
+    except UsageError as error:
+        raise click.BadParameter(error.message.split(" ", 1)[1]) from None
+
+
+def _color(ctx, param, value):
+    if value is None:
+        return DEFAULT_BACKGROUND
+    try:
+        return parse_color(value)
+    except UsageError as error:
+        raise click.BadParameter(error.message.split(" ", 1)[1]) from None
+
+
+@contextlib.contextmanager
+def _ctrl_c_survives_imports():
+    """Re-raise a Ctrl-C that arrived while importing: trimesh guards its optional imports
+    with ``except BaseException``, which would swallow it and render everything anyway."""
+    pressed = []
+
+    def on_ctrl_c(signum, frame):
+        pressed.append(signum)
+        raise KeyboardInterrupt
+
+    try:
+        previous = signal.signal(signal.SIGINT, on_ctrl_c)
+    except ValueError:  # not the main thread (an embedding program): nothing to guard
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    if pressed:
+        raise KeyboardInterrupt
+
+
+def _classify(words: list[str]) -> tuple[str, list[Path] | list[str]]:
+    """("package", []) | ("dir", [DIR]) | ("files", FILES) | ("parts", NAMES)."""
+    if not words:
+        return "package", []
+    paths = [Path(word) for word in words]
+    existing = [path.exists() for path in paths]
+    if all(existing):
+        if len(paths) == 1 and paths[0].is_dir():
+            return "dir", paths
+        folders = [str(p) for p in paths if p.is_dir()]
+        if folders:
+            raise UsageError(f"give one folder at a time, or files only: {' '.join(folders)}")
+        return "files", paths
+    looks_like_files = [w for w, e in zip(words, existing)
+                        if not e and (("/" in w) or w.endswith((".urdf", ".xacro")))]
+    if looks_like_files:
+        raise UsageError(f"no such file: {' '.join(looks_like_files)}")
+    if any(existing):
+        raise UsageError("give files, or part names, not both")
+    return "parts", words
+
+
+def _progress(jobs, quiet: bool):
+    """A progress bar on stderr, only on a terminal and not with --quiet."""
+    stream = sys.stderr
+    if quiet or len(jobs) < 2 or not stream.isatty():
+        return None
+    return click.progressbar(length=len(jobs), label="rendering", file=stream,
+                             show_pos=True, item_show_func=lambda name: name)
+
+
+@click.command("render", help=HELP, short_help="Draw robot descriptions as PNG pictures.")
+@click.argument("words", nargs=-1, metavar="[FILE|DIR|PART]...")
+@click.option("-o", "--output", metavar="OUT",
+              help="Output PNG (one FILE; '-' for stdout) or folder (default: renders/).")
+@click.option("--view", type=click.Choice(VIEW_CHOICES), default="iso", show_default=True,
+              help="Camera direction; 'all' draws the four views in a 2x2 picture.")
+@click.option("--size", "size", default="800x600", show_default=True, callback=_size,
+              metavar="WxH", help="Picture size in pixels.")
+@click.option("--collision", is_flag=True,
+              help="Draw the <collision> geometry instead of the <visual> geometry.")
+@click.option("--background", default=None, callback=_color, metavar="COLOR",
+              help="Background colour: a name or #rrggbb (default: light slate grey).")
+@click.option("--grid/--no-grid", default=True, show_default=True,
+              help="Draw a ground grid under the model.")
+@click.option("--axes/--no-axes", default=True, show_default=True,
+              help="Draw the x/y/z axis triad in the corner.")
+@click.option("--renderer", type=click.Choice(RENDERERS), default="auto", show_default=True,
+              envvar=RENDERER_ENV, show_envvar=True,
+              help="OpenGL (gl), ray casting (raycast), or gl with raycast as fallback (auto).")
+@click.option("--force", is_flag=True, help="Draw every picture, even if unchanged.")
+@click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
+@package_path_option
+@handle_errors
+def command(words, output, view, size, collision, background, grid, axes, renderer, force,
+            quiet, package_paths):
+    started = time.perf_counter()
+    options = RenderOptions(view=view, width=size[0], height=size[1], collision=collision,
+                            background=background, grid=grid, axes=axes)
+    kind, inputs = _classify(list(words))
+    if kind == "files" and len(inputs) > 1 and output and output.endswith(".png"):
+        raise UsageError("-o names a folder when rendering several files")
+    if output == "-" and not (kind == "files" and len(inputs) == 1):
+        raise UsageError("-o - (stdout) works with one FILE only")
+
+    # Try OpenGL in a child process now, while numpy, trimesh and xacro load here.
+    from mobile_car.render.backend import GLProbe
+
+    probe = GLProbe() if renderer != "raycast" else None
+    try:
+        with _ctrl_c_survives_imports():
+            from mobile_car.render.manifest import Manifest
+            from mobile_car.render.session import RenderSession
+    except KeyboardInterrupt:
+        if probe is not None:
+            probe.cancel()
+        raise
+
+    with RenderSession(options, renderer=renderer, package_paths=package_paths, force=force,
+                       probe=probe) as session:  # closing it stops the probe if unneeded
+        jobs, outdir, sheet = _plan(kind, inputs, output, package_paths)
+        manifest = Manifest(outdir) if outdir is not None else None
+        outcome = _run(session, jobs, manifest, quiet)
+        if output == "-" and outcome.last_png is not None:
+            sys.stdout.buffer.write(outcome.last_png)
+            sys.stdout.flush()
+        if sheet:
+            if kind == "package" or kind == "dir":
+                manifest.forget_all_but({manifest.key(job.target) for job in jobs}
+                                        | {"index.png"})
+            session.write_contact_sheet(manifest)
+        if not quiet:
+            _summary(session, outcome, len(jobs), outdir, sheet, time.perf_counter() - started)
+    sys.exit(outcome.exit_code)
+
+
+def _plan(kind: str, inputs: list, output: str | None, package_paths):
+    """The jobs, the output folder (None for stdout) and whether to make a contact sheet."""
+    from mobile_car.packages import PackageSearch
+    from mobile_car.render.session import file_job, package_jobs, picture_name
+
+    if kind == "files":
+        if len(inputs) == 1 and output and (output == "-" or not Path(output).is_dir()):
+            target = None if output == "-" else Path(output)
+            return [file_job(inputs[0], target)], None if target is None else target.parent, False
+        outdir = Path(output) if output else Path("renders")
+        jobs = [file_job(path, outdir / picture_name(path)) for path in inputs]
+        names = [job.target.name for job in jobs]
+        clashes = sorted({name for name in names if names.count(name) > 1})
+        if clashes:
+            raise UsageError(f"several inputs would all be drawn to {', '.join(clashes)}; "
+                             "render them one at a time with -o")
+        return jobs, outdir, False
+    if kind == "dir":
+        root = inputs[0]
+    else:
+        search = PackageSearch(package_paths=list(package_paths), origin=Path.cwd())
+        root = search.find(PACKAGE_NAME)
+    outdir = Path(output) if output else Path("renders")
+    return package_jobs(root, outdir, inputs if kind == "parts" else ()), outdir, True
+
+
+@dataclass
+class _Outcome:
+    exit_code: int = EXIT_OK
+    counts: dict = field(default_factory=lambda: {"rendered": 0, "unchanged": 0, "failed": 0})
+    last_png: bytes | None = None
+
+
+def _run(session, jobs, manifest, quiet: bool) -> _Outcome:
+    """Render every job, printing errors and warnings as they come."""
+    from mobile_car.build import display_path
+
+    outcome = _Outcome()
+    bar = _progress(jobs, quiet)
+    if bar is not None:
+        bar.__enter__()
+    try:
+        for result in session.run(jobs, manifest):
+            outcome.counts[result.status] += 1
+            if bar is not None:
+                bar.update(1, result.job.caption)
+            for note in session.notes:
+                click.echo(f"mcar: warning: {note}", err=True)
+            session.notes.clear()
+            for warning in result.warnings:
+                click.echo(f"{display_path(result.job.source)}: warning: {warning}", err=True)
+            if result.error is not None:
+                if bar is not None:
+                    click.echo("", err=True)
+                report(result.error)
+                outcome.exit_code = max(outcome.exit_code, result.error.exit_code)
+            if result.png is not None:
+                outcome.last_png = result.png
+    finally:
+        if bar is not None:
+            bar.__exit__(None, None, None)
+    return outcome
+
+
+def _summary(session, outcome: _Outcome, total: int, outdir, sheet: bool,
+             seconds: float) -> None:
+    from mobile_car.build import display_path
+
+    counts = outcome.counts
+    where = f" in {display_path(outdir)}" if outdir is not None else ""
+    parts = [f"{counts['rendered']} rendered"]
+    if counts["unchanged"]:
+        parts.append(f"{counts['unchanged']} unchanged")
+    if counts["failed"]:
+        parts.append(f"{counts['failed']} failed")
+    line = f"{total} picture{'s' if total != 1 else ''}{where}: {', '.join(parts)}"
+    if sheet:
+        line += f" + {display_path(Path(outdir) / 'index.png')}"
+    line += f" ({seconds:.2f} s"
+    if session.renderer_description:
+        line += f", {session.renderer_description}"
+    click.echo(line + ")", err=True)

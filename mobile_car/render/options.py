@@ -1,0 +1,74 @@
+"""What a picture is asked to look like: view, size, geometry kind, background, overlays.
+
+Kept free of numpy and GL so that the command line can parse and check its options
+before anything heavy is imported.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import asdict, dataclass
+
+from ..errors import UsageError
+
+VIEWS = ("iso", "front", "side", "top")
+VIEW_CHOICES = VIEWS + ("all",)
+RENDERERS = ("auto", "gl", "raycast")
+RENDERER_ENV = "MCAR_RENDERER"
+
+# A light slate grey: white plates and black wheels both stand out against it.
+DEFAULT_BACKGROUND = (190, 196, 206)
+DEFAULT_SIZE = (800, 600)
+MIN_SIZE, MAX_SIZE = 16, 8192
+
+_SIZE_RE = re.compile(r"\s*(\d+)\s*[xX]\s*(\d+)\s*")
+
+
+@dataclass(frozen=True)
+class RenderOptions:
+    """How to draw one picture. ``view`` is one of VIEW_CHOICES; sizes are in pixels."""
+
+    view: str = "iso"
+    width: int = DEFAULT_SIZE[0]
+    height: int = DEFAULT_SIZE[1]
+    collision: bool = False
+    background: tuple[int, int, int] = DEFAULT_BACKGROUND
+    grid: bool = True
+    axes: bool = True
+
+    def __post_init__(self):
+        if self.view not in VIEW_CHOICES:
+            raise UsageError(f"unknown view '{self.view}'; choose one of {', '.join(VIEW_CHOICES)}")
+        smallest = 2 * MIN_SIZE if self.view == "all" else MIN_SIZE  # all: four frames
+        for side in (self.width, self.height):
+            if not smallest <= side <= MAX_SIZE:
+                raise UsageError(f"image size {self.width}x{self.height} out of range for "
+                                 f"--view {self.view} ({smallest}..{MAX_SIZE} pixels a side)")
+
+    def fingerprint(self) -> dict:
+        """The options as plain data, for the skip-unchanged manifest."""
+        return asdict(self)
+
+
+def parse_size(text: str) -> tuple[int, int]:
+    """``"800x600"`` -> ``(800, 600)``; anything else is a usage error."""
+    match = _SIZE_RE.fullmatch(text)
+    if not match:
+        raise UsageError(f"--size '{text}' is not WIDTHxHEIGHT (e.g. 800x600)")
+    width, height = int(match.group(1)), int(match.group(2))
+    if not (MIN_SIZE <= width <= MAX_SIZE and MIN_SIZE <= height <= MAX_SIZE):
+        raise UsageError(f"--size {width}x{height} out of range "
+                         f"({MIN_SIZE}..{MAX_SIZE} pixels a side)")
+    return width, height
+
+
+def parse_color(text: str) -> tuple[int, int, int]:
+    """A CSS colour name or ``#rrggbb`` as an RGB triple (Pillow's colour parser)."""
+    from PIL import ImageColor  # small module; keeps Pillow off the start-up path
+
+    try:
+        rgb = ImageColor.getrgb(text.strip())
+    except ValueError:
+        raise UsageError(f"--background '{text}' is not a colour (a name like 'white' "
+                         "or #rrggbb)") from None
+    return tuple(rgb[:3])

@@ -1,0 +1,140 @@
+"""URDF -> coloured triangles: materials, meshes through the package search, errors."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mobile_car.errors import BuildError, RenderError
+from mobile_car.packages import PackageSearch
+from mobile_car.render.scene import ModelSource, load_scene
+from mobile_car.render.session import load_source
+
+PKG = Path(__file__).parent / "pkg"
+REPO = Path(__file__).parents[2]
+
+
+def scene_of(path: Path, collision=False, text: str | None = None):
+    search = PackageSearch(origin=path)
+    if text is None:
+        source, _ = load_source(path, search)
+    else:
+        source = ModelSource(text.encode(), path, lines_match=True)
+    return load_scene(source, search, collision=collision)
+
+
+def colours(scene) -> set[tuple]:
+    """The distinct colours of a scene, as 8-bit RGBA."""
+    return {tuple(int(v) for v in c) for c in np.rint(scene.colors * 255)}
+
+
+def urdf_rgba(*rgba) -> tuple:
+    """A URDF <color rgba> as yourdfpy stores it: int(255 * channel)."""
+    return tuple(int(255 * c) for c in rgba)
+
+
+def test_named_material_from_the_palette_colours_the_wheel():
+    scene = scene_of(PKG / "urdf/wheel/test_wheel.urdf.xacro")
+    assert colours(scene) == {urdf_rgba(0.1, 0.25, 0.85, 1)}  # define.xacro's blue
+    radius, width = 0.033, 0.026
+    assert scene.bounds[1] - scene.bounds[0] == pytest.approx([2 * radius, width, 2 * radius],
+                                                              abs=1e-4)
+
+
+def test_inline_material_and_a_two_centimetre_sphere():
+    scene = scene_of(PKG / "urdf/caster/test_caster.urdf.xacro")
+    assert colours(scene) == {urdf_rgba(0.8, 0.65, 0.2, 1)}
+    assert scene.bounds == pytest.approx(np.array([[-0.01] * 3, [0.01] * 3]), abs=2e-4)
+
+
+def test_every_link_is_posed_by_its_joints():
+    scene = scene_of(PKG / "urdf/chassis/test_chassis.urdf.xacro")
+    low, high = scene.bounds
+    assert low == pytest.approx([-0.1, -0.075 - 0.013, 0.0], abs=1e-4)
+    assert high == pytest.approx([0.1, 0.075 + 0.013, 0.066], abs=1e-4)
+    assert len(colours(scene)) == 3  # white plate, blue wheels, grey caster
+
+
+def test_collada_mesh_keeps_its_own_material_over_the_urdf_one():
+    scene = scene_of(PKG / "models/red_box_dae.urdf")
+    assert colours(scene) == {(217, 26, 26, 255)}  # red_box.dae's diffuse 0.85 0.1 0.1
+    assert scene.bounds[1] - scene.bounds[0] == pytest.approx([0.04, 0.02, 0.01], abs=1e-6)
+
+
+def test_stl_through_package_uri_takes_the_urdf_colour():
+    scene = scene_of(PKG / "urdf/motor/test_motor.urdf.xacro")
+    assert colours(scene) == {urdf_rgba(1.0, 0.5, 0.05, 1)}  # define.xacro's orange
+    assert scene.triangle_count > 50
+
+
+def test_relative_mesh_path_and_scale():
+    scene = scene_of(PKG / "models/relative_mesh.urdf")
+    assert scene.bounds[1] - scene.bounds[0] == pytest.approx([0.044, 0.044, 0.094], abs=1e-6)
+
+
+def test_file_uri_mesh(tmp_path):
+    mesh = (PKG / "meshes/motor.stl").resolve()
+    urdf = tmp_path / "file_uri.urdf"
+    urdf.write_text(f'<robot name="r"><link name="a"><visual><geometry>'
+                    f'<mesh filename="file://{mesh}"/></geometry></visual></link></robot>')
+    scene = scene_of(urdf)
+    assert scene.triangle_count > 50
+    assert len(colours(scene)) == 1  # no material: one neutral grey
+
+
+def test_collision_geometry_takes_the_link_colour():
+    visual = scene_of(PKG / "models/box_collides_as_sphere.urdf")
+    collision = scene_of(PKG / "models/box_collides_as_sphere.urdf", collision=True)
+    assert colours(collision) == colours(visual)
+    assert collision.triangle_count != visual.triangle_count  # the box became a sphere
+
+
+def test_missing_mesh_names_file_line_and_link():
+    with pytest.raises(RenderError) as caught:
+        scene_of(PKG / "models/missing_mesh.urdf")
+    error = caught.value
+    assert error.line == 7 and error.file.endswith("missing_mesh.urdf")
+    assert "link 'base_link'" in error.message and "no_such_mesh.stl not found" in error.message
+    assert error.exit_code == 1
+
+
+def test_mesh_in_an_unknown_package():
+    text = ('<robot name="r">\n<link name="a"><visual><geometry>\n'
+            '<mesh filename="package://nowhere_pkg/m.stl"/></geometry></visual></link></robot>')
+    with pytest.raises(RenderError) as caught:
+        scene_of(PKG / "models/inline.urdf", text=text)
+    assert caught.value.line == 3 and "package 'nowhere_pkg' not found" in caught.value.message
+
+
+def test_malformed_xml_names_its_line():
+    with pytest.raises(RenderError) as caught:
+        scene_of(PKG / "models/inline.urdf", text='<robot name="r">\n<link name="a">\n</robot>')
+    assert caught.value.line == 3 and "not well-formed" in caught.value.message
+
+
+def test_a_macro_file_is_not_a_robot():
+    with pytest.raises(RenderError) as caught:
+        scene_of(PKG / "urdf/define.xacro")
+    assert caught.value.message.startswith("<robot> has no name: a macro file is not a robot")
+
+
+def test_a_joint_to_a_missing_link_is_an_error_not_a_traceback():
+    text = ('<robot name="r"><link name="a"/><joint name="j" type="fixed">'
+            '<parent link="a"/><child link="ghost"/></joint></robot>')
+    with pytest.raises(RenderError):
+        scene_of(PKG / "models/inline.urdf", text=text)
+
+
+def test_broken_xacro_is_a_build_error(tmp_path):
+    bad = tmp_path / "bad.urdf.xacro"
+    bad.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                   '<link name="${undefined_thing}"/>\n</robot>\n')
+    with pytest.raises(BuildError):
+        scene_of(bad)
+
+
+def test_no_visual_geometry_gives_an_empty_scene():
+    scene = scene_of(REPO / "urdf/tutorial/01_skeleton.urdf")
+    assert scene.triangle_count == 0 and scene.bounds is None

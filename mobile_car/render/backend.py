@@ -26,7 +26,8 @@ RAYCAST_PIP_PACKAGES = "embreex"
 _PROBE_CODE = """
 import moderngl
 ctx = moderngl.create_context(standalone=True, backend="egl", require=330)
-print(ctx.info["GL_RENDERER"])
+import sys
+sys.stdout.write(ctx.info["GL_RENDERER"] + "\n")
 """
 
 

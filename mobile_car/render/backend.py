@@ -24,10 +24,10 @@ GL_PIP_PACKAGES = "moderngl glcontext"
 RAYCAST_PIP_PACKAGES = "embreex"
 
 _PROBE_CODE = """
+import sys
 import moderngl
 ctx = moderngl.create_context(standalone=True, backend="egl", require=330)
-import sys
-sys.stdout.write(ctx.info["GL_RENDERER"] + "\n")
+sys.stdout.write(ctx.info["GL_RENDERER"])
 """
 
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import contextlib
 import sys
 from pathlib import Path
 
@@ -15,10 +14,8 @@ from mobile_car.errors import EXIT_OK, EXIT_PROBLEMS, McarError, UsageError
 from mobile_car.packages import PackageSearch
 from mobile_car.resources import PACKAGE_NAME
 
-# Kept here, not imported from mobile_car.config, to keep a plain build's start-up light.
-CONFIG_ARG = "config"
-
-from .common import config_options, handle_errors, package_path_option, report
+from .common import (CONFIG_ARG, config_options, dimension_overrides, handle_errors,
+                     override_context, package_path_option, report)
 
 HELP = """Expand xacro into URDF.
 
@@ -47,24 +44,6 @@ cannot make a working robot) and apply to every file that includes config.xacro.
 Outputs are written atomically: a failed build leaves an earlier output untouched.
 Errors are printed as FILE:LINE: error: message, then xacro's macro/include stack.
 """
-
-
-def _overrides(origin: Path, package_paths, sets, config_files) -> dict[str, float]:
-    """Validated dimension overrides for builds starting at origin ({} when none given)."""
-    if not sets and not config_files:
-        return {}
-    from mobile_car.config import resolve_overrides
-
-    search = PackageSearch(package_paths=list(package_paths), origin=origin)
-    return resolve_overrides(search, sets, config_files)[1]
-
-
-def _override_mappings(overrides: dict[str, float]):
-    if not overrides:
-        return contextlib.nullcontext({})
-    from mobile_car.config import override_mappings
-
-    return override_mappings(overrides)
 
 
 def _write_or_print(xml: str, output: str | None) -> None:
@@ -139,15 +118,15 @@ def command(words, output, deps_only, quiet, package_paths, sets, config_files):
             # The checkout the user stands in wins over the bundled copy.
             search = PackageSearch(package_paths=list(package_paths), origin=Path.cwd())
             root = search.find(PACKAGE_NAME)
-        overrides = _overrides(root, package_paths, sets, config_files)
+        overrides = dimension_overrides(root, package_paths, sets, config_files)
         outdir = Path(output) if output else Path("build")
-        with _override_mappings(overrides) as extra:
+        with override_context(overrides) as extra:
             sys.exit(_build_tree(root, outdir, {**mappings, **extra}, package_paths,
                                  deps_only, quiet))
     source = Path(inputs[0])
     search = PackageSearch(package_paths=list(package_paths), origin=source)
-    overrides = _overrides(source, package_paths, sets, config_files)
-    with _override_mappings(overrides) as extra:
+    overrides = dimension_overrides(source, package_paths, sets, config_files)
+    with override_context(overrides) as extra:
         result = build_file(source, {**mappings, **extra}, search,
                             optional_args=frozenset({CONFIG_ARG}))
     if overrides and CONFIG_ARG not in result.known_args:

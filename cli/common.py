@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import os
 import sys
+from pathlib import Path
 
 import click
 
@@ -32,6 +34,31 @@ def config_options(func):
              "number is SI (m, kg); units like mm, cm, in, g, deg are converted. Repeatable.")(
         func)
     return func
+
+
+# The xacro argument config.xacro reads overrides from; kept here, not imported from
+# mobile_car.config, so that commands run without overrides never import it.
+CONFIG_ARG = "config"
+
+
+def dimension_overrides(origin: Path, package_paths, sets, config_files) -> dict[str, float]:
+    """Validated --set/--config overrides for inputs at origin ({} when none are given)."""
+    if not sets and not config_files:
+        return {}
+    from mobile_car.config import resolve_overrides
+    from mobile_car.packages import PackageSearch
+
+    search = PackageSearch(package_paths=list(package_paths), origin=origin)
+    return resolve_overrides(search, sets, config_files)[1]
+
+
+def override_context(overrides: dict[str, float]):
+    """A context yielding the xacro arguments that apply the overrides ({} for none)."""
+    if not overrides:
+        return contextlib.nullcontext({})
+    from mobile_car.config import override_mappings
+
+    return override_mappings(overrides)
 
 
 def report(error: McarError) -> None:

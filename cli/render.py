@@ -23,7 +23,8 @@ from mobile_car.render.options import (
 )
 from mobile_car.resources import PACKAGE_NAME
 
-from .common import handle_errors, package_path_option, report
+from .common import (config_options, dimension_overrides, handle_errors, override_context,
+                     package_path_option, report)
 
 HELP = f"""Draw robot descriptions as PNG pictures, with no display and no GPU.
 
@@ -47,6 +48,9 @@ a 2x2 picture. The camera fits the model; a ground grid (spacing printed in the
 corner) and an x/y/z triad (red/green/blue) show scale and orientation. URDF material
 colours are used; COLLADA meshes keep their own; meshes (package://, file://,
 relative paths) are found as by mcar build.
+
+--set NAME=VALUE and --config FILE.yaml change the robot's dimensions as for mcar build
+(see `mcar config`); they are validated before anything is drawn.
 
 Renderer: OpenGL through EGL (Mesa's llvmpipe on machines with no GPU; Debian packages
 libegl1 libegl-mesa0 libgl1-mesa-dri libgl1). With --renderer auto, if no OpenGL context
@@ -146,10 +150,11 @@ def _progress(jobs, quiet: bool):
               help="OpenGL (gl), ray casting (raycast), or gl with raycast as fallback (auto).")
 @click.option("--force", is_flag=True, help="Draw every picture, even if unchanged.")
 @click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
+@config_options
 @package_path_option
 @handle_errors
 def command(words, output, view, size, collision, background, grid, axes, renderer, force,
-            quiet, package_paths):
+            quiet, package_paths, sets, config_files):
     started = time.perf_counter()
     options = RenderOptions(view=view, width=size[0], height=size[1], collision=collision,
                             background=background, grid=grid, axes=axes)
@@ -172,8 +177,12 @@ def command(words, output, view, size, collision, background, grid, axes, render
             probe.cancel()
         raise
 
-    with RenderSession(options, renderer=renderer, package_paths=package_paths, force=force,
-                       probe=probe) as session:  # closing it stops the probe if unneeded
+    overrides = dimension_overrides(Path(inputs[0]) if kind in ("files", "dir") else Path.cwd(),
+                                    package_paths, sets, config_files)
+    with override_context(overrides) as mappings, \
+            RenderSession(options, renderer=renderer, package_paths=package_paths, force=force,
+                          probe=probe, mappings=mappings) as session:
+        # (closing the session stops the GL probe if it was not needed)
         jobs, outdir, sheet = _plan(kind, inputs, output, package_paths)
         manifest = Manifest(outdir) if outdir is not None else None
         outcome = _run(session, jobs, manifest, quiet)

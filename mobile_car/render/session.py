@@ -130,10 +130,15 @@ def file_job(source: Path, target: Path | None) -> RenderJob:
     return RenderJob(source, target, picture_name(source)[: -len(".png")])
 
 
-def load_source(path: Path, search: PackageSearch) -> tuple[ModelSource, list[str]]:
-    """The URDF for a file: a .xacro is expanded with xacro, anything else read as is."""
+def load_source(path: Path, search: PackageSearch, mappings: dict[str, str] | None = None
+                ) -> tuple[ModelSource, list[str]]:
+    """The URDF for a file: a .xacro is expanded with xacro, anything else read as is.
+
+    ``mappings`` (dimension overrides) reach the files that declare them and no others.
+    """
     if path.name.endswith(".xacro"):
-        result = build_file(path, {}, search)
+        mappings = dict(mappings or {})
+        result = build_file(path, mappings, search, optional_args=frozenset(mappings))
         return ModelSource(result.xml.encode("utf-8"), path, lines_match=False), result.warnings
     try:
         data = path.read_bytes()
@@ -152,8 +157,9 @@ class RenderSession:
 
     def __init__(self, options: RenderOptions, renderer: str = "auto",
                  package_paths: Iterable[Path] = (), force: bool = False,
-                 probe: GLProbe | None = None):
+                 probe: GLProbe | None = None, mappings: dict[str, str] | None = None):
         self.options = options
+        self.mappings = dict(mappings or {})  # xacro args for every file (overrides)
         self.renderer_choice = renderer
         self.package_paths = [Path(p) for p in package_paths]
         self.force = force
@@ -196,7 +202,7 @@ class RenderSession:
         started = time.perf_counter()
         try:
             search = PackageSearch(package_paths=list(self.package_paths), origin=job.source)
-            source, warnings = load_source(job.source, search)
+            source, warnings = load_source(job.source, search, self.mappings)
             meshes = mesh_files(parse_urdf(source), source, search, self.options.collision)
             fingerprint = input_fingerprint(source.xml, meshes, self.settings())
             if (manifest is not None and job.target is not None and not self.force

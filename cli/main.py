@@ -11,6 +11,8 @@ from mobile_car import __version__
 # name -> (module under mobile_car.cli, one-line help shown by `mcar --help`)
 COMMANDS = {
     "build": ("build", "Expand xacro into URDF (the bundled robot when no INPUT)."),
+    "check": ("check", "Check URDF/xacro files: check_urdf's tree, stricter, located."),
+    "tree": ("tree", "Print the kinematic tree with joint types, origins and axes."),
 }
 
 EXIT_CODES_HELP = """\b

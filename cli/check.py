@@ -140,12 +140,15 @@ def command(words, output_format, strict, quiet, package_paths):
     # One short run builds hundreds of thousands of objects and no garbage cycles worth
     # collecting; the cyclic collector's passes over them cost a quarter of the run.
     gc.disable()
-    inputs, mappings = split_words(words)
-    inputs = expand_inputs(inputs)
-    if mappings and not any(name.endswith(".xacro") for name in inputs):
-        raise UsageError("NAME:=VALUE arguments apply to .xacro inputs, and none was given")
-    stdin = click.get_binary_stream("stdin") if STDIN in inputs else None
-    results = [check_input(name, mappings, package_paths, stdin=stdin) for name in inputs]
+    try:
+        inputs, mappings = split_words(words)
+        inputs = expand_inputs(inputs)
+        if mappings and not any(name.endswith(".xacro") for name in inputs):
+            raise UsageError("NAME:=VALUE arguments apply to .xacro inputs, and none was given")
+        stdin = click.get_binary_stream("stdin") if STDIN in inputs else None
+        results = [check_input(name, mappings, package_paths, stdin=stdin) for name in inputs]
+    finally:
+        gc.enable()  # for callers in the same process (tests); a real run exits right after
     exit_code = overall_exit(results, strict)
     if output_format == "json":
         _emit_json(results, exit_code)

@@ -15,7 +15,7 @@ from mobile_car.checker import STDIN, CheckResult, as_json, check_input
 from mobile_car.diagnostics import github_annotation
 from mobile_car.discover import robot_files, source_base
 from mobile_car.errors import EXIT_OK, EXIT_PROBLEMS, EXIT_USAGE, UsageError
-from mobile_car.tree import check_urdf_text
+from mobile_car.tree import check_urdf_chunks
 
 from .common import handle_errors, package_path_option, report
 
@@ -81,9 +81,11 @@ def _emit_text(results: list[CheckResult], quiet: bool) -> None:
         if result.failure is not None:
             report(result.failure)
         if not quiet and result.sound:
-            header = f"==> {result.file} <==\n" if many else ""
+            if many:
+                out.write(f"==> {result.file} <==\n".encode("utf-8"))
             # check_urdf writes names byte for byte: UTF-8 whatever the locale says.
-            out.write((header + check_urdf_text(result.robot.name, result.tree)).encode("utf-8"))
+            for chunk in check_urdf_chunks(result.robot.name, result.tree):
+                out.write(chunk.encode("utf-8"))
             out.flush()
         for diagnostic in result.diagnostics:
             click.echo(diagnostic.text(), err=True)
@@ -94,7 +96,7 @@ def _emit_text(results: list[CheckResult], quiet: bool) -> None:
         parts = [f"{errors} error{'s' * (errors != 1)}",
                  f"{warnings} warning{'s' * (warnings != 1)}"]
         if failed:
-            parts.append(f"{failed} unreadable")
+            parts.append(f"{failed} not checked")
         click.echo(f"mcar check: {', '.join(parts)} in {len(results)} "
                    f"file{'s' * (len(results) != 1)}", err=True)
 

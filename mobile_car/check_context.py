@@ -32,9 +32,10 @@ def shorten(text: str, limit: int = 60) -> str:
 class Reporter:
     """Collects the diagnostics of one input."""
 
-    def __init__(self, file: str, locate: Locator | None = None):
+    def __init__(self, file: str, locate: Locator | None = None, line_of=None):
         self.file = file
         self.locate = locate
+        self.line_of = line_of or (lambda element: element.sourceline)
         self.diagnostics: list[Diagnostic] = []
 
     def once_clean(self, key, check, *args) -> None:
@@ -59,7 +60,7 @@ class Reporter:
         elif self.locate is not None:
             file, line, note = self.locate(where)
         else:
-            file, line, note = self.file, where.sourceline, ""
+            file, line, note = self.file, self.line_of(where), ""
         self.diagnostics.append(Diagnostic(rule, file, line, message + note))
 
     def number(self, element, attr: str, owner: str) -> float | None:

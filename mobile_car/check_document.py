@@ -4,6 +4,7 @@ whitespace that lxml hides but urdfdom's TinyXML does not.
 
 from __future__ import annotations
 
+import bisect
 import re
 
 from .check_context import Reporter, has_xacro_expression, shorten
@@ -107,15 +108,9 @@ def check_raw_whitespace(root, data: bytes, report: Reporter) -> None:
             by_line.setdefault(element.sourceline, element)
     lines = sorted(by_line)
     for line, attr in hits:
-        # The element whose start tag holds the attribute: the last one starting at or before.
-        index = _last_at_or_before(lines, line)
-        element = by_line[lines[index]] if index is not None else line
+        # libxml2 gives an element the line its start tag ends on, so the tag holding the
+        # attribute is the first one ending at or after the attribute's line.
+        index = bisect.bisect_left(lines, line)
+        element = by_line[lines[index]] if index < len(lines) else line
         report.add("E114", element, f"{attr}=\"...\" has a tab or line break between numbers; "
                                     "urdfdom separates numbers by spaces only")
-
-
-def _last_at_or_before(sorted_lines: list[int], line: int) -> int | None:
-    import bisect
-
-    index = bisect.bisect_right(sorted_lines, line) - 1
-    return index if index >= 0 else None

@@ -24,30 +24,34 @@ def check_names(robot: Robot, report: Reporter) -> None:
                 report.add("E107", element, f"<{kind}> with an empty name")
             elif name in first_seen:
                 report.add("E108", element, f"{kind} '{name}' is defined twice (first at line "
-                                            f"{first_seen[name].sourceline})")
+                                            f"{report.line_of(first_seen[name])})")
             else:
                 first_seen[name] = element
+
+
+MOVING_TYPES = frozenset({"revolute", "continuous", "prismatic", "floating", "planar"})
 
 
 def moving_links(tree: KinematicTree) -> set[str]:
     """Links carried by a joint that is not fixed: these need mass and inertia."""
     return {child for child, joints in tree.parent_joints.items()
-            if any(j.type not in ("fixed", None) for j in joints)}
+            if any(j.type in MOVING_TYPES for j in joints)}
 
 
 def check_tree(robot: Robot, tree: KinematicTree, report: Reporter) -> None:
     for joint in tree.self_loops:
         report.add("E132", joint.element, f"joint '{joint.name}' connects link '{joint.parent}' "
                                           "to itself")
+    line = report.line_of
     for link, joints in tree.two_parents.items():
-        joints = sorted(joints, key=lambda j: j.line)
-        names = ", ".join(f"'{j.name}' (line {j.line})" for j in joints)
+        joints = sorted(joints, key=lambda j: line(j.element))
+        names = ", ".join(f"'{j.name}' (line {line(j.element)})" for j in joints)
         report.add("E130", joints[1].element, f"link '{link}' has two parents: it is the child "
                                               f"of joints {names}")
     for path in tree.cycles:
         edges = list(zip(path, path[1:]))
         joints = [next(j for j in tree.children[a] if j.child == b) for a, b in edges]
-        first = min(joints, key=lambda j: j.line)
+        first = min(joints, key=lambda j: line(j.element))
         shown = " -> ".join(path) if len(path) <= 12 else \
             " -> ".join(path[:10]) + f" -> ... ({len(path) - 1} links)"
         report.add("E131", first.element, f"joints {_names(joints)} form a cycle: {shown}")

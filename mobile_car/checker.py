@@ -26,7 +26,7 @@ from .diagnostics import Diagnostic, count
 from .errors import EXIT_OK, EXIT_PROBLEMS, BuildError, InputError, McarError
 from .packages import PackageSearch
 from .tree import KinematicTree, build_tree
-from .urdf_model import XmlError, axis_of, origin_of, parse_number, parse_xml
+from .urdf_model import SourceLines, XmlError, axis_of, origin_of, parse_number, parse_xml
 from .urdf_reader import Robot, read_robot
 from .xacro_locate import SourceLocator
 
@@ -78,12 +78,14 @@ def check_urdf_data(data: bytes, file: str, *, base: Path, search: PackageSearch
                     locate=None, structure_only: bool = False) -> CheckResult:
     """Check URDF text; ``structure_only`` stops after names and tree (for ``mcar tree``)."""
     report = Reporter(file, locate)
-    result = CheckResult(file=file, where=locate or _own_line(file))
+    result = CheckResult(file=file, where=locate)
     try:
         root = parse_xml(data)
     except XmlError as error:
         report.add("E100", error.line, error.message)
         return _finish(result, report)
+    report.line_of = line_of = SourceLines(root, data)
+    result.where = locate or (lambda element: (file, line_of(element), ""))
     document.check_doctype(data, report)
     document.normalise_default_namespace(root)
     if not document.check_root(root, report) or \
@@ -102,10 +104,6 @@ def check_urdf_data(data: bytes, file: str, *, base: Path, search: PackageSearch
     check_schema(robot, report)
     check_meshes(root, base, search, report)
     return _finish(result, report)
-
-
-def _own_line(file: str):
-    return lambda element: (file, element.sourceline, "")
 
 
 def _finish(result: CheckResult, report: Reporter) -> CheckResult:

@@ -130,13 +130,15 @@ def _cycles(nodes: list[str], children: dict[str, list[Joint]]) -> list[list[str
                         if member == node:
                             break
                     if len(component) > 1:
-                        components.append(_closed_path(set(component), children))
+                        components.append(_closed_path(component, children))
     return components
 
 
-def _closed_path(component: set[str], children: dict[str, list[Joint]]) -> list[str]:
-    """A cycle inside a strongly connected component, as link names a, b, ..., a."""
-    start = min(component)
+def _closed_path(component: list[str], children: dict[str, list[Joint]]) -> list[str]:
+    """A cycle inside a strongly connected component, as link names a, b, ..., a, starting
+    from the member found last by the search, which is the first one in the file."""
+    start = component[-1]
+    component = set(component)
     path, seen = [start], {start: 0}
     node = start
     while True:
@@ -149,6 +151,12 @@ def _closed_path(component: set[str], children: dict[str, list[Joint]]) -> list[
 
 def check_urdf_text(robot_name: str, tree: KinematicTree) -> str:
     """What ``check_urdf`` prints on stdout for a sound robot, byte for byte."""
+    return "".join(check_urdf_chunks(robot_name, tree))
+
+
+def check_urdf_chunks(robot_name: str, tree: KinematicTree, lines_per_chunk: int = 4096):
+    """:func:`check_urdf_text` in pieces: the text of a deep chain grows with the square of
+    its depth (each generation is indented four more spaces), so it is written as made."""
     root = tree.root
     kids = {link: [joint.child for joint in joints] for link, joints in tree.children.items()}
     lines = [f"robot name is: {robot_name}",
@@ -164,10 +172,14 @@ def check_urdf_text(robot_name: str, tree: KinematicTree) -> str:
             below = kids.get(link)
             if below:
                 stack.append(enumerate(below, start=1))
+            if len(lines) >= lines_per_chunk:
+                yield "\n".join(lines) + "\n"
+                lines.clear()
             break
         else:
             stack.pop()
-    return "\n".join(lines) + "\n"
+    if lines:
+        yield "\n".join(lines) + "\n"
 
 
 def _numbers(values) -> str:

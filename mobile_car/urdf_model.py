@@ -50,6 +50,43 @@ def parse_xml(data: bytes) -> etree._Element:
     return root
 
 
+class SourceLines:
+    """Element -> line, working around libxml2's limit.
+
+    libxml2 keeps an element's line in 16 bits: past line 65535 it finds the true line only
+    from a neighbouring text node, so in a file with elements packed on long lines (no
+    whitespace between them) it reports 65535. Such an element's line is then found from
+    the raw text: the n-th element in document order starts at the n-th start tag.
+    """
+
+    CAP = 65535
+    _START_TAG_RE = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>"
+                               rb"|<!DOCTYPE(?:[^\[>]|\[.*?\])*>|(<)(?![/!?])", re.S)
+
+    def __init__(self, root, data: bytes):
+        self.root = root
+        self.data = data
+        self._index: dict | None = None
+        self._lines: list[int] = []
+
+    def __call__(self, element) -> int:
+        line = element.sourceline
+        if line != self.CAP:
+            return line
+        if self._index is None:
+            self._index = {e: i for i, e in enumerate(self.root.iter(etree.Element))}
+            line, previous = 1, 0
+            for match in self._START_TAG_RE.finditer(self.data):
+                if match.group(1):
+                    line += self.data.count(b"\n", previous, match.start())
+                    previous = match.start()
+                    self._lines.append(line)
+        position = self._index.get(element)
+        if position is None or position >= len(self._lines):
+            return line
+        return self._lines[position]
+
+
 def tag_name(element) -> str:
     """The element name as written in the file (``xacro:macro``, ``link``), as TinyXML sees it."""
     tag = element.tag

@@ -62,7 +62,9 @@ class SourceLocator:
             return self.source, None, f" (line {where} of the expanded URDF)"
         element = where
         while element is not None:
-            name = element.get("name") if _is_anchor(element) else None
+            # The robot's own name says nothing about where one of its parts is written.
+            anchor = _is_anchor(element) and (element is where or element.tag != "robot")
+            name = element.get("name") if anchor else None
             if name:
                 hit = self._search(tag_name(element), name)
                 if hit:

@@ -2,13 +2,13 @@
 #   make demo   install, then build and check the bundled mobile car
 #   make test   install (with test tools and urdfdom's check_urdf), then run the tests
 # Debian packages installed here when missing: liburdfdom-tools (check_urdf, the peer
-# the tests compare against).
+# the tests compare against) and graphviz (dot, which draws `mcar tree --graphviz x.svg`).
 
 PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 SUDO   := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
-APT_PACKAGES := liburdfdom-tools
+APT_PACKAGES := liburdfdom-tools graphviz
 
 .PHONY: demo test install system-deps build clean
 

@@ -149,27 +149,25 @@ def command(words, output_format, strict, quiet, package_paths):
             raise UsageError("NAME:=VALUE arguments apply to .xacro inputs, and none was given")
         stdin = click.get_binary_stream("stdin") if STDIN in inputs else None
         results = [check_input(name, mappings, package_paths, stdin=stdin) for name in inputs]
+        exit_code = overall_exit(results, strict)
+        if output_format == "json":
+            _emit_json(results, exit_code)
+        elif output_format == "github":
+            _emit_github(results)
+        else:
+            _emit_text(results, quiet)
     finally:
-        gc.enable()  # for callers in the same process (tests); a real run exits right after
-    exit_code = overall_exit(results, strict)
-    if output_format == "json":
-        _emit_json(results, exit_code)
-    elif output_format == "github":
-        _emit_github(results)
-    else:
-        _emit_text(results, quiet)
-    exit_now(exit_code)
-
-
-def exit_now(code: int) -> None:
-    """Exit without freeing the parsed documents, when running as a real process.
-
-    Freeing a 20,000-link robot's lxml tree and model at interpreter exit takes a fifth
-    of the whole run, for nothing. Under click's CliRunner (tests), stdout is not the
-    process's own, and this is a plain sys.exit.
-    """
-    if sys.stdout is sys.__stdout__ and sys.stderr is sys.__stderr__:
+        if not own_process():
+            gc.enable()  # the caller (a test) goes on in this process
+    if own_process():
+        # Freeing a 20,000-link robot's lxml tree and model at interpreter exit takes a
+        # fifth of the run, for nothing: everything is printed, so leave at once.
         sys.stdout.flush()
         sys.stderr.flush()
-        os._exit(code)
-    sys.exit(code)
+        os._exit(exit_code)
+    sys.exit(exit_code)
+
+
+def own_process() -> bool:
+    """True when mcar is its own process (not under click's CliRunner, as in tests)."""
+    return sys.stdout is sys.__stdout__ and sys.stderr is sys.__stderr__

@@ -145,9 +145,26 @@ def check_input(name: str, mappings: dict[str, str] | None = None, package_paths
     locate = SourceLocator(path, built.deps)
     result = check_urdf_data(built.xml.encode("utf-8"), file, base=path.parent, search=search,
                              locate=locate, structure_only=structure_only)
-    warnings = [Diagnostic("W220", file, None, f"xacro: {text}") for text in built.warnings]
+    warnings = [Diagnostic("W220", file, None, f"xacro: {text}")
+                for text in _xacro_warnings(built.warnings)]
     result.diagnostics = sorted(result.diagnostics + warnings, key=Diagnostic.sort_key)
     return result
+
+
+def _xacro_warnings(lines: list[str]) -> list[str]:
+    """xacro's warning lines, each with its "when processing file: ..." context line."""
+    merged: list[str] = []
+    for line in lines:
+        text = line.strip()
+        if merged and text.startswith(_CONTEXT_PREFIXES):
+            merged[-1] += f" ({text})"
+        else:
+            merged.append(text.removeprefix("warning:").strip())
+    return merged
+
+
+_CONTEXT_PREFIXES = ("when processing file", "when instantiating", "included from",
+                     "instantiated from", "in file")
 
 
 def _readable(path: Path, file: str) -> None:

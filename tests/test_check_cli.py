@@ -237,3 +237,18 @@ def test_a_100000_link_chain_and_a_cycle_finish(run_mcar, tmp_path):
     assert result.returncode == 1
     assert "link 'l5' has two parents" in result.stderr
     assert "form a cycle: l5 -> l6 -> l7 -> l8" in result.stderr
+
+
+def test_xacro_warning_is_W220_and_fails_only_with_strict(cli, tmp_path):
+    source = tmp_path / "w.urdf.xacro"
+    source.write_text('<robot name="w" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                      '  <xacro:property name="pi" value="3"/>\n  <link name="base"/>\n'
+                      '</robot>\n')
+    result = cli("check", "-q", source)
+    assert result.exit_code == 0
+    [warning, summary] = result.stderr.splitlines()
+    assert warning.startswith(f"{_shown(source)}: warning: xacro: redefining global symbol: "
+                              "pi (when processing file: ")
+    assert warning.endswith(") [W220]")
+    assert summary == "mcar check: 0 errors, 1 warning in 1 file"
+    assert cli("check", "-q", "--strict", source).exit_code == 1

@@ -24,7 +24,7 @@ def check_inertia(robot: Robot, report: Reporter, moving: set[str], root: str | 
         if link.inertial is None:
             if is_moving:
                 report.add("W206", link.element, f"{owner} moves but has no <inertial>; "
-                                                  "simulators give it no mass")
+                           "simulators give it no mass")
             continue
         inertial = link.parts["inertial"]
         parts = link.inertial
@@ -57,7 +57,7 @@ def _check_mass_inertia(inertial, parts: dict, owner: str, moving: bool,
     missing = [name for name in INERTIA if inertia.get(name) is None]
     if missing:
         report.add("E115", inertia, f"{owner}: <inertia> is missing "
-                                            f"{', '.join(missing)}")
+                   f"{', '.join(missing)}")
         return
     values = [report.number(inertia, name, owner) for name in INERTIA]
     if None in values:

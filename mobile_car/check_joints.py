@@ -59,7 +59,7 @@ def _check_links(joint: Joint, owner: str, link_names: set, report: Reporter) ->
             report.add("E121", element, f"{owner}: <{role}> has no link name")
         else:
             report.add("E122", element, f"{owner}: {role} link '{name}' is not defined; "
-                                             f"add <link name=\"{name}\"/> or fix the name")
+                       f"add <link name=\"{name}\"/> or fix the name")
 
 
 def _check_axis(joint: Joint, axis, owner: str, report: Reporter) -> None:
@@ -68,12 +68,12 @@ def _check_axis(joint: Joint, axis, owner: str, report: Reporter) -> None:
     if axis.get("xyz") is None:
         if joint.type in _AXIS_TYPES:
             report.add("E125", axis, f"{owner}: <axis> has no xyz, so urdfdom sets it "
-                                             "to 0 0 0; write e.g. xyz=\"0 0 1\"")
+                       "to 0 0 0; write e.g. xyz=\"0 0 1\"")
         return
     xyz = report.numbers(axis, "xyz", 3, owner)
     if xyz is not None and joint.type in _AXIS_TYPES and math.hypot(*xyz) < 1e-12:
         report.add("E125", axis, f"{owner}: axis xyz=\"{axis.get('xyz')}\" has "
-                                         "length 0")
+                   "length 0")
 
 
 def _check_limit(joint: Joint, limit, owner: str, report: Reporter) -> None:
@@ -109,7 +109,7 @@ def _check_mimic(joint: Joint, owner: str, joint_names: set, report: Reporter) -
         report.add("E126", mimic, f"{owner} mimics itself")
     elif target not in joint_names:
         report.add("E126", mimic, f"{owner} mimics joint '{target}', which is not "
-                                          "defined")
+                   "defined")
     report.number(mimic, "multiplier", owner)
     report.number(mimic, "offset", owner)
 
@@ -119,7 +119,7 @@ def _check_dynamics_safety_calibration(joint: Joint, owner: str, report: Reporte
     if dynamics is not None:
         if dynamics.get("damping") is None and dynamics.get("friction") is None:
             report.add("E127", dynamics, f"{owner}: <dynamics> has neither damping nor "
-                                                 "friction")
+                       "friction")
         report.number(dynamics, "damping", owner)
         report.number(dynamics, "friction", owner)
     safety = joint.parts.get("safety_controller")

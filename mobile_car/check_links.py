@@ -25,7 +25,7 @@ def material_colours(robot: Robot, report: Reporter) -> set[str]:
             defined.add(name)
         else:
             report.add("E116", element, f"material '{name}' has neither <color rgba=...> "
-                                              "nor <texture filename=...>")
+                       "nor <texture filename=...>")
     return defined
 
 
@@ -41,7 +41,7 @@ def _material_body(parts: dict | None, owner: str, report: Reporter) -> bool:
         rgba = report.numbers(color, "rgba", 4, owner)
         if rgba is not None and not all(0.0 <= c <= 1.0 for c in rgba):
             report.add("E114", color, f"{owner}: rgba=\"{rgba_text}\" has a component "
-                                              "outside 0..1")
+                       "outside 0..1")
         elif rgba is not None or has_xacro_expression(rgba_text):
             ok = True
     return ok
@@ -70,13 +70,12 @@ def _check_geometry(body: Body, owner: str, report: Reporter) -> None:
         return
     if not shapes:
         report.add("E110", geometry, f"{where}: <geometry> is empty; put a box, "
-                                             "cylinder, sphere or mesh in it")
+                   "cylinder, sphere or mesh in it")
         return
     shape = shapes[0]
     for extra in shapes[1:]:
-        report.add("W209", extra, f"{where}: <geometry> holds more than one shape; "
-                                          f"urdfdom reads only the first, "
-                                          f"<{tag_name(shape)}>")
+        report.add("W209", extra, f"{where}: <geometry> holds more than one shape; urdfdom "
+                                  f"reads only the first, <{tag_name(shape)}>")
     # The verdict depends on the shape's name and attributes only: check each once.
     report.once_clean((shape.tag, *shape.items()), _check_shape, shape, where,
                       owner, report)
@@ -87,19 +86,19 @@ def _check_shape(shape, where: str, owner: str, report: Reporter) -> None:
     if kind not in SHAPES:
         if not kind.startswith("xacro:"):
             report.add("E111", shape, f"{where}: unknown geometry <{kind}>; urdfdom 3.0 "
-                                              "reads box, cylinder, sphere and mesh")
+                       "reads box, cylinder, sphere and mesh")
         return
     missing = [attr for attr in SHAPES[kind] if shape.get(attr) is None]
     if missing:
         report.add("E112", shape, f"{where}: <{kind}> has no "
-                                          f"{' and no '.join(missing)}")
+                   f"{' and no '.join(missing)}")
     if kind == "box":
         _positive(report.numbers(shape, "size", 3, owner), shape, "size", where, report)
     elif kind == "mesh":
         scale = report.numbers(shape, "scale", 3, owner)
         if scale is not None and 0 in scale:
             report.add("E113", shape, f"{where}: mesh scale=\"{shape.get('scale')}\" "
-                                              "has a 0, which flattens the mesh")
+                       "has a 0, which flattens the mesh")
     else:
         for attr in ("radius", "length") if kind == "cylinder" else ("radius",):
             value = report.number(shape, attr, owner)
@@ -109,7 +108,7 @@ def _check_shape(shape, where: str, owner: str, report: Reporter) -> None:
 def _positive(values, shape, attr: str, where: str, report: Reporter) -> None:
     if values is not None and min(values) <= 0:
         report.add("E113", shape, f"{where}: <{tag_name(shape)} {attr}="
-                                          f"\"{shape.get(attr)}\"> must be > 0")
+                   f"\"{shape.get(attr)}\"> must be > 0")
 
 
 def _check_visual_material(body: Body, owner: str, materials: set[str], top_level: set,
@@ -118,7 +117,7 @@ def _check_visual_material(body: Body, owner: str, materials: set[str], top_leve
     name = material.get("name")
     if name is None:
         report.add("E107", material, f"{owner} <visual>: <material> has no name; "
-                                              "urdfdom drops the visual")
+                   "urdfdom drops the visual")
         return
     if has_xacro_expression(name):
         return

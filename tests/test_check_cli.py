@@ -252,3 +252,15 @@ def test_xacro_warning_is_W220_and_fails_only_with_strict(cli, tmp_path):
     assert warning.endswith(") [W220]")
     assert summary == "mcar check: 0 errors, 1 warning in 1 file"
     assert cli("check", "-q", "--strict", source).exit_code == 1
+
+
+def test_every_robot_file_of_the_description_checks_clean(cli, repo):
+    """Every .urdf and robot .xacro under urdf/: no error, no warning, check_urdf's tree."""
+    result = cli("check", "--format", "json", "--strict", repo / "urdf")
+    document = json.loads(result.stdout)
+    assert document["files"]
+    problems = [f"{d['file']}:{d['line']}: {d['message']} [{d['rule']}]"
+                for file in document["files"] for d in file["diagnostics"]]
+    assert problems == []
+    assert all(file["ok"] and file["root"] for file in document["files"])
+    assert result.exit_code == 0

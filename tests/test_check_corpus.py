@@ -23,7 +23,8 @@ from pathlib import Path
 import pytest
 
 CORPUS = Path(__file__).resolve().parent / "check_corpus"
-VALID = sorted((CORPUS / "valid").glob("*.urdf")) + sorted((CORPUS / "valid").glob("generated_*.py"))
+VALID = sorted((CORPUS / "valid").glob("*.urdf")) + \
+    sorted((CORPUS / "valid").glob("generated_*.py"))
 BROKEN = sorted((CORPUS / "broken").glob("*.urdf"))
 EXPECT_RE = re.compile(r"<!-- expect: ([EW]\d{3}) line=(\d+) -->")
 VERDICT_RE = re.compile(r"<!-- check_urdf: (accepts|rejects|hangs) -->")

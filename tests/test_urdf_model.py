@@ -42,5 +42,5 @@ def test_parsed_values_and_messages():
     assert parse_numbers("1 2", 3) == "2 numbers where 3 are needed"
     assert parse_numbers("1 x 3", 3) == "'x' is not a number"
     assert parse_numbers("1\t2 3", 3) == ("'1\\t2' has a tab or line break between numbers "
-                                         "(urdfdom separates numbers by spaces only)")
+                                          "(urdfdom separates numbers by spaces only)")
     assert parse_number("1e-400") == 0.0

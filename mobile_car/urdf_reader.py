@@ -109,28 +109,30 @@ def read_robot(root) -> Robot:
 def _index(element, spec, notes: Anomalies) -> dict:
     """Name -> the first child of that name; unknown, repeated, odd children noted.
 
-    Children that may repeat (``visual``) are indexed as lists.
+    Children that may repeat (``visual``) are indexed as lists. This loop runs for almost
+    every element of the document, so it keeps to the fewest operations.
     """
     parts = {}
-    children = spec.children
+    lookup = spec.lookup.get
     for child in element:
         tag = child.tag
-        child_spec = children.get(tag)
-        if child_spec is None:
+        known = lookup(tag)
+        if known is None:
             if tag.__class__ is str:
                 notes.unknown.append((child, element, spec))
             continue
-        if not child_spec.attrs_ok(child.keys()):
+        attrs_ok, leaf = known
+        if not attrs_ok(child.keys()):
             notes.attributes.append(child)
-        if tag in spec.repeated:
-            parts.setdefault(tag, []).append(child)
-        elif tag not in parts:
-            parts[tag] = child
+        if tag not in parts:
+            parts[tag] = [child] if tag in spec.repeated else child
+        elif tag in spec.repeated:
+            parts[tag].append(child)
         elif tag in spec.single:
             notes.repeats.append(child)
-        if not child_spec.children and len(child):
+        if leaf and len(child):
             for grandchild in child.iterchildren(etree.Element):  # a leaf with children
-                notes.unknown.append((grandchild, child, child_spec))
+                notes.unknown.append((grandchild, child, spec.children[tag]))
     return parts
 
 

@@ -19,8 +19,10 @@ class Spec:
     repeated: frozenset = frozenset()             # children that may occur many times
 
     def __post_init__(self):
-        # Bound once: the reader calls it for every element of the document.
+        # Made once: the reader looks these up for every element of the document.
         object.__setattr__(self, "attrs_ok", self.attrs.issuperset)
+        object.__setattr__(self, "lookup", {tag: (child.attrs.issuperset, not child.children)
+                                            for tag, child in self.children.items()})
 
 
 def _leaf(*attrs: str) -> Spec:

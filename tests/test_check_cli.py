@@ -264,3 +264,19 @@ def test_every_robot_file_of_the_description_checks_clean(cli, repo):
     assert problems == []
     assert all(file["ok"] and file["root"] for file in document["files"])
     assert result.exit_code == 0
+
+
+def test_mesh_that_exists_but_does_not_load_is_W207(cli, tmp_path):
+    (tmp_path / "cut_short.stl").write_text("solid s\n facet normal 0 0 1\n  outer loop\n")
+    (tmp_path / "good.stl").write_bytes(
+        (TESTS / "check_corpus" / "valid" / "meshes" / "cube.stl").read_bytes())
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r">\n  <link name="base">\n'
+                     '    <visual><geometry><mesh filename="cut_short.stl"/></geometry></visual>\n'
+                     '    <collision><geometry><mesh filename="file://'
+                     f'{tmp_path}/good.stl"/></geometry></collision>\n  </link>\n</robot>\n')
+    result = cli("check", "-q", robot)
+    assert result.exit_code == 0
+    assert result.stderr.splitlines() == [
+        f"{_shown(robot)}:3: warning: mesh 'cut_short.stl' cannot be loaded: it holds no "
+        "geometry [W207]", "mcar check: 0 errors, 1 warning in 1 file"]

@@ -11,14 +11,15 @@ from __future__ import annotations
 import math
 
 from .check_context import Reporter
-from .urdf_reader import Robot
+from .urdf_reader import Link
 
 INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 
-def check_inertia(robot: Robot, report: Reporter, moving: set[str], root: str | None) -> None:
+def check_inertia(links: list[Link], report: Reporter, moving: set[str],
+                  root: str | None) -> None:
     """``moving`` holds the links carried by a non-fixed joint; ``root`` the root, if one."""
-    for link in robot.links:
+    for link in links:
         owner = f"link '{link.name}'" if link.name else "link"
         is_moving = link.name in moving
         if link.inertial is None:

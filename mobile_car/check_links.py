@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from .check_context import Reporter, has_xacro_expression
 from .urdf_model import tag_name
-from .urdf_reader import Body, Robot
+from .urdf_reader import Body, Link, Robot
 
 SHAPES = {"box": ("size",), "cylinder": ("radius", "length"), "sphere": ("radius",),
           "mesh": ("filename",)}
@@ -47,10 +47,11 @@ def _material_body(parts: dict | None, owner: str, report: Reporter) -> bool:
     return ok
 
 
-def check_links(robot: Robot, report: Reporter, materials: set[str]) -> None:
-    """Every visual and collision of every link; ``materials``: names defined so far."""
-    top_level = {element.get("name") for element, _ in robot.materials}
-    for link in robot.links:
+def check_links(links: list[Link], report: Reporter, materials: set[str],
+                top_level: set) -> None:
+    """Every visual and collision of ``links``; ``materials``: names defined with a colour
+    so far (grows as visuals define more); ``top_level``: names of top-level materials."""
+    for link in links:
         owner = f"link '{link.name}'" if link.name else "link"
         for body in link.visuals:
             report.origin(body.parts.get("origin"), owner)

@@ -14,7 +14,7 @@ import difflib
 
 from .check_context import Reporter
 from .urdf_model import tag_name
-from .urdf_reader import Robot
+from .urdf_reader import Anomalies, Robot
 from .urdf_vocabulary import EXTENSIONS, ROBOT, SPECS
 
 
@@ -25,11 +25,15 @@ def _suggest(name: str, known) -> str:
 
 def check_schema(robot: Robot, report: Reporter) -> None:
     """W201 unknown element, W202 unknown attribute, W209 repeated element."""
-    notes = robot.anomalies
     top_level = set(ROBOT.children) | EXTENSIONS
     for element in robot.others:
         if element.tag not in EXTENSIONS:
             _unknown(element, robot.element, top_level, report)
+    report_anomalies(robot.anomalies, report)
+
+
+def report_anomalies(notes: Anomalies, report: Reporter) -> None:
+    """Word what the reader noted (:class:`~mobile_car.urdf_reader.Anomalies`)."""
     for element, parent, spec in notes.unknown:
         _unknown(element, parent, spec.children, report)
     for element in notes.attributes:

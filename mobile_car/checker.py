@@ -16,14 +16,14 @@ from pathlib import Path
 from . import check_document as document
 from .build import build_file, display_path
 from .check_context import Reporter
-from .check_inertia import check_inertia
 from .check_joints import check_joints
-from .check_links import check_links, material_colours
+from .check_links import material_colours
 from .check_meshes import check_meshes
 from .check_schema import check_schema
 from .check_structure import check_names, check_tree, moving_links
 from .diagnostics import Diagnostic, count
 from .errors import EXIT_OK, EXIT_PROBLEMS, BuildError, InputError, McarError
+from .link_bodies import check_link_bodies
 from .packages import PackageSearch
 from .tree import KinematicTree, build_tree
 from .urdf_model import SourceLines, XmlError, axis_of, origin_of, parse_number, parse_xml
@@ -99,9 +99,11 @@ def check_urdf_data(data: bytes, file: str, *, base: Path, search: PackageSearch
         return _finish(result, report)
     document.check_raw_whitespace(root, data, report)
     check_joints(robot, report)
-    check_links(robot, report, material_colours(robot, report))
-    check_inertia(robot, report, moving_links(tree), tree.root if len(tree.roots) == 1 else None)
     check_schema(robot, report)
+    materials = material_colours(robot, report)
+    top_level = {element.get("name") for element, _ in robot.materials}
+    moving, root_link = moving_links(tree), tree.root if len(tree.roots) == 1 else None
+    check_link_bodies(robot.links, report, materials, top_level, moving, root_link)
     check_meshes(root, base, search, report)
     return _finish(result, report)
 

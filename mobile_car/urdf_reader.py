@@ -79,7 +79,11 @@ class Robot:
 
 
 def read_robot(root) -> Robot:
-    """The robot in ``root`` (the caller checked that it is a ``<robot>``)."""
+    """The robot in ``root`` (the caller checked that it is a ``<robot>``).
+
+    Links are read by name only; :func:`read_links` reads what is inside them, which is
+    most of the document, so that it can be left out (``mcar tree``) or shared out.
+    """
     robot = Robot(name=root.get("name"), element=root)
     notes = robot.anomalies
     if not ROBOT.attrs_ok(root.keys()):
@@ -88,7 +92,7 @@ def read_robot(root) -> Robot:
     for top in root:
         tag = top.tag
         if tag == "link":
-            links.append(_read_link(top, notes))
+            links.append(Link(top.get("name"), top, {}))
         elif tag == "joint":
             if not JOINT.attrs_ok(top.keys()):
                 notes.attributes.append(top)
@@ -136,11 +140,17 @@ def _index(element, spec, notes: Anomalies) -> dict:
     return parts
 
 
-def _read_link(element, notes: Anomalies) -> Link:
+def read_links(links: list[Link], notes: Anomalies) -> None:
+    """Read the inertial, visuals and collisions of each link into it."""
+    for link in links:
+        _read_link(link, notes)
+
+
+def _read_link(link: Link, notes: Anomalies) -> None:
+    element = link.element
     if not LINK.attrs_ok(element.keys()):
         notes.attributes.append(element)
-    parts = _index(element, LINK, notes)
-    link = Link(element.get("name"), element, parts)
+    link.parts = parts = _index(element, LINK, notes)
     for visual in parts.get("visual", ()):
         link.visuals.append(_read_body(visual, VISUAL, notes))
     for collision in parts.get("collision", ()):
@@ -148,7 +158,6 @@ def _read_link(element, notes: Anomalies) -> Link:
     inertial = parts.get("inertial")
     if inertial is not None:
         link.inertial = _index(inertial, INERTIAL, notes)
-    return link
 
 
 def _read_body(element, spec, notes: Anomalies) -> Body:

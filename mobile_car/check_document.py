@@ -53,7 +53,9 @@ def check_root(root, report: Reporter) -> bool:
         return False
     name = root.get("name")
     if name is None:
-        report.add("E102", root, "<robot> has no name=\"...\"")
+        hint = "" if root.find("link") is not None else \
+            " (and no link: a xacro macro library? check the robot files that include it)"
+        report.add("E102", root, f"<robot> has no name=\"...\"{hint}")
     elif not name.strip():
         report.add("E102", root, "<robot> has an empty name")
     version = root.get("version")

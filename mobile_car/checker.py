@@ -25,6 +25,7 @@ from .diagnostics import Diagnostic, count
 from .errors import EXIT_OK, EXIT_PROBLEMS, BuildError, InputError, McarError
 from .link_bodies import check_link_bodies
 from .packages import PackageSearch
+from .rules import RULES
 from .tree import KinematicTree, build_tree
 from .urdf_model import SourceLines, XmlError, axis_of, origin_of, parse_number, parse_xml
 from .urdf_reader import Robot, read_robot
@@ -53,7 +54,7 @@ class CheckResult:
     @property
     def tree_is_drawable(self) -> bool:
         return (self.failure is None and self.tree is not None and self.tree.is_sound
-                and not any(d.is_error and _blocks_tree(d.rule) for d in self.diagnostics))
+                and not any(d.is_error and RULES[d.rule].blocks_tree for d in self.diagnostics))
 
     @property
     def sound(self) -> bool:
@@ -66,12 +67,6 @@ class CheckResult:
         if self.errors or (strict and self.warnings):
             return EXIT_PROBLEMS
         return EXIT_OK
-
-
-def _blocks_tree(rule: str) -> bool:
-    from .rules import RULES
-
-    return RULES[rule].blocks_tree
 
 
 def check_urdf_data(data: bytes, file: str, *, base: Path, search: PackageSearch,

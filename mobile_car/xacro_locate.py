@@ -51,15 +51,25 @@ class SourceLocator:
 
     def _first_hit(self, pattern) -> tuple[str, int] | None:
         for path in self.files:
-            for number, text in enumerate(self._read(path), start=1):
-                if pattern.search(text):
-                    return display_path(path), number
+            hit = self._search_in(path, pattern)
+            if hit:
+                return hit
+        return None
+
+    def _search_in(self, path: Path, pattern) -> tuple[str, int] | None:
+        for number, text in enumerate(self._read(path), start=1):
+            if pattern.search(text):
+                return display_path(path), number
         return None
 
     def __call__(self, where) -> tuple[str, int | None, str]:
         """(file, line, note) for an element of the built URDF, or for a line of it."""
         if isinstance(where, int):
             return self.source, None, f" (line {where} of the expanded URDF)"
+        if where.getparent() is None:  # the <robot> itself: the input's <robot> tag
+            hit = self._search_in(self.files[0], re.compile(r"^\s*<robot\b"))
+            if hit:
+                return hit[0], hit[1], ""
         element = where
         while element is not None:
             # The robot's own name says nothing about where one of its parts is written.

@@ -280,3 +280,13 @@ def test_mesh_that_exists_but_does_not_load_is_W207(cli, tmp_path):
     assert result.stderr.splitlines() == [
         f"{_shown(robot)}:3: warning: mesh 'cut_short.stl' cannot be loaded: it holds no "
         "geometry [W207]", "mcar check: 0 errors, 1 warning in 1 file"]
+
+
+def test_a_xacro_macro_library_is_pointed_at_its_robot_tag_with_a_hint(cli):
+    result = cli("check", "-q", XACRO / "parts.xacro")
+    assert result.exit_code == 1
+    name_error, no_links, _ = result.stderr.splitlines()
+    assert name_error.endswith("parts.xacro:3: error: <robot> has no name=\"...\" (and no "
+                               "link: a xacro macro library? check the robot files that "
+                               "include it) [E102]")
+    assert no_links.endswith("parts.xacro:3: error: the robot has no <link> [E106]")

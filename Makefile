@@ -3,13 +3,14 @@
 #   make test   install (with test tools and urdfdom's check_urdf), then run the tests
 # Debian packages installed here when missing: liburdfdom-tools (check_urdf, the peer
 # the tests compare against); libegl1 libegl-mesa0 libgl1-mesa-dri libgl1 (headless
-# OpenGL through EGL and Mesa's llvmpipe, for mcar render).
+# OpenGL through EGL and Mesa's llvmpipe, for mcar render); graphviz (dot, which draws
+# `mcar tree --graphviz x.svg`).
 
 PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 SUDO   := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
-APT_PACKAGES := liburdfdom-tools libegl1 libegl-mesa0 libgl1-mesa-dri libgl1
+APT_PACKAGES := liburdfdom-tools graphviz libegl1 libegl-mesa0 libgl1-mesa-dri libgl1
 
 .PHONY: demo test install system-deps build bench clean
 

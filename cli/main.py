@@ -13,6 +13,8 @@ COMMANDS = {
     "build": ("build", "Expand xacro into URDF (the bundled robot when no INPUT)."),
     "config": ("config", "Show the robot's dimensions, with overrides applied."),
     "render": ("render", "Draw robot descriptions as PNG pictures, headless."),
+    "check": ("check", "Check URDF/xacro files: check_urdf's tree, stricter, located."),
+    "tree": ("tree", "Print the kinematic tree with joint types, origins and axes."),
 }
 
 EXIT_CODES_HELP = """\b

@@ -1,0 +1,63 @@
+"""Mesh rule W207: every ``<mesh filename>`` must exist and load.
+
+``package://PKG/...`` is resolved by the same :class:`~mobile_car.packages.PackageSearch` as
+``mcar build``; ``file://`` and relative paths against the folder of the checked file.
+A mesh is loaded with trimesh (imported only when a mesh file exists), once per process
+however many links use it. Formats trimesh cannot read on this machine are only checked
+for existence, not reported as broken.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from .check_context import Reporter, has_xacro_expression
+from .errors import McarError
+from .packages import PackageSearch
+
+_loaded: dict[Path, str | None] = {}
+
+
+def check_meshes(root, base: Path, search: PackageSearch, report: Reporter) -> None:
+    for mesh in root.iter("mesh"):
+        filename = mesh.get("filename")
+        if not filename or has_xacro_expression(filename):
+            continue  # E112 / E105
+        try:
+            path = search.resolve_uri(filename, base)
+        except McarError as error:
+            report.add("W207", mesh, f"mesh '{filename}': {error.message}")
+            continue
+        if not path.is_file():
+            shown = f" ({path})" if str(path) != filename else ""
+            report.add("W207", mesh, f"mesh '{filename}' not found{shown}")
+            continue
+        problem = load_problem(path)
+        if problem:
+            report.add("W207", mesh, f"mesh '{filename}' cannot be loaded: {problem}")
+
+
+def load_problem(path: Path) -> str | None:
+    """None if trimesh loads a non-empty mesh from ``path`` (or cannot read the format)."""
+    key = path.resolve()
+    if key not in _loaded:
+        _loaded[key] = _try_load(key)
+    return _loaded[key]
+
+
+def _try_load(path: Path) -> str | None:
+    if not os.access(path, os.R_OK):
+        return "permission denied"
+    import trimesh  # heavy (numpy): only when there is a mesh to load
+
+    suffix = path.suffix.lower().lstrip(".")
+    if suffix not in trimesh.available_formats():
+        return None
+    try:
+        loaded = trimesh.load(str(path), force="mesh")
+    except Exception as exc:  # trimesh raises anything from ValueError to struct.error
+        return " ".join(str(exc).split())[:200] or type(exc).__name__
+    if getattr(loaded, "vertices", None) is None or len(loaded.vertices) == 0:
+        return "it holds no geometry"
+    return None

@@ -1,0 +1,208 @@
+"""``mcar check`` as a library: one input (URDF file, ``.xacro`` file or stdin) in, a
+:class:`CheckResult` out: the robot, its kinematic tree, and every diagnostic, sorted.
+
+A ``.xacro`` input is expanded first with :func:`mobile_car.build.build_file` and its
+diagnostics are pointed back at the xacro source (see :mod:`mobile_car.xacro_locate`).
+Reading or building failures that are not the file's fault (missing file, unknown
+package) are kept as ``failure`` (exit 2), not as diagnostics.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from . import check_document as document
+from .build import build_file, display_path
+from .check_context import Reporter
+from .check_joints import check_joints
+from .check_links import material_colours
+from .check_meshes import check_meshes
+from .check_schema import check_schema
+from .check_structure import check_names, check_tree, moving_links
+from .diagnostics import Diagnostic, count
+from .errors import EXIT_OK, EXIT_PROBLEMS, BuildError, InputError, McarError
+from .link_bodies import check_link_bodies
+from .packages import PackageSearch
+from .rules import RULES
+from .tree import KinematicTree, build_tree
+from .urdf_model import SourceLines, XmlError, axis_of, origin_of, parse_number, parse_xml
+from .urdf_reader import Robot, read_robot
+from .xacro_locate import SourceLocator
+
+STDIN = "-"
+
+
+@dataclass
+class CheckResult:
+    file: str
+    robot: Robot | None = None
+    tree: KinematicTree | None = None
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    failure: McarError | None = None
+    where: object = None  # element -> (file, line, note), for the JSON listing
+
+    @property
+    def errors(self) -> int:
+        return count(self.diagnostics)[0]
+
+    @property
+    def warnings(self) -> int:
+        return count(self.diagnostics)[1]
+
+    @property
+    def tree_is_drawable(self) -> bool:
+        return (self.failure is None and self.tree is not None and self.tree.is_sound
+                and not any(d.is_error and RULES[d.rule].blocks_tree for d in self.diagnostics))
+
+    @property
+    def sound(self) -> bool:
+        """No error at all: what check_urdf's "Successfully Parsed" may be printed for."""
+        return self.failure is None and self.errors == 0 and self.tree_is_drawable
+
+    def exit_code(self, strict: bool = False) -> int:
+        if self.failure is not None:
+            return self.failure.exit_code
+        if self.errors or (strict and self.warnings):
+            return EXIT_PROBLEMS
+        return EXIT_OK
+
+
+def check_urdf_data(data: bytes, file: str, *, base: Path, search: PackageSearch,
+                    locate=None, structure_only: bool = False) -> CheckResult:
+    """Check URDF text; ``structure_only`` stops after names and tree (for ``mcar tree``)."""
+    report = Reporter(file, locate)
+    result = CheckResult(file=file, where=locate)
+    try:
+        root = parse_xml(data)
+    except XmlError as error:
+        report.add("E100", error.line, error.message)
+        return _finish(result, report)
+    report.line_of = line_of = SourceLines(root, data)
+    result.where = locate or (lambda element: (file, line_of(element), ""))
+    document.check_doctype(data, report)
+    document.normalise_default_namespace(root)
+    if not document.check_root(root, report) or \
+            document.check_xacro_leftovers(root, data, report):
+        return _finish(result, report)
+    robot = result.robot = read_robot(root)
+    check_names(robot, report)
+    tree = result.tree = build_tree(robot)
+    check_tree(robot, tree, report)
+    if structure_only:
+        return _finish(result, report)
+    document.check_raw_whitespace(root, data, report)
+    check_joints(robot, report)
+    check_schema(robot, report)
+    materials = material_colours(robot, report)
+    top_level = {element.get("name") for element, _ in robot.materials}
+    moving, root_link = moving_links(tree), tree.root if len(tree.roots) == 1 else None
+    check_link_bodies(robot.links, report, materials, top_level, moving, root_link)
+    check_meshes(root, base, search, report)
+    return _finish(result, report)
+
+
+def _finish(result: CheckResult, report: Reporter) -> CheckResult:
+    result.diagnostics = sorted(set(report.diagnostics), key=Diagnostic.sort_key)
+    return result
+
+
+def check_input(name: str, mappings: dict[str, str] | None = None, package_paths=(),
+                stdin=None, structure_only: bool = False) -> CheckResult:
+    """Check one input: a path (``.xacro`` is built first) or ``-`` (read from ``stdin``)."""
+    if name == STDIN:
+        data = stdin.read() if stdin is not None else b""
+        search = PackageSearch(package_paths=list(package_paths), origin=Path.cwd())
+        return check_urdf_data(data, "<stdin>", base=Path.cwd(), search=search,
+                               structure_only=structure_only)
+    path = Path(name)
+    file = display_path(path)
+    try:
+        _readable(path, file)
+        search = PackageSearch(package_paths=list(package_paths), origin=path)
+    except McarError as error:
+        return CheckResult(file=file, failure=error)
+    if not path.name.endswith(".xacro"):
+        try:
+            data = path.read_bytes()
+        except OSError as error:
+            return CheckResult(file=file, failure=InputError(
+                f"cannot read: {error.strerror or error}", file=file))
+        return check_urdf_data(data, file, base=path.parent, search=search,
+                               structure_only=structure_only)
+    try:
+        built = build_file(path, mappings or {}, search)
+    except BuildError as error:
+        message = "; ".join([error.message, *error.details])
+        diagnostic = Diagnostic("E140", error.file or file, error.line, message)
+        return CheckResult(file=file, diagnostics=[diagnostic])
+    except McarError as error:
+        return CheckResult(file=file, failure=error)
+    locate = SourceLocator(path, built.deps)
+    result = check_urdf_data(built.xml.encode("utf-8"), file, base=path.parent, search=search,
+                             locate=locate, structure_only=structure_only)
+    warnings = [Diagnostic("W220", file, None, f"xacro: {text}")
+                for text in _xacro_warnings(built.warnings)]
+    result.diagnostics = sorted(result.diagnostics + warnings, key=Diagnostic.sort_key)
+    return result
+
+
+def _xacro_warnings(lines: list[str]) -> list[str]:
+    """xacro's warning lines, each with its "when processing file: ..." context line."""
+    merged: list[str] = []
+    for line in lines:
+        text = line.strip()
+        if merged and text.startswith(_CONTEXT_PREFIXES):
+            merged[-1] += f" ({text})"
+        else:
+            merged.append(text.removeprefix("warning:").strip())
+    return merged
+
+
+_CONTEXT_PREFIXES = ("when processing file", "when instantiating", "included from",
+                     "instantiated from", "in file")
+
+
+def _readable(path: Path, file: str) -> None:
+    if not path.exists():
+        raise InputError("no such file", file=file)
+    if path.is_dir():
+        raise InputError("is a directory", file=file)
+    if not os.access(path, os.R_OK):
+        raise InputError("permission denied", file=file)
+
+
+def as_json(result: CheckResult) -> dict:
+    """The JSON form of one checked input: robot, root, tree, links, joints, diagnostics."""
+    robot, tree = result.robot, result.tree
+    document = {"file": result.file, "robot": robot.name if robot else None,
+                "root": tree.root if tree and len(tree.roots) == 1 else None,
+                "ok": result.failure is None and result.errors == 0,
+                "errors": result.errors, "warnings": result.warnings,
+                "tree": None, "links": [], "joints": [],
+                "diagnostics": [d.as_json() for d in result.diagnostics]}
+    if result.failure is not None:
+        document["failure"] = {"message": result.failure.message,
+                               "exit_code": result.failure.exit_code}
+    if robot is None or tree is None:
+        return document
+    document["tree"] = {link: [j.child for j in joints] for link, joints in tree.children.items()}
+    for link in robot.links:
+        parents = tree.parent_joints.get(link.name, [])
+        file, line, _ = result.where(link.element)
+        document["links"].append({
+            "name": link.name, "file": file, "line": line,
+            "parent_joint": parents[0].name if len(parents) == 1 else None,
+            "children": [j.child for j in tree.children.get(link.name, [])]})
+    for joint in robot.joints:
+        file, line, _ = result.where(joint.element)
+        limit = joint.parts.get("limit")
+        document["joints"].append({
+            "name": joint.name, "type": joint.type, "parent": joint.parent,
+            "child": joint.child, "file": file, "line": line,
+            "origin": {k: list(v) for k, v in origin_of(joint.element).items()},
+            "axis": list(axis) if (axis := axis_of(joint)) is not None else None,
+            "limit": {k: parse_number(v) for k, v in limit.items()}
+            if limit is not None else None})
+    return document

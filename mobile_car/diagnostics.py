@@ -1,0 +1,73 @@
+"""One problem found in a file, and its three spellings: text, GitHub annotation, JSON.
+
+The library only builds the strings and dicts; the command line prints them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .rules import ERROR, RULES
+
+
+@dataclass(frozen=True)
+class Diagnostic:
+    """A rule broken at FILE:LINE (line is None when no line is known)."""
+
+    rule: str
+    file: str
+    line: int | None
+    message: str
+
+    @property
+    def severity(self) -> str:
+        return RULES[self.rule].severity
+
+    @property
+    def is_error(self) -> bool:
+        return self.severity == ERROR
+
+    def sort_key(self):
+        return (self.file, self.line or 0, self.rule, self.message)
+
+    def location(self) -> str:
+        return f"{self.file}:{self.line}" if self.line else self.file
+
+    def text(self) -> str:
+        """``FILE:LINE: error: message [E104]``, the form compilers and linters use."""
+        return f"{self.location()}: {self.severity}: {self.message} [{self.rule}]"
+
+    def github(self) -> str:
+        """A GitHub Actions workflow command that annotates the line in the pull request."""
+        return github_annotation(self.severity, self.file, self.line,
+                                 f"{self.rule} {RULES[self.rule].name}", self.message)
+
+    def as_json(self) -> dict:
+        return {"rule": self.rule, "severity": self.severity, "file": self.file,
+                "line": self.line, "message": self.message}
+
+
+def github_annotation(severity: str, file: str, line: int | None, title: str | None,
+                      message: str) -> str:
+    """``::error file=F,line=L,title=T::message``, escaped as GitHub's toolkit does."""
+    props = [f"file={_escape_property(file)}"]
+    if line:
+        props.append(f"line={line}")
+    if title:
+        props.append(f"title={_escape_property(title)}")
+    return f"::{severity} {','.join(props)}::{_escape_data(message)}"
+
+
+def _escape_data(text: str) -> str:
+    # The escapes GitHub's toolkit (@actions/core, command.ts) applies to message data.
+    return text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+
+
+def _escape_property(text: str) -> str:
+    return _escape_data(text).replace(":", "%3A").replace(",", "%2C")
+
+
+def count(diagnostics: list[Diagnostic]) -> tuple[int, int]:
+    """(errors, warnings)."""
+    errors = sum(1 for d in diagnostics if d.is_error)
+    return errors, len(diagnostics) - errors

@@ -1,0 +1,241 @@
+"""The kinematic tree of a robot: root, children, and what keeps it from being a tree.
+
+Children are ordered as urdfdom orders them: by joint name (urdfdom keeps joints in a
+``std::map``, so byte order of the UTF-8 names, which is Python's ``str`` order), not
+by their order in the file. Every walk here is iterative: a 100,000-link chain or a
+cycle can neither overflow the stack nor loop.
+
+Three views of a sound tree: :func:`check_urdf_text` (byte for byte what ``check_urdf``
+prints), :func:`rich_text` (joints with type, origin, axis, limits) and :func:`graphviz_dot`.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from dataclasses import dataclass, field
+
+from .urdf_model import axis_of, first_child, origin_of, parse_number
+from .urdf_reader import Joint, Robot
+
+
+@dataclass
+class KinematicTree:
+    links: list[str]                       # defined link names, document order
+    root: str | None                       # the root urdfdom would pick, or the biggest tree's
+    roots: list[str]                       # every link with no parent joint, by name
+    children: dict[str, list[Joint]]       # parent link -> joints to its children, urdfdom order
+    parent_joints: dict[str, list[Joint]]  # child link -> joints naming it as child
+    self_loops: list[Joint] = field(default_factory=list)
+    cycles: list[list[str]] = field(default_factory=list)  # each a closed path: a, b, ..., a
+
+    @property
+    def two_parents(self) -> dict[str, list[Joint]]:
+        return {link: joints for link, joints in self.parent_joints.items() if len(joints) > 1}
+
+    @property
+    def is_sound(self) -> bool:
+        return (self.root is not None and len(self.roots) == 1 and not self.self_loops
+                and not self.cycles and not self.two_parents)
+
+    def subtree(self, start: str) -> list[str]:
+        """Links reachable from ``start`` (itself first), each once, in urdfdom's print order."""
+        order, seen, stack = [], {start}, [start]
+        while stack:
+            link = stack.pop()
+            order.append(link)
+            for joint in reversed(self.children.get(link, ())):
+                if joint.child not in seen:
+                    seen.add(joint.child)
+                    stack.append(joint.child)
+        return order
+
+
+def build_tree(robot: Robot) -> KinematicTree:
+    """The tree of the joints whose parent and child are defined links."""
+    links = [link.name for link in robot.links if link.name is not None]
+    defined = set(links)
+    usable = [j for j in robot.joints
+              if j.name is not None and j.parent in defined and j.child in defined]
+    usable.sort(key=lambda j: j.name)
+    children: dict[str, list[Joint]] = defaultdict(list)
+    parent_joints: dict[str, list[Joint]] = defaultdict(list)
+    self_loops = []
+    for joint in usable:
+        parent_joints[joint.child].append(joint)
+        if joint.parent == joint.child:
+            self_loops.append(joint)
+        else:
+            children[joint.parent].append(joint)
+    roots = sorted({name for name in links if name not in parent_joints})
+    tree = KinematicTree(links=links, root=None, roots=roots, children=dict(children),
+                         parent_joints=dict(parent_joints), self_loops=self_loops)
+    reached: set[str] = set()
+    sizes = {}
+    for root in roots:
+        below = tree.subtree(root)
+        reached.update(below)
+        sizes[root] = len(below)
+    if roots:
+        # urdfdom refuses two roots; naming the biggest tree's root makes the others the
+        # "not connected" ones, which is what a user means by a stray link.
+        position = {name: i for i, name in enumerate(links)}
+        tree.root = max(roots, key=lambda r: (sizes[r], -position[r]))
+    # Without a link of two parents, a cycle cannot be reached from a root: look only
+    # at what no root reaches.
+    suspects = links if tree.two_parents else [n for n in links if n not in reached]
+    tree.cycles = _cycles(suspects, tree.children)
+    return tree
+
+
+def _cycles(nodes: list[str], children: dict[str, list[Joint]]) -> list[list[str]]:
+    """One closed path per strongly connected component of more than one link (Tarjan)."""
+    wanted = set(nodes)
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    components = []
+    for start in nodes:
+        if start in index:
+            continue
+        index[start] = low[start] = len(index)
+        stack.append(start)
+        on_stack.add(start)
+        work = [(start, iter(children.get(start, ())))]
+        while work:
+            node, edges = work[-1]
+            for joint in edges:
+                nxt = joint.child
+                if nxt not in wanted:
+                    continue
+                if nxt not in index:
+                    index[nxt] = low[nxt] = len(index)
+                    stack.append(nxt)
+                    on_stack.add(nxt)
+                    work.append((nxt, iter(children.get(nxt, ()))))
+                    break
+                if nxt in on_stack:
+                    low[node] = min(low[node], index[nxt])
+            else:
+                work.pop()
+                if work:
+                    parent = work[-1][0]
+                    low[parent] = min(low[parent], low[node])
+                if low[node] == index[node]:
+                    component = []
+                    while True:
+                        member = stack.pop()
+                        on_stack.discard(member)
+                        component.append(member)
+                        if member == node:
+                            break
+                    if len(component) > 1:
+                        components.append(_closed_path(component, children))
+    return components
+
+
+def _closed_path(component: list[str], children: dict[str, list[Joint]]) -> list[str]:
+    """A cycle inside a strongly connected component, as link names a, b, ..., a, starting
+    from the member found last by the search, which is the first one in the file."""
+    start = component[-1]
+    component = set(component)
+    path, seen = [start], {start: 0}
+    node = start
+    while True:
+        node = next(j.child for j in children[node] if j.child in component)
+        if node in seen:
+            return path[seen[node]:] + [node]
+        seen[node] = len(path)
+        path.append(node)
+
+
+def check_urdf_text(robot_name: str, tree: KinematicTree) -> str:
+    """What ``check_urdf`` prints on stdout for a sound robot, byte for byte."""
+    return "".join(check_urdf_chunks(robot_name, tree))
+
+
+def check_urdf_chunks(robot_name: str, tree: KinematicTree, lines_per_chunk: int = 4096):
+    """:func:`check_urdf_text` in pieces: the text of a deep chain grows with the square of
+    its depth (each generation is indented four more spaces), so it is written as made."""
+    root = tree.root
+    kids = {link: [joint.child for joint in joints] for link, joints in tree.children.items()}
+    lines = [f"robot name is: {robot_name}",
+             "---------- Successfully Parsed XML ---------------",
+             f"root Link: {root} has {len(kids.get(root, ()))} child(ren)"]
+    append = lines.append
+    # A stack of iterators over (number, child): depth-first, in order, without recursion.
+    stack = [enumerate(kids.get(root, ()), start=1)]
+    while stack:
+        for number, link in stack[-1]:
+            # check_urdf indents two spaces per level and adds two levels per generation.
+            append(f"{'    ' * len(stack)}child({number}):  {link}")
+            below = kids.get(link)
+            if below:
+                stack.append(enumerate(below, start=1))
+            if len(lines) >= lines_per_chunk:
+                yield "\n".join(lines) + "\n"
+                lines.clear()
+            break
+        else:
+            stack.pop()
+    if lines:
+        yield "\n".join(lines) + "\n"
+
+
+def _numbers(values) -> str:
+    return " ".join(f"{v + 0.0:g}" if v != 0 else "0" for v in values)
+
+
+def joint_summary(joint: Joint) -> str:
+    """``name: type, xyz 0 0 0.1, rpy 0 0 0, axis 0 0 1, limits -1..1``."""
+    origin = origin_of(joint.element)
+    parts = [f"{joint.name}: {joint.type}", f"xyz {_numbers(origin['xyz'])}",
+             f"rpy {_numbers(origin['rpy'])}"]
+    axis = axis_of(joint)
+    if axis is not None:
+        parts.append(f"axis {_numbers(axis)}")
+    limit = first_child(joint.element, "limit")
+    if limit is not None and joint.type in ("revolute", "prismatic"):
+        lower = parse_number(limit.get("lower", "0"))
+        upper = parse_number(limit.get("upper", "0"))
+        if lower is not None and upper is not None:
+            parts.append(f"limits {_numbers([lower])}..{_numbers([upper])}")
+    return ", ".join(parts)
+
+
+def rich_text(tree: KinematicTree) -> str:
+    """The tree drawn with box characters; each link shows the joint that carries it."""
+    lines = [tree.root]
+    kids = tree.children.get(tree.root, [])
+    stack = [(joint, "", i == len(kids) - 1) for i, joint in reversed(list(enumerate(kids)))]
+    while stack:
+        joint, prefix, last = stack.pop()
+        lines.append(f"{prefix}{'└── ' if last else '├── '}{joint.child}  "
+                     f"({joint_summary(joint)})")
+        kids = tree.children.get(joint.child, [])
+        inner = prefix + ("    " if last else "│   ")
+        stack.extend((kid, inner, i == len(kids) - 1) for i, kid in reversed(list(enumerate(kids))))
+    return "\n".join(lines) + "\n"
+
+
+def _dot_id(text: str) -> str:
+    """A double-quoted Graphviz ID; line breaks become Graphviz's own escape."""
+    escaped = text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n")
+    return f'"{escaped}"'
+
+
+def graphviz_dot(robot_name: str, tree: KinematicTree) -> str:
+    """A Graphviz digraph: links as boxes, joints as labelled edges, in tree order."""
+    lines = [f"digraph {_dot_id(robot_name)} {{",
+             "  rankdir=TB;",
+             '  node [shape=box, style="rounded", fontname="Helvetica"];',
+             '  edge [fontname="Helvetica", fontsize=10];']
+    for link in tree.subtree(tree.root):
+        lines.append(f"  {_dot_id(link)};")
+    for link in tree.subtree(tree.root):
+        for joint in tree.children.get(link, ()):
+            label = joint_summary(joint).replace(", ", "\n")
+            lines.append(f"  {_dot_id(link)} -> {_dot_id(joint.child)} "
+                         f"[label={_dot_id(label)}];")
+    lines.append("}")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,93 @@
+"""Point a problem in a URDF built from xacro back at the xacro source, where possible.
+
+xacro keeps no line numbers, so the source line is found by name: the element, or its
+nearest ancestor with a ``name`` (the link or joint), is searched for as
+``<TAG ... name="VALUE"`` and then as ``name="VALUE"`` in the files the build read (the
+input first, then its includes). A name written literally is found at its definition; a
+name passed to a macro (``<xacro:wheel name="left"/>``) is found at the call when the
+macro builds the name from it unchanged. A name computed inside a macro
+(``name="${prefix}_link"``) is not found: the diagnostic then names the input file without
+a line and says which line of the expanded URDF it is about.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from .build import display_path
+from .urdf_model import tag_name
+
+
+class SourceLocator:
+    def __init__(self, source: Path, deps: list[Path]):
+        self.source = display_path(source)
+        self.files = list(dict.fromkeys([source, *deps]))
+        self._lines: dict[Path, list[str]] = {}
+        self._found: dict[tuple[str, str], tuple[str, int] | None] = {}
+
+    def _read(self, path: Path) -> list[str]:
+        if path not in self._lines:
+            try:
+                self._lines[path] = path.read_text(encoding="utf-8", errors="replace").splitlines()
+            except OSError:
+                self._lines[path] = []
+        return self._lines[path]
+
+    def _search(self, tag: str, name: str) -> tuple[str, int] | None:
+        key = (tag, name)
+        if key not in self._found:
+            quoted = re.escape(name)
+            value = rf"""name\s*=\s*(?:"{quoted}"|'{quoted}')"""
+            patterns = [re.compile(rf"<{re.escape(tag)}\b[^>]*\b{value}"),
+                        re.compile(rf"\b{value}")]
+            self._found[key] = None
+            for pattern in patterns:
+                hit = self._first_hit(pattern)
+                if hit:
+                    self._found[key] = hit
+                    break
+        return self._found[key]
+
+    def _first_hit(self, pattern) -> tuple[str, int] | None:
+        for path in self.files:
+            hit = self._search_in(path, pattern)
+            if hit:
+                return hit
+        return None
+
+    def _search_in(self, path: Path, pattern) -> tuple[str, int] | None:
+        for number, text in enumerate(self._read(path), start=1):
+            if pattern.search(text):
+                return display_path(path), number
+        return None
+
+    def __call__(self, where) -> tuple[str, int | None, str]:
+        """(file, line, note) for an element of the built URDF, or for a line of it."""
+        if isinstance(where, int):
+            return self.source, None, f" (line {where} of the expanded URDF)"
+        if where.getparent() is None:  # the <robot> itself: the input's <robot> tag
+            hit = self._search_in(self.files[0], re.compile(r"^\s*<robot\b"))
+            if hit:
+                return hit[0], hit[1], ""
+        element = where
+        while element is not None:
+            # The robot's own name says nothing about where one of its parts is written.
+            anchor = _is_anchor(element) and (element is where or element.tag != "robot")
+            name = element.get("name") if anchor else None
+            if name:
+                hit = self._search(tag_name(element), name)
+                if hit:
+                    return hit[0], hit[1], ""
+            element = element.getparent()
+        return (self.source, None,
+                f" (line {where.sourceline} of the expanded URDF)")
+
+
+def _is_anchor(element) -> bool:
+    """Elements whose name identifies them; a visual's <material name> names a colour."""
+    tag = element.tag
+    if tag == "material":
+        parent = element.getparent()
+        return parent is None or parent.tag == "robot"
+    return tag in ("robot", "link", "joint", "visual", "collision", "transmission")

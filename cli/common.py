@@ -61,11 +61,21 @@ def override_context(overrides: dict[str, float]):
     return override_mappings(overrides)
 
 
+def use_color() -> bool | None:
+    """False with NO_COLOR set (https://no-color.org); else None: click colours a TTY only."""
+    return False if os.environ.get("NO_COLOR") else None
+
+
+def severity_label(severity: str) -> str:
+    """``error:`` in red, ``warning:`` in yellow (the styling is dropped off a TTY)."""
+    return click.style(f"{severity}:", fg="red" if severity == "error" else "yellow", bold=True)
+
+
 def report(error: McarError) -> None:
     """Print an error as one `FILE:LINE: error: message` line, then its context lines."""
     where = error.location()
-    prefix = f"{where}: error: " if where else "mcar: error: "
-    click.echo(prefix + error.message, err=True)
+    prefix = f"{where}: " if where else "mcar: "
+    click.echo(f"{prefix}{severity_label('error')} {error.message}", err=True, color=use_color())
     for line in error.details:
         click.echo(f"  {line}", err=True)
 

@@ -46,10 +46,32 @@ def load_problem(path: Path) -> str | None:
     return _loaded[key]
 
 
+def _sound_binary_stl(path: Path) -> bool:
+    """True for a binary STL whose size matches its triangle count: no need for trimesh.
+
+    Importing numpy and trimesh costs ~0.4 s, more than checking a whole robot; STL is
+    the common case, and its binary form says its own length.
+    """
+    if path.suffix.lower() != ".stl":
+        return False
+    try:
+        size = path.stat().st_size
+        with open(path, "rb") as handle:
+            header = handle.read(84)
+    except OSError:
+        return False
+    if len(header) < 84:
+        return False
+    triangles = int.from_bytes(header[80:84], "little")
+    return triangles > 0 and size == 84 + 50 * triangles
+
+
 def _try_load(path: Path) -> str | None:
     if not os.access(path, os.R_OK):
         return "permission denied"
-    import trimesh  # heavy (numpy): only when there is a mesh to load
+    if _sound_binary_stl(path):
+        return None
+    import trimesh  # heavy (numpy): only for meshes the cheap test above cannot vouch for
 
     suffix = path.suffix.lower().lstrip(".")
     if suffix not in trimesh.available_formats():

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import json
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
 
 TESTS = Path(__file__).resolve().parent
+REPO = TESTS.parent
 TUTORIAL = TESTS.parent / "urdf" / "tutorial"
 XACRO = TESTS / "check_xacro"
 BROKEN = TESTS / "check_corpus" / "broken"
@@ -290,3 +292,25 @@ def test_a_xacro_macro_library_is_pointed_at_its_robot_tag_with_a_hint(cli):
                                "link: a xacro macro library? check the robot files that "
                                "include it) [E102]")
     assert no_links.endswith("parts.xacro:3: error: the robot has no <link> [E106]")
+
+
+def test_binary_stl_cut_short_is_W207_and_a_sound_one_needs_no_trimesh(run_mcar, tmp_path):
+    good = (REPO / "meshes" / "motor.stl").read_bytes()
+    (tmp_path / "short.stl").write_bytes(good[: len(good) - 50 * 3 - 7])
+    (tmp_path / "good.stl").write_bytes(good)
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r">\n  <link name="base">\n'
+                     '    <visual><geometry><mesh filename="short.stl"/></geometry></visual>\n'
+                     '    <collision><geometry><mesh filename="good.stl"/></geometry></collision>'
+                     '\n  </link>\n</robot>\n')
+    result = run_mcar("check", "-q", robot)
+    assert result.returncode == 0
+    (warning,) = [line for line in result.stderr.splitlines() if "W207" in line]
+    assert warning.startswith(f"{robot}:3: warning: mesh 'short.stl' cannot be loaded")
+    # A sound binary STL is vouched for by its length: no numpy/trimesh start-up cost.
+    code = ("import sys\nfrom mobile_car.check_meshes import load_problem\n"
+            f"from pathlib import Path\nprint(load_problem(Path({str(tmp_path / 'good.stl')!r})),"
+            " 'trimesh' in sys.modules)")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          cwd=tmp_path)
+    assert done.stdout.split() == ["None", "False"], done.stderr

@@ -32,7 +32,7 @@ system-deps:
 
 demo: install system-deps
 	$(BIN)/mcar build
-	check_urdf build/mobile_robot.urdf
+	$(BIN)/mcar check --strict build/mobile_robot.urdf
 	$(BIN)/mcar render
 
 test: install system-deps

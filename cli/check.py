@@ -17,7 +17,8 @@ from mobile_car.discover import robot_files, source_base
 from mobile_car.errors import EXIT_OK, EXIT_PROBLEMS, EXIT_USAGE, UsageError
 from mobile_car.tree import check_urdf_chunks
 
-from .common import handle_errors, package_path_option, report
+from .common import (config_options, dimension_overrides, handle_errors, override_context,
+                     package_path_option, report)
 
 HELP = """Check URDF files: check_urdf's verdict and tree, and the errors it misses.
 
@@ -136,19 +137,26 @@ def overall_exit(results: list[CheckResult], strict: bool) -> int:
 @click.option("--strict", is_flag=True, help="Warnings fail the check too (exit 1).")
 @click.option("-q", "--quiet", is_flag=True,
               help="text format: print only problems, not check_urdf's tree.")
+@config_options
 @package_path_option
 @handle_errors
-def command(words, output_format, strict, quiet, package_paths):
+def command(words, output_format, strict, quiet, package_paths, sets, config_files):
     # One short run builds hundreds of thousands of objects and no garbage cycles worth
     # collecting; the cyclic collector's passes over them cost a quarter of the run.
     gc.disable()
     try:
         inputs, mappings = split_words(words)
         inputs = expand_inputs(inputs)
-        if mappings and not any(name.endswith(".xacro") for name in inputs):
-            raise UsageError("NAME:=VALUE arguments apply to .xacro inputs, and none was given")
+        xacros = [name for name in inputs if name.endswith(".xacro")]
+        if (mappings or sets or config_files) and not xacros:
+            raise UsageError("NAME:=VALUE, --set and --config apply to .xacro inputs, "
+                             "and none was given")
+        overrides = dimension_overrides(Path(xacros[0]) if xacros else Path.cwd(),
+                                        package_paths, sets, config_files)
         stdin = click.get_binary_stream("stdin") if STDIN in inputs else None
-        results = [check_input(name, mappings, package_paths, stdin=stdin) for name in inputs]
+        with override_context(overrides) as extra:
+            results = [check_input(name, {**mappings, **extra}, package_paths, stdin=stdin,
+                                   optional_args=frozenset(extra)) for name in inputs]
         exit_code = overall_exit(results, strict)
         if output_format == "json":
             _emit_json(results, exit_code)

@@ -109,8 +109,12 @@ def _finish(result: CheckResult, report: Reporter) -> CheckResult:
 
 
 def check_input(name: str, mappings: dict[str, str] | None = None, package_paths=(),
-                stdin=None, structure_only: bool = False) -> CheckResult:
-    """Check one input: a path (``.xacro`` is built first) or ``-`` (read from ``stdin``)."""
+                stdin=None, structure_only: bool = False,
+                optional_args: frozenset[str] = frozenset()) -> CheckResult:
+    """Check one input: a path (``.xacro`` is built first) or ``-`` (read from ``stdin``).
+
+    ``optional_args`` are mappings a xacro input may ignore (dimension overrides).
+    """
     if name == STDIN:
         data = stdin.read() if stdin is not None else b""
         search = PackageSearch(package_paths=list(package_paths), origin=Path.cwd())
@@ -132,7 +136,7 @@ def check_input(name: str, mappings: dict[str, str] | None = None, package_paths
         return check_urdf_data(data, file, base=path.parent, search=search,
                                structure_only=structure_only)
     try:
-        built = build_file(path, mappings or {}, search)
+        built = build_file(path, mappings or {}, search, optional_args=optional_args)
     except BuildError as error:
         message = "; ".join([error.message, *error.details])
         diagnostic = Diagnostic("E140", error.file or file, error.line, message)

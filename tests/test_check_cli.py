@@ -87,7 +87,7 @@ def test_unknown_xacro_argument_is_a_usage_error(cli):
 def test_name_value_without_a_xacro_input_is_a_usage_error(cli):
     result = cli("check", SKELETON, "width:=2")
     assert result.exit_code == 2
-    assert "NAME:=VALUE arguments apply to .xacro inputs" in result.stderr
+    assert "NAME:=VALUE, --set and --config apply to .xacro inputs" in result.stderr
 
 
 def test_json_document(cli):

@@ -167,3 +167,16 @@ def test_plain_xacro_users_can_pass_an_overrides_file(run_mcar, tmp_path):
     result = run_mcar("build", ROBOT, f"config:={overrides}")
     assert result.returncode == 0, result.stderr
     assert wheel_radius_in(result.stdout) == 0.045
+
+
+def test_check_takes_the_same_overrides(run_mcar):
+    ok = run_mcar("check", "--strict", ROBOT, "--set", "wheel_radius=0.04")
+    assert ok.returncode == 0, ok.stderr
+    assert "root Link: base_footprint has 1 child(ren)" in ok.stdout
+    bad = run_mcar("check", ROBOT, "--set", "wheel_radus=0.04")
+    assert bad.returncode == 2
+    assert "did you mean 'wheel_radius'?" in bad.stderr
+    plain = run_mcar("check", REPO / "urdf" / "tutorial" / "01_skeleton.urdf",
+                     "--set", "wheel_radius=0.04")
+    assert plain.returncode == 2
+    assert "apply to .xacro inputs" in plain.stderr

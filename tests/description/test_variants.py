@@ -44,6 +44,11 @@ def test_variant_builds_checks_and_stands(variant, mcar_bin, tmp_path, check_urd
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     robot = out / "mobile_robot.urdf"
+    strict = subprocess.run([str(mcar_bin), "check", "--strict", "-q", "--config", variant,
+                             *sorted(REPO.glob("urdf/**/*.urdf.xacro")),
+                             REPO / "urdf" / "mobile_robot.xacro"],
+                            capture_output=True, text=True, timeout=120)
+    assert (strict.returncode, strict.stderr) == (0, "")
     checked = run_check_urdf(check_urdf, robot)
     assert checked.returncode == 0, checked.stderr
     assert "root Link: base_footprint has 1 child(ren)" in checked.stdout

@@ -6,8 +6,11 @@ nearest ancestor with a ``name`` (the link or joint), is searched for as
 input first, then its includes). A name written literally is found at its definition; a
 name passed to a macro (``<xacro:wheel name="left"/>``) is found at the call when the
 macro builds the name from it unchanged. A name computed inside a macro
-(``name="${prefix}_link"``) is not found: the diagnostic then names the input file without
-a line and says which line of the expanded URDF it is about.
+(``name="wheel_${side}_link"``) is found by matching the template as a pattern
+(``wheel_.*_link``) against the built name. An element without a name of its own (a
+``<visul>`` inside a link) is then looked for as its tag after its ancestor's line, the
+same number of times it occurs under that ancestor. When nothing matches, the diagnostic
+names the input file without a line and says which line of the expanded URDF it is about.
 """
 
 from __future__ import annotations
@@ -47,7 +50,38 @@ class SourceLocator:
                 if hit:
                     self._found[key] = hit
                     break
+            else:
+                self._found[key] = self._template_hit(tag, name)
         return self._found[key]
+
+    def _template_hit(self, tag: str, name: str) -> tuple[str, int] | None:
+        """The first ``<TAG name="...${...}...">`` whose template matches the built name."""
+        opening = re.compile(rf"""<{re.escape(tag)}\b[^>]*\bname\s*=\s*(["'])([^"']*\$\{{.*?)\1""")
+        for path in self.files:
+            for number, text in enumerate(self._read(path), start=1):
+                match = opening.search(text)
+                if match and _template_matches(match.group(2), name):
+                    return display_path(path), number
+        return None
+
+    def _refine(self, hit: tuple[str, int], anchor, where) -> tuple[str, int]:
+        """From the anchor's line, the line of ``where`` itself: its tag's k-th occurrence."""
+        tag = tag_name(where)
+        same = [e for e in anchor.iter(where.tag) if e is not anchor]
+        if where not in same:
+            return hit
+        k = same.index(where)
+        path = next((p for p in self.files if display_path(p) == hit[0]), None)
+        if path is None:
+            return hit
+        pattern = re.compile(rf"<{re.escape(tag)}\b")
+        lines = self._read(path)
+        for number in range(hit[1], min(len(lines), hit[1] + 400) + 1):
+            if pattern.search(lines[number - 1]):
+                if k == 0:
+                    return hit[0], number
+                k -= 1
+        return hit
 
     def _first_hit(self, pattern) -> tuple[str, int] | None:
         for path in self.files:
@@ -78,6 +112,8 @@ class SourceLocator:
             if name:
                 hit = self._search(tag_name(element), name)
                 if hit:
+                    if element is not where:
+                        hit = self._refine(hit, element, where)
                     return hit[0], hit[1], ""
             element = element.getparent()
         return (self.source, None,
@@ -91,3 +127,11 @@ def _is_anchor(element) -> bool:
         parent = element.getparent()
         return parent is None or parent.tag == "robot"
     return tag in ("robot", "link", "joint", "visual", "collision", "transmission")
+
+
+def _template_matches(template: str, name: str) -> bool:
+    """``wheel_${side}_link`` matches ``wheel_left_link``: each ``${...}`` as ``.+``."""
+    parts = re.split(r"\$\{[^}]*\}", template)
+    if len(parts) < 2:
+        return False
+    return re.fullmatch(".+".join(re.escape(p) for p in parts), name) is not None

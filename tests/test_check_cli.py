@@ -45,13 +45,13 @@ def test_xacro_problems_point_into_the_xacro_sources(cli):
     lines = result.stderr.splitlines()
     robot = str((XACRO / "robot.urdf.xacro").relative_to(Path.cwd())) \
         if XACRO.is_relative_to(Path.cwd()) else str(XACRO / "robot.urdf.xacro")
-    # base_link is written literally: its line in the source.
-    assert f"{robot}:8: error: link 'base_link' <visual>: <box size=\"0.3 0.2 0\"> must be > 0 " \
+    # base_link is written literally: found by name, then the <box> below it.
+    assert f"{robot}:11: error: link 'base_link' <visual>: <box size=\"0.3 0.2 0\"> must be > 0 " \
            "[E113]" in lines
-    # wheel_${side} is computed in a macro: the input file, and the expanded URDF's line.
-    assert any(line.startswith(f"{robot}: error: link 'wheel_left' <visual>: <cylinder "
-                               "radius=\"-0.05\"> must be > 0 (line ") and line.endswith(
-        " of the expanded URDF) [E113]") for line in lines), lines
+    # wheel_${side} is computed in a macro: found as a template, then the <cylinder> in it.
+    parts = robot.replace("robot.urdf.xacro", "parts.xacro")
+    assert f"{parts}:8: error: link 'wheel_left' <visual>: <cylinder radius=\"-0.05\"> must " \
+           "be > 0 [E113]" in lines
     assert result.exit_code == 1
     assert result.stdout == ""
 
@@ -61,7 +61,8 @@ def test_xacro_literal_name_in_an_included_macro_file_is_found_there(tmp_path, c
     robot.write_text((XACRO / "robot.urdf.xacro").read_text())
     parts = (XACRO / "parts.xacro").read_text().replace('xyz="0.1 0 -0.02"', 'xyz="0.1 0"')
     (tmp_path / "parts.xacro").write_text(parts)
-    line = next(i for i, text in enumerate(parts.splitlines(), 1) if 'name="caster_joint"' in text)
+    # The joint is found by its literal name, then its <origin> below it.
+    line = next(i for i, text in enumerate(parts.splitlines(), 1) if 'xyz="0.1 0"' in text)
     result = cli("check", "--format", "json", robot)
     [diagnostic] = json.loads(result.stdout)["files"][0]["diagnostics"]
     assert (diagnostic["rule"], diagnostic["line"]) == ("E114", line)

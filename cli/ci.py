@@ -1,0 +1,158 @@
+"""``mcar ci``: build, strictly check and render every robot file of a package, for CI."""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+import click
+
+from mobile_car.build import display_path
+from mobile_car.errors import McarError
+from mobile_car.packages import PackageSearch
+from mobile_car.resources import PACKAGE_NAME
+
+from .common import (config_options, dimension_overrides, handle_errors, package_path_option,
+                     report, use_color)
+
+HELP = f"""Build, check (strict) and render every robot file of a description package.
+
+\b
+  mcar ci                               {PACKAGE_NAME} (the checkout you stand
+                                        in, else the bundled copy)
+  mcar ci path/to/other_description     another team's package
+  mcar ci --format junit > report.xml   JUnit XML for the CI server
+  mcar ci --format github               annotations on the pull request's lines
+
+Every robot file (.xacro with <robot name=...>: parts, steps, complete robots) is built
+into --build-dir, checked with `mcar check --strict` (a warning fails it too) and drawn
+into --render-dir, mirroring urdf/; each variant urdf/variants/NAME.yaml is applied to
+the top-level robot files (built into build/variants/NAME/...). One step failing skips
+that file's later steps; the other files go on. A summary table ends the run.
+
+Exit 0 only if every step of every file passed; 1 if any file has problems; 2 if the
+run could not be made (no package, no renderer: --no-render skips drawing).
+"""
+
+
+def _table(items) -> list[str]:
+    header = ("FILE", "LINKS", "JOINTS", "WARN", "ERR", "PNG", "RESULT")
+    rows = []
+    for item in items:
+        failed = [step.name for step in item.steps if step.status == "failed"]
+        png = display_path(item.png) if item.png and any(
+            s.name == "render" and s.status == "passed" for s in item.steps) else "-"
+        rows.append((item.label, "-" if item.links is None else str(item.links),
+                     "-" if item.joints is None else str(item.joints), str(item.warnings),
+                     str(item.errors), png, "ok" if item.ok else f"FAILED ({failed[0]})"))
+    widths = [max(len(row[i]) for row in [header, *rows]) for i in range(len(header))]
+    right = {1, 2, 3, 4}
+
+    def line(row):
+        return "  ".join(cell.rjust(widths[i]) if i in right else cell.ljust(widths[i])
+                         for i, cell in enumerate(row)).rstrip()
+
+    return [line(header), *map(line, rows)]
+
+
+def _problems(item) -> list[str]:
+    lines = []
+    for step in item.steps:
+        if step.status != "failed":
+            lines += [d.text() for d in step.diagnostics]  # warnings of a passed step
+            continue
+        lines += [d.text() for d in step.diagnostics] or [f"{item.label}: {step.name} "
+                                                          f"failed: {step.message}"]
+    return lines
+
+
+@click.command("ci", help=HELP, short_help="Build, check and render a whole package.")
+@click.argument("package", required=False, type=click.Path(file_okay=False))
+@click.option("--format", "output_format", type=click.Choice(["text", "junit", "github"]),
+              default="text", show_default=True,
+              help="text: the summary table on stdout, problems on stderr; junit: JUnit XML "
+                   "on stdout; github: workflow annotations, then the table.")
+@click.option("--build-dir", default="build", show_default=True, type=click.Path(),
+              help="Where the URDFs are written.")
+@click.option("--render-dir", default="renders", show_default=True, type=click.Path(),
+              help="Where the PNGs and the contact sheet index.png are written.")
+@click.option("--no-render", is_flag=True, help="Build and check only; draw nothing.")
+@click.option("--renderer", type=click.Choice(["auto", "gl", "raycast"]), default="auto",
+              show_default=True, help="As for mcar render.")
+@click.option("-q", "--quiet", is_flag=True, help="text format: print only problems.")
+@config_options
+@package_path_option
+@handle_errors
+def command(package, output_format, build_dir, render_dir, no_render, renderer, quiet,
+            sets, config_files, package_paths):
+    from mobile_car import pipeline
+
+    started = time.perf_counter()
+    if package is None:
+        search = PackageSearch(package_paths=list(package_paths), origin=Path.cwd())
+        root = search.find(PACKAGE_NAME)
+    else:
+        root = Path(package)
+        if not root.exists():
+            raise McarError("no such package folder", file=package)
+    overrides = dimension_overrides(root, package_paths, sets, config_files)
+    items = pipeline.plan(root, Path(build_dir), None if no_render else Path(render_dir))
+    checked = [item for item in items
+               if pipeline.build_and_check(item, package_paths, overrides) is not None]
+    if not no_render and checked:
+        _render(checked, root, Path(render_dir), renderer, package_paths)
+    code = pipeline.exit_code(items)
+    _emit(items, output_format, quiet, time.perf_counter() - started, no_render)
+    sys.exit(code)
+
+
+def _render(items, root: Path, render_dir: Path, renderer: str, package_paths) -> None:
+    from mobile_car.render.manifest import Manifest
+    from mobile_car.render.options import RenderOptions
+    from mobile_car.render.session import RenderSession
+
+    from mobile_car import pipeline
+
+    manifest = Manifest(render_dir)
+    # The built URDFs live outside the package: let their package:// URIs find it.
+    with RenderSession(RenderOptions(), renderer=renderer,
+                       package_paths=[*package_paths, root]) as session:
+        try:
+            for item in items:
+                pipeline.render_step(item, session, manifest)
+        finally:
+            manifest.save()
+        if any(item.ok for item in items):
+            session.write_contact_sheet(manifest)
+            manifest.save()
+        for note in session.notes:
+            click.echo(f"mcar: warning: {note}", err=True)
+
+
+def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: bool) -> None:
+    if output_format == "junit":
+        from mobile_car.junit import junit_report
+
+        click.echo(junit_report(items), nl=False)
+        return
+    if output_format == "github":
+        for item in items:
+            for step in item.steps:
+                for diagnostic in step.diagnostics:
+                    click.echo(diagnostic.github())
+                if step.status == "failed" and not step.diagnostics:
+                    from mobile_car.diagnostics import github_annotation
+
+                    click.echo(github_annotation("error", str(item.source), None,
+                                                 f"mcar ci {step.name}", step.message))
+    else:
+        for item in items:
+            for line in _problems(item):
+                click.echo(line, err=True, color=use_color())
+    if not quiet or output_format == "github":
+        click.echo("\n".join(_table(items)))
+    passed = sum(item.ok for item in items)
+    steps = "build, check --strict" + ("" if no_render else ", render")
+    click.echo(f"mcar ci: {passed} of {len(items)} files passed ({steps}) in {seconds:.1f} s",
+               err=True)

@@ -1,0 +1,36 @@
+"""JUnit XML, the report format CI servers (GitLab, Jenkins, GitHub test reporters) read.
+
+One ``<testcase>`` per file and step: classname ``mcar.<step>``, name the file; a failed
+step has a ``<failure>`` whose message is its first problem and whose text lists every
+problem as ``FILE:LINE: severity: message [RULE]``; a skipped step has ``<skipped>``.
+"""
+
+from __future__ import annotations
+
+from xml.etree import ElementTree as ET
+
+from .pipeline import CiItem
+
+
+def junit_report(items: list[CiItem], suite: str = "mcar ci") -> str:
+    cases = [(item, step) for item in items for step in item.steps]
+    failures = sum(1 for _, step in cases if step.status == "failed")
+    skipped = sum(1 for _, step in cases if step.status == "skipped")
+    seconds = sum(step.seconds for _, step in cases)
+    root = ET.Element("testsuites", tests=str(len(cases)), failures=str(failures),
+                      errors="0", skipped=str(skipped), time=f"{seconds:.3f}")
+    testsuite = ET.SubElement(root, "testsuite", name=suite, tests=str(len(cases)),
+                              failures=str(failures), errors="0", skipped=str(skipped),
+                              time=f"{seconds:.3f}")
+    for item, step in cases:
+        case = ET.SubElement(testsuite, "testcase", classname=f"mcar.{step.name}",
+                             name=item.label, file=str(item.source), time=f"{step.seconds:.3f}")
+        if step.status == "failed":
+            failure = ET.SubElement(case, "failure", message=step.message, type=step.name)
+            failure.text = "\n".join(d.text() for d in step.diagnostics) or step.message
+        elif step.status == "skipped":
+            ET.SubElement(case, "skipped", message=step.message)
+        elif step.diagnostics:  # warnings of a passed (non-strict) check
+            ET.SubElement(case, "system-out").text = "\n".join(d.text() for d in step.diagnostics)
+    ET.indent(root)
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"

@@ -9,7 +9,7 @@ import click
 
 from mobile_car.atomic import atomic_write
 from mobile_car.build import build_file, display_path, parse_mapping_args
-from mobile_car.discover import output_name, robot_files, source_base
+from mobile_car.discover import output_name, require_robot_files, source_base
 from mobile_car.errors import EXIT_OK, EXIT_PROBLEMS, McarError, UsageError
 from mobile_car.packages import PackageSearch
 from mobile_car.resources import PACKAGE_NAME
@@ -63,9 +63,7 @@ def _build_tree(root: Path, outdir: Path, mappings: dict[str, str], package_path
                 deps_only: bool, quiet: bool) -> int:
     """Build every robot file under root into outdir; go on past failures; exit code."""
     base = source_base(root)
-    sources = robot_files(root)
-    if not sources:
-        raise UsageError(f"no robot files (.xacro with <robot name=...>) under {display_path(base)}")
+    sources = require_robot_files(root)
     failures = 0
     for source in sources:
         search = PackageSearch(package_paths=list(package_paths), origin=source)

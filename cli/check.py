@@ -66,7 +66,8 @@ def expand_inputs(inputs: list[str]) -> list[str]:
             base = source_base(path)
             found = sorted({*base.rglob("*.urdf"), *robot_files(path)})
             if not found:
-                raise UsageError(f"{display_path(path)}: no .urdf or robot .xacro files in it")
+                raise UsageError("no .urdf or robot .xacro files in this folder",
+                                 file=display_path(path))
             expanded += [str(p) for p in found]
         else:
             expanded.append(name)

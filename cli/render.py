@@ -11,7 +11,7 @@ from pathlib import Path
 
 import click
 
-from mobile_car.errors import EXIT_OK, UsageError
+from mobile_car.errors import EXIT_OK, InputError, UsageError
 from mobile_car.render.options import (
     DEFAULT_BACKGROUND,
     RENDERER_ENV,
@@ -114,7 +114,7 @@ def _classify(words: list[str]) -> tuple[str, list[Path] | list[str]]:
     looks_like_files = [w for w, e in zip(words, existing)
                         if not e and (("/" in w) or w.endswith((".urdf", ".xacro")))]
     if looks_like_files:
-        raise UsageError(f"no such file: {' '.join(looks_like_files)}")
+        raise InputError("no such file", file=looks_like_files[0])
     if any(existing):
         raise UsageError("give files, or part names, not both")
     return "parts", words

@@ -32,6 +32,7 @@ _ARG_DECL_RE = re.compile(r"<xacro:arg\b[^>]*?\bname\s*=\s*[\"']([^\"']+)[\"']",
 _ARG_USE_RE = re.compile(r"\$\(arg\s+([^\s)]+)\s*\)|\barg\(\s*[\"']([^\"']+)[\"']\s*\)")
 _QUOTED_RE = re.compile(r"'([^']+)'")
 _COMMENT_RE = re.compile(r"<!--.*?-->", re.S)
+_MAX_STACK_LINES = 8
 
 
 @dataclass
@@ -61,6 +62,26 @@ def banner_name(path: Path) -> str:
         name, root = own
         return f"{name}/{path.resolve().relative_to(root).as_posix()}"
     return path.name
+
+
+# xacro holds a document as a DOM of Python objects, about 45 times the file's size
+# (25 MB took 1.1 GB and 21 s here): refuse what would exhaust a CI runner's memory.
+MAX_INPUT_MB_ENV = "MCAR_MAX_INPUT_MB"
+DEFAULT_MAX_INPUT_MB = 16
+
+
+def check_input_size(path: Path) -> None:
+    """InputError if the file is larger than xacro (or the renderer) should take on."""
+    try:
+        limit_mb = float(os.environ.get(MAX_INPUT_MB_ENV, DEFAULT_MAX_INPUT_MB))
+    except ValueError:
+        limit_mb = DEFAULT_MAX_INPUT_MB
+    size = path.stat().st_size
+    if size > limit_mb * 1024 * 1024:
+        raise InputError(f"{size / 1024 / 1024:.0f} MB is more than the {limit_mb:g} MB this "
+                         f"command reads (xacro and the renderer hold ~45x the file in memory); "
+                         f"set {MAX_INPUT_MB_ENV} to raise the limit (`mcar check` has none)",
+                         file=display_path(path))
 
 
 def parse_mapping_args(words: list[str]) -> dict[str, str]:
@@ -165,6 +186,9 @@ def _collapse_repeats(lines: list[str]) -> list[str]:
             continue
         out.append(line if count == 1 else f"{line} (x{count})")
         count = 0
+    if len(out) > _MAX_STACK_LINES:  # a loop through several files or macros
+        hidden = len(out) - _MAX_STACK_LINES + 1
+        out = out[: _MAX_STACK_LINES - 1] + [f"... and {hidden} more (a loop?)"]
     return out
 
 
@@ -294,6 +318,7 @@ def build_file(path: str | os.PathLike, mappings: dict[str, str] | None = None,
         raise InputError("is a directory, not a xacro or URDF file", file=display_path(source))
     if not os.access(source, os.R_OK):
         raise InputError("permission denied", file=display_path(source))
+    check_input_size(source)
     mappings = dict(mappings or {})
     if search is None:
         search = PackageSearch(origin=source)

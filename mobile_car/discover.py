@@ -34,6 +34,18 @@ def source_base(root: Path) -> Path:
     return root / "urdf" if (root / "urdf").is_dir() else root
 
 
+def require_robot_files(root: Path) -> list[Path]:
+    """robot_files(root), or a UsageError naming the folder when there is none."""
+    files = robot_files(root)
+    if not files:
+        from .build import display_path
+        from .errors import UsageError
+
+        raise UsageError("no robot files (.xacro with <robot name=...>) in this folder",
+                         file=display_path(source_base(root)))
+    return files
+
+
 def robot_files(root: Path) -> list[Path]:
     """Every robot xacro below ``root`` (its ``urdf/`` folder if it has one), sorted."""
     return sorted(p for p in source_base(root).rglob("*.xacro")

@@ -15,8 +15,8 @@ from pathlib import Path
 from .atomic import atomic_write
 from .build import build_file, display_path
 from .diagnostics import Diagnostic
-from .discover import output_name, robot_files, source_base
-from .errors import McarError, UsageError
+from .discover import output_name, require_robot_files, source_base
+from .errors import McarError
 from .packages import PackageSearch
 
 STEPS = ("build", "check", "render")
@@ -67,10 +67,7 @@ def variant_files(root: Path) -> list[Path]:
 def plan(root: Path, build_dir: Path, render_dir: Path | None) -> list[CiItem]:
     """Every item of a package's CI run, in a stable order."""
     base = source_base(root)
-    sources = robot_files(root)
-    if not sources:
-        raise UsageError(f"no robot files (.xacro with <robot name=...>) under "
-                         f"{display_path(base)}")
+    sources = require_robot_files(root)
     items = []
 
     def item(source: Path, variant: Path | None) -> CiItem:

@@ -20,7 +20,7 @@ from pathlib import Path
 from PIL import Image
 
 from ..atomic import atomic_write
-from ..build import build_file, display_path
+from ..build import build_file, check_input_size, display_path
 from ..discover import output_name, robot_files, source_base
 from ..errors import InputError, McarError, RendererUnavailableError, UsageError
 from ..packages import PackageSearch
@@ -118,7 +118,8 @@ def package_jobs(root: Path, outdir: Path, parts: Iterable[str] = ()) -> list[Re
                              f"{display_path(base)}: {', '.join(known) or 'none'}")
         sources = [s for s in sources if s.relative_to(base).parts[0] in parts]
     if not sources:
-        raise UsageError(f"no robot files (.xacro with <robot name=...>) under {display_path(base)}")
+        raise UsageError("no robot files (.xacro with <robot name=...>) in this folder",
+                         file=display_path(base))
     jobs = []
     for source in sources:
         relative = output_name(source, base).with_name(picture_name(source))
@@ -141,6 +142,7 @@ def load_source(path: Path, search: PackageSearch, mappings: dict[str, str] | No
         result = build_file(path, mappings, search, optional_args=frozenset(mappings))
         return ModelSource(result.xml.encode("utf-8"), path, lines_match=False), result.warnings
     try:
+        check_input_size(path)
         data = path.read_bytes()
     except FileNotFoundError:
         raise InputError("no such file", file=display_path(path)) from None

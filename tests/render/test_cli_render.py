@@ -200,7 +200,7 @@ def test_bad_options_exit_2(cli, in_repo, args, message):
 def test_missing_input_file_exits_2(cli, in_repo):
     result = cli("render", "urdf/nothing_here.urdf")
     assert result.exit_code == 2
-    assert result.stderr == "mcar: error: no such file: urdf/nothing_here.urdf\n"
+    assert result.stderr == "urdf/nothing_here.urdf: error: no such file\n"
 
 
 def test_ctrl_c_exits_130_and_leaves_only_whole_pictures(cli, pkg_copy, tmp_path, monkeypatch,

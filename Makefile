@@ -12,7 +12,7 @@ BIN    := $(VENV)/bin
 SUDO   := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := liburdfdom-tools graphviz libegl1 libegl-mesa0 libgl1-mesa-dri libgl1
 
-.PHONY: demo test install system-deps build bench clean
+.PHONY: demo test install system-deps build bench ci clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -37,6 +37,9 @@ demo: install system-deps
 
 test: install system-deps
 	$(BIN)/pytest
+
+ci: install system-deps
+	$(BIN)/mcar ci
 
 bench: install system-deps
 	$(BIN)/python bench/run.py

@@ -80,12 +80,14 @@ def _problems(item) -> list[str]:
 @click.option("--no-render", is_flag=True, help="Build and check only; draw nothing.")
 @click.option("--renderer", type=click.Choice(["auto", "gl", "raycast"]), default="auto",
               show_default=True, help="As for mcar render.")
+@click.option("--junit-xml", metavar="FILE", type=click.Path(dir_okay=False),
+              help="Also write the JUnit XML report to FILE (whatever --format is).")
 @click.option("-q", "--quiet", is_flag=True, help="text format: print only problems.")
 @config_options
 @package_path_option
 @handle_errors
-def command(package, output_format, build_dir, render_dir, no_render, renderer, quiet,
-            sets, config_files, package_paths):
+def command(package, output_format, build_dir, render_dir, no_render, renderer, junit_xml,
+            quiet, sets, config_files, package_paths):
     from mobile_car import pipeline
 
     started = time.perf_counter()
@@ -103,6 +105,11 @@ def command(package, output_format, build_dir, render_dir, no_render, renderer, 
     if not no_render and checked:
         _render(checked, root, Path(render_dir), renderer, package_paths)
     code = pipeline.exit_code(items)
+    if junit_xml:
+        from mobile_car.atomic import atomic_write
+        from mobile_car.junit import junit_report
+
+        atomic_write(junit_xml, junit_report(items))
     _emit(items, output_format, quiet, time.perf_counter() - started, no_render)
     sys.exit(code)
 

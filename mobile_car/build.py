@@ -281,6 +281,8 @@ def _error_from(exc: BaseException, session: _Session, source: Path) -> McarErro
         return BuildError("recursion too deep: a macro or an include that calls itself?",
                           file=file, line=line, details=_stack_details())
     message = " ".join(str(exc).split()) or type(exc).__name__
+    if isinstance(inner, MemoryError) or isinstance(exc, MemoryError):
+        message = f"out of memory {message}".strip()
     # xacro.fatal("...") is the author's own message: xacro's "when evaluating" adds noise.
     message = re.sub(r" when evaluating expression 'xacro\.fatal\(.*$", "", message)
     file, line = _locate(session, source, needles)
@@ -324,6 +326,23 @@ def build_file(path: str | os.PathLike, mappings: dict[str, str] | None = None,
         search = PackageSearch(origin=source)
     elif search.origin is None:
         search.origin = source
+    from .isolate import OutOfMemory, Timeout, run_isolated
+
+    try:
+        return run_isolated(_expand, source, mappings, search, optional_args)
+    except Timeout as limit:
+        raise BuildError(f"xacro did not finish within {limit.seconds:g} s (a runaway "
+                         "expression such as ${9**9**9}?); MCAR_XACRO_TIMEOUT raises the limit",
+                         file=display_path(source)) from None
+    except OutOfMemory as limit:
+        raise BuildError(f"xacro needed more than {limit.megabytes} MB of memory; "
+                         "MCAR_XACRO_MEMORY_MB raises the limit",
+                         file=display_path(source)) from None
+
+
+def _expand(source: Path, mappings: dict[str, str], search: PackageSearch,
+            optional_args: frozenset[str]) -> BuildResult:
+    """The expansion itself (in a guarded child process where possible)."""
     with _Session(search) as session:
         try:
             doc = xacro.process_file(str(source), mappings=mappings)

@@ -1,0 +1,122 @@
+"""Run a function in a forked child with a time and memory limit.
+
+xacro evaluates ``${...}`` with Python's ``eval``: ``${9**9**9}`` computes for ever inside one
+C call that no signal interrupts, and a runaway document can eat all memory. A forked child
+(cheap on Linux: nothing is re-imported) runs the work under ``RLIMIT_AS``; the parent waits
+at most ``timeout`` seconds, then kills it. The result, or the exception, comes back pickled
+through a pipe.
+
+Where fork is unsafe (other threads running: a lock one of them holds would stay locked in
+the child forever) or unavailable, the function runs in this process, unguarded.
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+import select
+import signal
+import threading
+import time
+
+TIMEOUT_ENV = "MCAR_XACRO_TIMEOUT"
+MEMORY_ENV = "MCAR_XACRO_MEMORY_MB"
+DEFAULT_TIMEOUT = 60.0
+DEFAULT_MEMORY_MB = 4096
+
+
+class Timeout(Exception):
+    """The child ran out of time; ``seconds`` is the limit."""
+
+    def __init__(self, seconds: float):
+        super().__init__(seconds)
+        self.seconds = seconds
+
+
+class OutOfMemory(Exception):
+    def __init__(self, megabytes: int):
+        super().__init__(megabytes)
+        self.megabytes = megabytes
+
+
+def _limit(env: str, default: float) -> float:
+    try:
+        return max(0.1, float(os.environ.get(env, default)))
+    except ValueError:
+        return default
+
+
+def can_fork() -> bool:
+    return hasattr(os, "fork") and threading.active_count() == 1
+
+
+def run_isolated(func, *args):
+    """func(*args) in a guarded child; raises what func raised, Timeout or OutOfMemory."""
+    if not can_fork():
+        return func(*args)
+    timeout = _limit(TIMEOUT_ENV, DEFAULT_TIMEOUT)
+    memory_mb = int(_limit(MEMORY_ENV, DEFAULT_MEMORY_MB))
+    read_fd, write_fd = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the child: do the work, send (ok, value), leave without cleanup
+        os.close(read_fd)
+        status = 0
+        try:
+            import resource
+
+            limit = memory_mb * 1024 * 1024
+            resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+            try:
+                payload = (True, func(*args))
+            except MemoryError:
+                payload = (False, OutOfMemory(memory_mb))
+            except BaseException as error:  # noqa: BLE001 - everything goes to the parent
+                payload = (False, error)
+            try:
+                data = pickle.dumps(payload)
+            except Exception as error:  # an unpicklable exception: send its text
+                data = pickle.dumps((False, RuntimeError(f"{type(error).__name__}: {error}")))
+            with os.fdopen(write_fd, "wb") as pipe:
+                pipe.write(data)
+        except BaseException:
+            status = 1
+        finally:
+            os._exit(status)
+    os.close(write_fd)
+    chunks = []
+    deadline = time.monotonic() + timeout
+    try:
+        with os.fdopen(read_fd, "rb") as pipe:
+            while True:
+                left = deadline - time.monotonic()
+                if left <= 0 or not select.select([pipe], [], [], left)[0]:
+                    raise Timeout(timeout)
+                chunk = os.read(pipe.fileno(), 1 << 20)
+                if not chunk:
+                    break
+                chunks.append(chunk)
+    except BaseException:
+        _kill(pid)  # a timeout, or Ctrl-C in the parent: the child must not outlive us
+        raise
+    _reap(pid)
+    if not chunks:  # the child died without a word: most likely the memory limit
+        raise OutOfMemory(memory_mb)
+    ok, value = pickle.loads(b"".join(chunks))
+    if ok:
+        return value
+    raise value
+
+
+def _kill(pid: int) -> None:
+    try:
+        os.kill(pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+    _reap(pid)
+
+
+def _reap(pid: int) -> None:
+    try:
+        os.waitpid(pid, 0)
+    except ChildProcessError:
+        pass

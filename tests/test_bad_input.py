@@ -115,12 +115,12 @@ def test_too_large_for_xacro_is_refused_and_check_still_reads_it(tmp_path):
     import generate
 
     big = tmp_path / "big.urdf"
-    big.write_text(generate.tree(60_000))  # ~25 MB
+    big.write_text(generate.tree(125_000))  # 50 MB
     for args in (["build", big.name, "-o", "out.urdf"],
                  ["render", big.name, "-o", "out.png", "--renderer", "raycast"]):
         result = run(args, tmp_path, timeout=30)
         assert result.returncode == 2
-        assert result.stderr.startswith("big.urdf: error: 24 MB is more than the 16 MB")
+        assert result.stderr.startswith("big.urdf: error: 50 MB is more than the 16 MB")
     check = run(["check", "-q", big.name], tmp_path, timeout=120)
     assert check.returncode == 0, check.stderr
 

@@ -14,8 +14,15 @@ from mobile_car.errors import EXIT_OK, EXIT_PROBLEMS, McarError, UsageError
 from mobile_car.packages import PackageSearch
 from mobile_car.resources import PACKAGE_NAME
 
-from .common import (CONFIG_ARG, config_options, dimension_overrides, handle_errors,
-                     override_context, package_path_option, report)
+from .common import (
+    CONFIG_ARG,
+    config_options,
+    dimension_overrides,
+    handle_errors,
+    override_context,
+    package_path_option,
+    report,
+)
 
 HELP = """Expand xacro into URDF.
 

@@ -17,8 +17,14 @@ from mobile_car.discover import robot_files, source_base
 from mobile_car.errors import EXIT_OK, EXIT_PROBLEMS, EXIT_USAGE, UsageError
 from mobile_car.tree import check_urdf_chunks
 
-from .common import (config_options, dimension_overrides, handle_errors, override_context,
-                     package_path_option, report)
+from .common import (
+    config_options,
+    dimension_overrides,
+    handle_errors,
+    override_context,
+    package_path_option,
+    report,
+)
 
 HELP = """Check URDF files: check_urdf's verdict and tree, and the errors it misses.
 
@@ -84,7 +90,7 @@ def _emit_text(results: list[CheckResult], quiet: bool) -> None:
             report(result.failure)
         if not quiet and result.sound:
             if many:
-                out.write(f"==> {result.file} <==\n".encode("utf-8"))
+                out.write(f"==> {result.file} <==\n".encode())
             # check_urdf writes names byte for byte: UTF-8 whatever the locale says.
             for chunk in check_urdf_chunks(result.robot.name, result.tree):
                 out.write(chunk.encode("utf-8"))

@@ -13,8 +13,13 @@ from mobile_car.errors import McarError
 from mobile_car.packages import PackageSearch
 from mobile_car.resources import PACKAGE_NAME
 
-from .common import (config_options, dimension_overrides, handle_errors, package_path_option,
-                     report, use_color)
+from .common import (
+    config_options,
+    dimension_overrides,
+    handle_errors,
+    package_path_option,
+    use_color,
+)
 
 HELP = f"""Build, check (strict) and render every robot file of a description package.
 
@@ -115,11 +120,10 @@ def command(package, output_format, build_dir, render_dir, no_render, renderer, 
 
 
 def _render(items, root: Path, render_dir: Path, renderer: str, package_paths) -> None:
+    from mobile_car import pipeline
     from mobile_car.render.manifest import Manifest
     from mobile_car.render.options import RenderOptions
     from mobile_car.render.session import RenderSession
-
-    from mobile_car import pipeline
 
     manifest = Manifest(render_dir)
     # The built URDFs live outside the package: let their package:// URIs find it.

@@ -23,8 +23,14 @@ from mobile_car.render.options import (
 )
 from mobile_car.resources import PACKAGE_NAME
 
-from .common import (config_options, dimension_overrides, handle_errors, override_context,
-                     package_path_option, report)
+from .common import (
+    config_options,
+    dimension_overrides,
+    handle_errors,
+    override_context,
+    package_path_option,
+    report,
+)
 
 HELP = f"""Draw robot descriptions as PNG pictures, with no display and no GPU.
 
@@ -111,7 +117,7 @@ def _classify(words: list[str]) -> tuple[str, list[Path] | list[str]]:
         if folders:
             raise UsageError(f"give one folder at a time, or files only: {' '.join(folders)}")
         return "files", paths
-    looks_like_files = [w for w, e in zip(words, existing)
+    looks_like_files = [w for w, e in zip(words, existing, strict=False)
                         if not e and (("/" in w) or w.endswith((".urdf", ".xacro")))]
     if looks_like_files:
         raise InputError("no such file", file=looks_like_files[0])

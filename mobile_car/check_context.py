@@ -7,7 +7,7 @@ from xacro, a locator maps the element back to the xacro source where it can.
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 from .diagnostics import Diagnostic
 from .urdf_model import parse_number, parse_numbers, tag_name

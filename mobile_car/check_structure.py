@@ -49,7 +49,7 @@ def check_tree(robot: Robot, tree: KinematicTree, report: Reporter) -> None:
         report.add("E130", joints[1].element, f"link '{link}' has two parents: it is the child "
                                               f"of joints {names}")
     for path in tree.cycles:
-        edges = list(zip(path, path[1:]))
+        edges = list(zip(path, path[1:], strict=False))
         joints = [next(j for j in tree.children[a] if j.child == b) for a, b in edges]
         first = min(joints, key=lambda j: line(j.element))
         shown = " -> ".join(path) if len(path) <= 12 else \

@@ -21,7 +21,6 @@ from .check_schema import report_anomalies
 from .urdf_reader import Anomalies, Link, read_links
 from .urdf_vocabulary import LINK
 
-
 # Links looked at before giving up comparing, on a robot with fewer than 10% repeats.
 _TRIAL = 500
 

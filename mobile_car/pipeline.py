@@ -99,8 +99,8 @@ def build_and_check(item: CiItem, package_paths, overrides: dict[str, float],
     """The build and check steps of one item; returns the built URDF text, or None."""
     import time
 
-    from .config import override_mappings, resolve_overrides
     from .checker import check_urdf_data
+    from .config import override_mappings, resolve_overrides
     from .xacro_locate import SourceLocator
 
     search = PackageSearch(package_paths=list(package_paths), origin=item.source)

@@ -57,6 +57,18 @@ def cli():
     return invoke
 
 
+@pytest.fixture
+def package_copy(tmp_path) -> Path:
+    """A scratch copy of mobile_car_description that a test may edit."""
+    import shutil
+
+    copy = tmp_path / "mobile_car_description"
+    for name in ("urdf", "meshes"):
+        shutil.copytree(REPO / name, copy / name)
+    shutil.copy(REPO / "package.xml", copy / "package.xml")
+    return copy
+
+
 @pytest.fixture(scope="session")
 def check_urdf() -> str:
     """Path of urdfdom's check_urdf; `make test` installs it (Debian liburdfdom-tools)."""

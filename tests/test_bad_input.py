@@ -12,7 +12,6 @@ import tempfile
 from pathlib import Path
 
 import pytest
-
 from conftest import MCAR, REPO
 
 SECRET = "secret-content-7f3a"

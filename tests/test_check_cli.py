@@ -188,7 +188,8 @@ def test_missing_file_and_folder_without_robots_exit_2(cli, tmp_path):
     assert result.stderr.splitlines()[0] == f"{_shown(tmp_path / 'nope.urdf')}: error: no such file"
     empty = cli("check", tmp_path)
     assert empty.exit_code == 2
-    assert empty.stderr == f"{_shown(tmp_path)}: error: no .urdf or robot .xacro files in this folder\n"
+    assert empty.stderr == \
+        f"{_shown(tmp_path)}: error: no .urdf or robot .xacro files in this folder\n"
     assert cli("check").exit_code == 2
 
 

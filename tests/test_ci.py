@@ -2,11 +2,7 @@
 
 from __future__ import annotations
 
-import shutil
-from pathlib import Path
 from xml.etree import ElementTree as ET
-
-import pytest
 
 from conftest import REPO
 
@@ -21,15 +17,6 @@ def expected_labels() -> list[str]:
     for variant in sorted((base / "variants").glob("*.yaml")):
         labels += [f"{name} @ {variant.stem}" for name in top]
     return labels
-
-
-@pytest.fixture
-def package_copy(tmp_path) -> Path:
-    copy = tmp_path / "mobile_car_description"
-    for name in ("urdf", "meshes"):
-        shutil.copytree(REPO / name, copy / name)
-    shutil.copy(REPO / "package.xml", copy / "package.xml")
-    return copy
 
 
 def test_green_on_the_bundled_package_with_pictures(run_mcar, tmp_path):
@@ -55,7 +42,8 @@ def test_red_with_a_junit_report_naming_the_broken_part(run_mcar, package_copy, 
     wheel = package_copy / "urdf" / "wheel" / "wheel.xacro"
     text = wheel.read_text()
     wheel.write_text(text.replace("<visual>", "<visul>", 1).replace("</visual>", "</visul>", 1))
-    line = next(i for i, l in enumerate(wheel.read_text().splitlines(), 1) if "<visul>" in l)
+    line = next(i for i, text in enumerate(wheel.read_text().splitlines(), 1)
+                if "<visul>" in text)
     result = run_mcar("ci", package_copy, "--format", "junit", "--no-render",
                       "--build-dir", tmp_path / "out", cwd=tmp_path)
     assert result.returncode == 1
@@ -82,7 +70,7 @@ def test_github_annotations_point_at_the_source_line(run_mcar, package_copy, tmp
     result = run_mcar("ci", package_copy, "--format", "github", "--no-render",
                       "--build-dir", tmp_path / "out", cwd=tmp_path)
     assert result.returncode == 1
-    annotations = [l for l in result.stdout.splitlines() if l.startswith("::")]
+    annotations = [line for line in result.stdout.splitlines() if line.startswith("::")]
     assert annotations and all(a.startswith("::warning file=") for a in annotations)
     assert any("laser.xacro,line=" in a and "bogus" in a for a in annotations)
 

@@ -9,7 +9,6 @@ import re
 import subprocess
 
 import yaml
-
 from conftest import MCAR, REPO
 
 

@@ -19,8 +19,8 @@ def test_readme_has_exactly_two_setup_commands():
 
 
 def test_ci_runs_the_readme_test_command():
-    lines = [l for l in (REPO / ".ci" / "run").read_text().splitlines()
-             if l.strip() and not l.startswith("#") and not l.startswith(("set ", "cd "))]
+    lines = [line for line in (REPO / ".ci" / "run").read_text().splitlines()
+             if line.strip() and not line.startswith("#") and not line.startswith(("set ", "cd "))]
     assert lines == [setup_commands()[1]]
 
 

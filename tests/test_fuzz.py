@@ -6,11 +6,10 @@ from __future__ import annotations
 import random
 
 import pytest
+from conftest import REPO
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from lxml import etree
-
-from conftest import REPO
 
 SEEDS = sorted([*(REPO / "urdf" / "tutorial").glob("*"),
                 REPO / "urdf" / "wheel" / "test_wheel.urdf.xacro",

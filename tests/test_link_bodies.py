@@ -25,11 +25,11 @@ ROBOT = "\n".join([
     f'<link name="d">{BAD}</link>',                             # 7: E113
     f'<link name="e">{BAD}</link>',                             # 8: E113 again
     f'<link name="f">{HEAVY}</link>',                           # 9: as the root's, not root
-    f'<link name="g"><visual><geometry><box size="1 1 1"/></geometry>'
+    '<link name="g"><visual><geometry><box size="1 1 1"/></geometry>'
     '<material name="blue"/></visual></link>',                  # 10: E116, blue undefined yet
-    f'<link name="h"><visual><geometry><box size="1 1 1"/></geometry>'
+    '<link name="h"><visual><geometry><box size="1 1 1"/></geometry>'
     '<material name="blue"><color rgba="0 0 1 1"/></material></visual></link>',
-    f'<link name="i"><visual><geometry><box size="1 1 1"/></geometry>'
+    '<link name="i"><visual><geometry><box size="1 1 1"/></geometry>'
     '<material name="blue"/></visual></link>',                  # 12: blue defined by h now
     _joint("ja", "root", "a"), _joint("jb", "root", "b", "continuous"),
     _joint("jc", "root", "c"), _joint("jd", "root", "d"), _joint("je", "root", "e"),

@@ -6,7 +6,6 @@ import subprocess
 from pathlib import Path
 
 import pytest
-
 from conftest import REPO, run_check_urdf
 
 TUTORIAL = REPO / "urdf" / "tutorial"

@@ -13,7 +13,8 @@ from mobile_car.units import parse_quantity
 @pytest.mark.parametrize("text, unit, expected", [
     ("0.0325", "m", 0.0325), ("65mm", "m", 0.065), ("6.5 cm", "m", 0.065),
     ("1in", "m", 0.0254), ("40 g", "kg", 0.040), ("90deg", "rad", math.pi / 2),
-    ("1.5e-3", "m", 0.0015), (0.2, "m", 0.2), (3, "kg", 3.0), ("280 rpm", "rad/s", 280 * math.pi / 30),
+    ("1.5e-3", "m", 0.0015), (0.2, "m", 0.2), (3, "kg", 3.0),
+    ("280 rpm", "rad/s", 280 * math.pi / 30),
 ])
 def test_converts_to_si(text, unit, expected):
     assert parse_quantity(text, unit, "x") == pytest.approx(expected, rel=1e-12)

@@ -5,8 +5,8 @@ relative to that folder, to a fingerprint of everything that decides its pixels:
 bytes, the bytes of every mesh it reads, the render options and the version of the drawing
 code; plus the renderer that drew it (a picture drawn by OpenGL does not satisfy
 ``--renderer raycast``, either satisfies ``auto``) and a hash of the PNG written, so that a
-picture edited or replaced by hand is rendered again. A missing or unreadable manifest just means that
-everything is rendered.
+picture edited or replaced by hand is rendered again. A missing or unreadable manifest just
+means that everything is rendered.
 """
 
 from __future__ import annotations

@@ -52,7 +52,8 @@ def finish_picture(drawn: list[DrawnView], bounds: np.ndarray | None,
     images = [compose(view.model, view.camera, bounds, view.options) for view in drawn]
     if options.view != "all":
         return images[0]
-    return views_sheet([(view.options.view, image) for view, image in zip(drawn, images)],
+    pairs = zip(drawn, images, strict=False)
+    return views_sheet([(view.options.view, image) for view, image in pairs],
                        options.width, options.height, options.background)
 
 

@@ -34,7 +34,7 @@ def tile(images: list[Image.Image], captions: list[str], columns: int, cell: tup
     sheet = Image.new("RGB", (columns * (cell_w + pad) + pad,
                               rows * (cell_h + caption_height + pad) + pad), background)
     draw = ImageDraw.Draw(sheet)
-    for index, (image, caption) in enumerate(zip(images, captions)):
+    for index, (image, caption) in enumerate(zip(images, captions, strict=False)):
         row, column = divmod(index, columns)
         left = pad + column * (cell_w + pad)
         top = pad + row * (cell_h + caption_height + pad)

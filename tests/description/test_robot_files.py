@@ -8,12 +8,16 @@ from collections import Counter
 from pathlib import Path
 
 import numpy as np
-import pytest
+from conftest import run_check_urdf
 from lxml import etree
 
-from conftest import run_check_urdf
-from tests.description.conftest import (COMPLETE_ROBOT, FRAME_ONLY_LINKS, URDF, built_name,
-                                        description_files)
+from tests.description.conftest import (
+    COMPLETE_ROBOT,
+    FRAME_ONLY_LINKS,
+    URDF,
+    built_name,
+    description_files,
+)
 
 COMPLETE_LINKS = {
     "base_footprint", "base_link", "body_link",
@@ -89,7 +93,8 @@ def test_every_body_has_visual_collision_inertial(robot_file, built_dir, load_ur
         if link.name in FRAME_ONLY_LINKS:
             assert not any(parts.values()), f"{link.name} should be a pure frame: {parts}"
         else:
-            assert all(parts.values()), f"{link.name} lacks {[k for k, v in parts.items() if not v]}"
+            missing = [k for k, v in parts.items() if not v]
+            assert all(parts.values()), f"{link.name} lacks {missing}"
 
 
 def test_inertials_are_physically_possible(robot_file, built_dir, load_urdf):
@@ -151,5 +156,5 @@ def test_each_chassis_step_adds_to_the_one_before(built_dir, load_urdf):
     steps = sorted((URDF / "chassis" / "steps").glob("*.xacro"))
     links = [{link.name for link in load_urdf(built_dir / built_name(s.relative_to(URDF)))
               .robot.links} for s in steps]
-    for before, after in zip(links, links[1:]):
+    for before, after in zip(links, links[1:], strict=False):
         assert before < after

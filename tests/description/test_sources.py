@@ -5,13 +5,12 @@ values are expressions, and config.xacro refuses numbers that cannot fit togethe
 from __future__ import annotations
 
 import re
-import shutil
 from pathlib import Path
 
 import pytest
 from lxml import etree
 
-from tests.description.conftest import REPO, URDF
+from tests.description.conftest import URDF
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"
 PROPERTY = f"{{{XACRO_NS}}}property"
@@ -20,6 +19,7 @@ MACRO = f"{{{XACRO_NS}}}macro"
 SOURCES = sorted(p for p in URDF.rglob("*.xacro") if "tutorial" not in p.relative_to(URDF).parts)
 # The comment grammar is mcar's own (`mcar config` reads it): one definition.
 from mobile_car.config import COMMENT_RE as CONFIG_COMMENT  # noqa: E402
+
 DECIMAL = re.compile(r"(?<![\w.])\d*\.\d+|\d+(?:\.\d*)?[eE][-+]?\d+")
 
 
@@ -128,16 +128,6 @@ def test_config_total_mass_is_the_built_robots(complete_robot, tmp_path):
     assert stated == pytest.approx(built, rel=1e-12)
     # the header states it too, to the gram
     assert f"{stated:.2f} kg" in header(parse(URDF / "config.xacro"))
-
-
-@pytest.fixture
-def package_copy(tmp_path) -> Path:
-    """A scratch copy of the package whose config.xacro a test may edit."""
-    copy = tmp_path / "mobile_car_description"
-    for name in ("urdf", "meshes"):
-        shutil.copytree(REPO / name, copy / name)
-    shutil.copy(REPO / "package.xml", copy / "package.xml")
-    return copy
 
 
 @pytest.mark.parametrize("name, value, complaint", [

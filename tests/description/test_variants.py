@@ -8,10 +8,9 @@ import subprocess
 
 import numpy as np
 import pytest
+from conftest import REPO, run_check_urdf
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
-
-from conftest import REPO, run_check_urdf
 
 VARIANTS = sorted((REPO / "urdf" / "variants").glob("*.yaml"))
 CONTACT_LINKS = {"wheel_left_link", "wheel_right_link", "caster_link"}
@@ -87,7 +86,7 @@ def dimensions(draw):
 @given(dims=dimensions())
 def test_random_valid_overrides_stand_level(dims, tmp_path_factory, load_urdf, posed):
     from mobile_car.build import build_file
-    from mobile_car.config import config_file, load_spec, override_mappings, evaluate
+    from mobile_car.config import config_file, evaluate, load_spec, override_mappings
     from mobile_car.errors import UsageError
     from mobile_car.packages import PackageSearch
 

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import pytest
-
 from conftest import REPO
 
 ROBOT = "urdf/mobile_robot.xacro"
@@ -18,7 +17,8 @@ def test_set_changes_the_picture_where_the_wheels_are(render, px, quiet_renderer
     changed = px.differing_pixels(default, bigger)
     assert changed.mean() > 0.02
     # bigger wheels lift the whole car: its silhouette grows taller in the side view
-    assert px.silhouette_box(px.foreground(bigger))[3] > px.silhouette_box(px.foreground(default))[3]
+    height = [px.silhouette_box(px.foreground(p))[3] for p in (default, bigger)]
+    assert height[1] > height[0]
 
 
 @pytest.mark.parametrize("variant", VARIANTS, ids=[v.stem for v in VARIANTS])

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import click
 
-from mobile_car.build import display_path, parse_mapping_args
+from mobile_car.inputs import display_path, parse_mapping_args
 from mobile_car.checker import STDIN, CheckResult, as_json, check_input
 from mobile_car.diagnostics import github_annotation
 from mobile_car.discover import robot_files, source_base

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import os
 import stat
-import tempfile
 from pathlib import Path
 
 from .errors import InputError
@@ -27,6 +26,8 @@ def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
         except OSError as exc:
             raise InputError(f"cannot write: {exc.strerror or exc}", file=str(target)) from None
         return target
+    import tempfile  # 3 ms of start-up (shutil, random, bz2, lzma): only when writing a file
+
     try:
         target.parent.mkdir(parents=True, exist_ok=True)
         if target.is_dir():

@@ -22,7 +22,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import xacro
-import xacro.substitution_args as xacro_subst
 
 from .errors import BuildError, InputError, McarError, UsageError
 from .inputs import display_path, parse_mapping_args  # noqa: F401  (re-exported)
@@ -157,6 +156,7 @@ class _Session:
         self.found: dict[str, Path] = {}
         self.parsing: list[str] = []
         self.stderr = io.StringIO()
+        self._subst_saved = None
 
     def _find(self, name: str) -> str:
         path = self.search.find(name)
@@ -169,12 +169,21 @@ class _Session:
         self.parsing.pop()
         return result
 
+    def _eval_extension(self, text: str):
+        # xacro imports its substitution_args (and PyYAML with it, 15 ms) at the first
+        # $(...); $(find) is pointed at our package search only then, as plain xacro would.
+        if self._subst_saved is None:
+            import xacro.substitution_args as subst
+
+            self._subst_saved = (subst, subst._eval_find, subst._eval_dict.get("find"))
+            subst._eval_find = subst._eval_dict["find"] = self._find
+        return self._original_eval_extension(text)
+
     def __enter__(self):
-        self._saved = (xacro_subst._eval_find, xacro_subst._eval_dict.get("find"), xacro.parse)
-        self._original_parse = xacro.parse
-        xacro_subst._eval_find = self._find
-        xacro_subst._eval_dict["find"] = self._find
+        self._saved = (xacro.parse, xacro.eval_extension)
+        self._original_parse, self._original_eval_extension = self._saved
         xacro.parse = self._parse
+        xacro.eval_extension = self._eval_extension
         xacro.all_includes = []
         xacro.substitution_args_context.clear()
         self._redirect = contextlib.redirect_stderr(self.stderr)
@@ -183,7 +192,9 @@ class _Session:
 
     def __exit__(self, *exc):
         self._redirect.__exit__(*exc)
-        xacro_subst._eval_find, xacro_subst._eval_dict["find"], xacro.parse = self._saved
+        xacro.parse, xacro.eval_extension = self._saved
+        if self._subst_saved is not None:
+            subst, subst._eval_find, subst._eval_dict["find"] = self._subst_saved
         return False
 
 

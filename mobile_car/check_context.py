@@ -28,6 +28,7 @@ Locator = Callable[[object], tuple[str, "int | None", str]]
 
 _CLEAN: set = set()
 _CLEAN_LIMIT = 1_000_000
+_LISTS_KEPT = 4096
 # Texts read by float() are joined by "," (which no number read that way contains) and
 # must then consist of these bytes only.
 _SINGLE_BYTES = b"0123456789.eE+-,"
@@ -59,6 +60,10 @@ class Reporter:
         self.quick_numbers = quick_numbers
         self._read_singles: list[str] = []
         self._read_lists: list[str] = []
+        # Lists read so far, up to _LISTS_KEPT: robots repeat "0 0 1" and "0 0 0" thousands
+        # of times and those come early; remembering every list of a CAD export, where
+        # almost none repeats, would cost more than it saves.
+        self._lists: dict[str, tuple[float, ...]] = {}
         # Keys found clean here; they join _CLEAN only once the numbers are confirmed.
         self._clean_here: set = set()
 
@@ -115,6 +120,9 @@ class Reporter:
     def values(self, text: str | None, count: int) -> tuple[float, ...] | None:
         """Exactly ``count`` numbers from ``text``, or None (absent or unreadable); silent."""
         if self.quick_numbers and text is not None:
+            known = self._lists.get(text)
+            if known is not None and len(known) == count:
+                return known
             pieces = text.split()
             if len(pieces) == count:
                 try:
@@ -123,6 +131,8 @@ class Reporter:
                     values = None
                 if values is not None and all(map(isfinite, values)):
                     self._read_lists.append(text)
+                    if len(self._lists) < _LISTS_KEPT:
+                        self._lists[text] = values
                     return values
         value = parse_numbers(text, count)
         return value if value.__class__ is tuple else None

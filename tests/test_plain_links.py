@@ -1,13 +1,13 @@
 """The quick paths of ``mcar check`` find exactly what the full checks find.
 
-Two shortcuts make a clean robot cheaper to check: links written the usual way are proved
-clean by ``mobile_car.plain_links`` instead of being read and checked part by part, and
-numbers are read with ``float`` and their spelling proved afterwards
-(``Reporter.numbers_confirmed``). Each test here checks a document twice, with the
-shortcuts and with both turned off, and requires the same diagnostics; the documents are
-a realistic robot and that robot with one thing broken or oddly spelled, and the whole
-check corpus. The mutated robots must also really be reported, so a test cannot pass by
-both ways finding nothing.
+Three shortcuts make a clean robot cheaper to check: links and joints written the usual
+way are proved clean (``mobile_car.plain_links``, ``check_joints._plainly_sound``) instead
+of going through every check with its messages, and numbers are read with ``float`` and
+their spelling proved afterwards (``Reporter.numbers_confirmed``). Each test here checks
+a document twice, with the shortcuts and with all of them turned off, and requires the
+same diagnostics; the documents are a realistic robot, that robot with one thing broken
+or oddly spelled, and the whole check corpus. The mutated robots must also really be
+reported, so a test cannot pass by both ways finding nothing.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from lxml import etree
 
-from mobile_car import check_context, checker, link_bodies
+from mobile_car import check_context, check_joints, checker, link_bodies
 from mobile_car.packages import PackageSearch
 
 CORPUS = Path(__file__).resolve().parent / "check_corpus"
@@ -84,6 +84,7 @@ def _check(data: bytes, quick: bool, monkeypatch, base: Path = BASE) -> list[tup
         patch.setattr(check_context, "_CLEAN", set())  # no verdicts from earlier tests
         if not quick:
             patch.setattr(link_bodies, "plainly_clean", lambda *args: False)
+            patch.setattr(check_joints, "_plainly_sound", lambda *args: False)
             full = checker._check_document
 
             def never_quick(*args, quick_numbers):
@@ -203,6 +204,49 @@ def test_a_broken_link_is_reported_alike_either_way(name, monkeypatch):
     assert quick == _check(data, False, monkeypatch)
 
 
+SHOULDER = "joint[@name='shoulder']"
+WRIST = "joint[@name='wrist']"
+JOINTS = {
+    "unknown joint type": _set(SHOULDER, "type", "ball"),
+    "no joint type": _drop_attr(SHOULDER, "type"),
+    "parent link undefined": _set(f"{SHOULDER}/parent", "link", "torso"),
+    "child link name empty": _set(f"{WRIST}/child", "link", ""),
+    "child link name empty, as a link's": lambda root: [
+        root.insert(0, etree.fromstring("<link name=''/>")),
+        _set(f"{WRIST}/child", "link", "")(root)],
+    "no parent element": _remove(f"{WRIST}/parent"),
+    "revolute without limit": _remove(f"{SHOULDER}/limit"),
+    "limit without effort": _drop_attr(f"{SHOULDER}/limit", "effort"),
+    "limit lower above upper": _set(f"{SHOULDER}/limit", "lower", "2"),
+    "missing upper read as 0": lambda root: [_set(f"{SHOULDER}/limit", "lower", "0.5")(root),
+                                             _drop_attr(f"{SHOULDER}/limit", "upper")(root)],
+    "continuous limit upside down": _append(
+        WRIST, "<limit lower='1' upper='-1' effort='1' velocity='1'/>"),
+    "limit velocity unreadable": _set(f"{SHOULDER}/limit", "velocity", "fast"),
+    "zero axis": _set(f"{WRIST}/axis", "xyz", "0 0 0"),
+    "axis without xyz": _drop_attr(f"{WRIST}/axis", "xyz"),
+    "axis unreadable": _set(f"{WRIST}/axis", "xyz", "0 0"),
+    "origin unreadable": _set(f"{SHOULDER}/origin", "rpy", "0 0 x"),
+    "empty dynamics": _append(WRIST, "<dynamics/>"),
+    "dynamics unreadable": _append(WRIST, "<dynamics damping='a lot'/>"),
+    "mimic of nothing": _append(WRIST, "<mimic joint='elbow'/>"),
+    "mimics itself": _append(WRIST, "<mimic joint='wrist'/>"),
+    "safety controller without k_velocity": _append(
+        SHOULDER, "<safety_controller soft_lower_limit='-1'/>"),
+    "calibration unreadable": _append(SHOULDER, "<calibration rising='up'/>"),
+    "second origin in a joint": _duplicate(f"{SHOULDER}/origin"),
+    "unknown joint attribute": _set(SHOULDER, "kind", "x"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(JOINTS))
+def test_a_broken_joint_is_reported_alike_either_way(name, monkeypatch):
+    data = _mutated(JOINTS[name])
+    quick = _check(data, True, monkeypatch)
+    assert quick, f"{name}: nothing reported; the mutation does not break anything"
+    assert quick == _check(data, False, monkeypatch)
+
+
 # Written unusually but sound: the full checks decide these, and find nothing.
 UNUSUAL = {
     "comment inside geometry": lambda root: root.find(f"{SHELL}/geometry").insert(
@@ -215,6 +259,14 @@ UNUSUAL = {
         "link[@name='camera']/visual").append(etree.fromstring("<material name='orange'/>")),
     "no origin anywhere": lambda root: [origin.getparent().remove(origin)
                                         for origin in root.findall("link/*/origin")],
+    "fixed joint with a zero axis": _append("joint[@name='camera_mount']", "<axis xyz='0 0 0'/>"),
+    "fixed joint with an axis without xyz": _append("joint[@name='camera_mount']", "<axis/>"),
+    "a mimic": lambda root: root.find(WRIST).append(
+        etree.fromstring("<mimic joint='shoulder' multiplier='2' offset='0.1'/>")),
+    "a safety controller": _append(SHOULDER, "<safety_controller k_velocity='10'/>"),
+    "continuous joint with a limit": _append(WRIST, "<limit effort='1' velocity='2'/>"),
+    "limit with only effort and velocity on a revolute": lambda root: [
+        root.find(f"{SHOULDER}/limit").attrib.pop(a) for a in ("lower", "upper")],
 }
 
 
@@ -230,6 +282,8 @@ NUMBER_PLACES = {  # where a single number goes, and where a list of three
     "radius": (f"{SHELL}/geometry/cylinder", "radius"),
     "sphere": ("link[@name='tool']/visual/geometry/sphere", "radius"),
     "limit": ("joint[@name='shoulder']/limit", "upper"),
+    "lower": ("joint[@name='shoulder']/limit", "lower"),
+    "effort": ("joint[@name='shoulder']/limit", "effort"),
 }
 LIST_PLACES = {
     "inertial origin": (f"{INERTIAL}/origin", "xyz"),
@@ -238,6 +292,7 @@ LIST_PLACES = {
     "scale": (f"{UPPER}/collision/geometry/mesh", "scale"),
     "axis": ("joint[@name='wrist']/axis", "xyz"),
     "joint origin": ("joint[@name='shoulder']/origin", "xyz"),
+    "joint rpy": ("joint[@name='shoulder']/origin", "rpy"),
 }
 ODD_NUMBERS = ["nan", "inf", "-inf", "1e400", "1e-400", "1_0", " 1", "1 ", "0x1", "1,5", "",
                "+.5", "1.", ".e1", "1e", "\u0661", "\uff11", "1\t", "\t1", "-0", "1e+2"]

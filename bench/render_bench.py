@@ -7,6 +7,8 @@
 2. For every robot file of the package (default: this repository's description), the time
    per 800x600 picture with the context made and the modules loaded: expanding the xacro,
    loading the meshes into a scene, drawing, and overlays + PNG encoding; median of N.
+3. Drawing the package's biggest scene with the ray-casting fallback instead (trimesh +
+   embreex, used where no OpenGL context can be made).
 """
 
 from __future__ import annotations
@@ -60,8 +62,23 @@ def measure(package: Path, runs: int) -> dict:
         medians = {stage: statistics.median(values) for stage, values in stages.items()}
         files.append({"file": job.caption, "triangles": scene.triangle_count, **medians,
                       "total": sum(medians.values())})
+    from mobile_car.render.raycast import RaycastRenderer
+
+    biggest = max(package_jobs(package, Path("unused")),
+                  key=lambda job: next(f["triangles"] for f in files
+                                       if f["file"] == job.caption))
+    search = PackageSearch(origin=biggest.source)
+    scene = load_scene(load_source(biggest.source, search)[0], search)
+    raycaster = RaycastRenderer()
+    draw_views(raycaster, scene, options)  # the first draw builds the ray tracer's BVH
+    raycast = []
+    for _ in range(runs):
+        started = time.perf_counter()
+        draw_views(raycaster, scene, options)
+        raycast.append(time.perf_counter() - started)
     return {"import": imported, "context": context, "renderer": renderer.description,
-            "notes": notes, "files": files}
+            "notes": notes, "files": files,
+            "raycast": {"file": biggest.caption, "draw": statistics.median(raycast)}}
 
 
 def main() -> None:
@@ -81,6 +98,8 @@ def main() -> None:
         print(f"{entry['file']:40s} {entry['triangles']:7d} triangles  "
               + "  ".join(f"{stage} {entry[stage] * 1000:6.1f} ms"
                           for stage in ("expand", "load", "draw", "finish", "total")))
+    raycast = result["raycast"]
+    print(f"ray-casting fallback, {raycast['file']}: draw {raycast['draw'] * 1000:.1f} ms")
 
 
 if __name__ == "__main__":

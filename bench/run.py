@@ -356,8 +356,9 @@ def section_startup(rows: list[str], work: Path, quick: bool) -> None:
     robot = work / "mobile_robot.urdf"
     subprocess.run([MCAR, "build", str(REPO / "urdf" / "mobile_robot.xacro"), "-o", str(robot)],
                    check=True)
+    links = robot.read_text(encoding="utf-8").count("<link ")
     rows += ["## Start-up", "",
-             "The complete robot (20 links). Targets: `mcar --version` under 150 ms, "
+             f"The complete car ({links} links). Targets: `mcar --version` under 150 ms, "
              "`mcar check` of the complete robot under 250 ms. The `python -c` rows are the "
              "floor any Python command stands on.", "",
              "| command | median | peak memory | exit | target |", "|---|---:|---:|---|---|"]
@@ -461,7 +462,11 @@ def section_render(rows: list[str], work: Path, quick: bool) -> None:
                     + " | ".join(fmt_time(entry[stage])
                                  for stage in ("expand", "load", "draw", "finish", "total"))
                     + " |")
-    rows.append("")
+    raycast = pieces["raycast"]
+    draw = next(entry["draw"] for entry in pieces["files"] if entry["file"] == raycast["file"])
+    rows += ["", f"Where no OpenGL context can be made, mcar ray-casts with trimesh + embreex: "
+             f"drawing {raycast['file']} takes {fmt_time(raycast['draw'])} that way, "
+             f"{raycast['draw'] / draw:.0f}x OpenGL's {fmt_time(draw)}.", ""]
     rows += notes_for("render")
     progress(f"render: whole set {fmt_time(total)}")
 

@@ -4,7 +4,8 @@
 # Debian packages installed here when missing: liburdfdom-tools (check_urdf, the peer
 # the tests compare against); libegl1 libegl-mesa0 libgl1-mesa-dri libgl1 (headless
 # OpenGL through EGL and Mesa's llvmpipe, for mcar render); graphviz (dot, which draws
-# `mcar tree --graphviz x.svg`).
+# `mcar tree --graphviz x.svg`); for `make bench` also time (GNU time, which measures the
+# peak memory of each command).
 
 PYTHON ?= python3
 VENV   ?= .venv
@@ -41,6 +42,7 @@ test: install system-deps
 ci: install system-deps
 	$(BIN)/mcar ci
 
+bench: APT_PACKAGES += time
 bench: install system-deps
 	$(BIN)/python bench/run.py
 

@@ -1,9 +1,21 @@
 """Inputs for the benchmarks, generated (nothing large is committed).
 
-    tree(n)   a URDF of n links, each joint's parent chosen among the earlier links
-              (a bushy tree, fixed seed), with box visuals and inertials;
-    chain(n)  a URDF of n links in one line (the deepest tree);
-    macros(n) a xacro that defines a wheel macro and calls it n times.
+    robot(n, shape, parts)  a URDF of n links, each with an inertial, a visual and a
+                            collision (as CAD exporters write them), joined by revolute,
+                            continuous, prismatic and fixed joints with origins, axes,
+                            limits and dynamics:
+        shape "tree"        each link hangs from a random earlier link (fixed seed): a
+                            bushy tree, about 2.7 ln(n) deep, like a many-limbed robot;
+        shape "chain"       each link hangs from the one before: the deepest tree (a
+                            snake robot), where check_urdf's indented print grows as n^2;
+        parts "distinct"    every number differs from link to link (what a CAD export
+                            gives): the honest case, nothing to share between links;
+        parts "repeated"    links are copies of four part models (segment, wheel, ...),
+                            as robots built from modules or macros are.
+    macros(n)               a xacro that defines a wheel macro and calls it n times.
+
+Every robot is valid and physical (inertias from the shape's formulas), so both checkers
+must accept it and print the same tree.
 """
 
 from __future__ import annotations
@@ -11,41 +23,100 @@ from __future__ import annotations
 import random
 
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed")
+SHAPES = ("tree", "chain")
+PARTS = ("distinct", "repeated")
 
 
-def _link(i: int) -> str:
-    return (f'  <link name="link_{i}">\n'
-            f'    <inertial><mass value="1.0"/>'
-            f'<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>\n'
-            f'    <visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>\n'
-            f'  </link>\n')
+def _g(value: float) -> str:
+    return f"{value:.6g}"
 
 
-def _joint(i: int, parent: int) -> str:
-    kind = JOINT_TYPES[i % len(JOINT_TYPES)]
-    limit = ('<limit lower="-1" upper="1" effort="10" velocity="1"/>'
-             if kind in ("revolute", "prismatic") else "")
-    return (f'  <joint name="joint_{i}" type="{kind}">\n'
-            f'    <parent link="link_{parent}"/><child link="link_{i}"/>\n'
-            f'    <origin xyz="0.1 0 0" rpy="0 0 0.1"/><axis xyz="0 0 1"/>{limit}\n'
-            f'  </joint>\n')
+def _vector(rng: random.Random, scale: float) -> str:
+    return " ".join(_g(rng.uniform(-scale, scale)) for _ in range(3))
 
 
-def tree(n: int, seed: int = 7) -> str:
+def _shape(rng: random.Random, kind: int) -> tuple[str, tuple[float, float, float]]:
+    """A geometry element and its box-equivalent inertia factors (Ixx, Iyy, Izz per kg)."""
+    if kind == 0:
+        x, y, z = (rng.uniform(0.02, 0.3) for _ in range(3))
+        return (f'<box size="{_g(x)} {_g(y)} {_g(z)}"/>',
+                ((y * y + z * z) / 12, (x * x + z * z) / 12, (x * x + y * y) / 12))
+    if kind == 1:
+        r, h = rng.uniform(0.01, 0.1), rng.uniform(0.01, 0.3)
+        side = (3 * r * r + h * h) / 12
+        return f'<cylinder radius="{_g(r)}" length="{_g(h)}"/>', (side, side, r * r / 2)
+    r = rng.uniform(0.01, 0.1)
+    return f'<sphere radius="{_g(r)}"/>', (2 * r * r / 5,) * 3
+
+
+def _link_body(rng: random.Random, kind: int) -> str:
+    """The content of a link: inertial, visual and collision, all numbers drawn from rng."""
+    geometry, factors = _shape(rng, kind % 3)
+    mass = rng.uniform(0.05, 5.0)
+    ixx, iyy, izz = (mass * f for f in factors)
+    return (f'    <inertial>\n'
+            f'      <origin xyz="{_vector(rng, 0.05)}" rpy="0 0 0"/>\n'
+            f'      <mass value="{_g(mass)}"/>\n'
+            f'      <inertia ixx="{_g(ixx)}" ixy="0" ixz="0" iyy="{_g(iyy)}" iyz="0" '
+            f'izz="{_g(izz)}"/>\n'
+            f'    </inertial>\n'
+            f'    <visual>\n'
+            f'      <origin xyz="{_vector(rng, 0.05)}" rpy="{_vector(rng, 1.5)}"/>\n'
+            f'      <geometry>{geometry}</geometry>\n'
+            f'      <material name="{("grey", "black", "orange")[kind % 3]}"/>\n'
+            f'    </visual>\n'
+            f'    <collision>\n'
+            f'      <origin xyz="{_vector(rng, 0.05)}" rpy="{_vector(rng, 1.5)}"/>\n'
+            f'      <geometry>{geometry}</geometry>\n'
+            f'    </collision>\n')
+
+
+def _joint_body(rng: random.Random, kind: str) -> str:
+    """The content of a joint after its parent and child, numbers drawn from rng."""
+    text = f'    <origin xyz="{_vector(rng, 0.2)}" rpy="{_vector(rng, 1.5)}"/>\n'
+    if kind != "fixed":
+        text += f'    <axis xyz="{("1 0 0", "0 1 0", "0 0 1")[rng.randrange(3)]}"/>\n'
+    if kind in ("revolute", "prismatic"):
+        low = rng.uniform(0.1, 3.0)
+        text += (f'    <limit lower="{_g(-low)}" upper="{_g(rng.uniform(0.1, 3.0))}" '
+                 f'effort="{_g(rng.uniform(1, 100))}" velocity="{_g(rng.uniform(0.5, 5))}"/>\n')
+    if kind != "fixed":
+        text += (f'    <dynamics damping="{_g(rng.uniform(0, 0.5))}" '
+                 f'friction="{_g(rng.uniform(0, 0.1))}"/>\n')
+    return text
+
+
+MATERIALS = ('  <material name="grey"><color rgba="0.6 0.6 0.6 1"/></material>\n'
+             '  <material name="black"><color rgba="0.1 0.1 0.1 1"/></material>\n'
+             '  <material name="orange"><color rgba="1 0.42 0.04 1"/></material>\n')
+
+
+def robot(n: int, shape: str = "tree", parts: str = "distinct", seed: int = 7) -> str:
+    """A valid URDF of ``n`` links; see the module docstring for ``shape`` and ``parts``."""
+    if shape not in SHAPES or parts not in PARTS:
+        raise ValueError(f"shape {shape!r} / parts {parts!r}")
     rng = random.Random(seed)
-    parts = ['<?xml version="1.0"?>\n<robot name="tree">\n', _link(0)]
+    # Repeated parts: four link models and four joint models, each used again and again.
+    models = random.Random(seed + 1)
+    link_models = [_link_body(models, k) for k in range(4)]
+    joint_models = [_joint_body(models, JOINT_TYPES[k]) for k in range(4)]
+    out = [f'<?xml version="1.0"?>\n<robot name="{shape}_{parts}_{n}">\n', MATERIALS,
+           '  <link name="base_link"/>\n']
     for i in range(1, n):
-        parts += [_link(i), _joint(i, rng.randrange(max(0, i - 20), i))]
-    parts.append("</robot>\n")
-    return "".join(parts)
-
-
-def chain(n: int) -> str:
-    parts = ['<?xml version="1.0"?>\n<robot name="chain">\n', _link(0)]
-    for i in range(1, n):
-        parts += [_link(i), _joint(i, i - 1)]
-    parts.append("</robot>\n")
-    return "".join(parts)
+        kind = rng.randrange(4)
+        parent = 0 if i == 1 else (i - 1 if shape == "chain" else rng.randrange(1, i))
+        parent_name = "base_link" if parent == 0 else f"link_{parent}"
+        joint_type = JOINT_TYPES[kind]
+        if parts == "distinct":
+            link_body, joint_body = _link_body(rng, kind), _joint_body(rng, joint_type)
+        else:
+            link_body, joint_body = link_models[kind], joint_models[kind]
+        out.append(f'  <link name="link_{i}">\n{link_body}  </link>\n'
+                   f'  <joint name="joint_{i}" type="{joint_type}">\n'
+                   f'    <parent link="{parent_name}"/>\n    <child link="link_{i}"/>\n'
+                   f'{joint_body}  </joint>\n')
+    out.append("</robot>\n")
+    return "".join(out)
 
 
 def macros(n: int) -> str:

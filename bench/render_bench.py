@@ -1,87 +1,84 @@
-"""Benchmark of `mcar render` (a measurement to record in the README, not a test).
+"""Where `mcar render`'s time goes, measured inside one fresh process (bench/run.py runs it).
 
-    .venv/bin/python bench/render_bench.py [PACKAGE_DIR] [--runs N]
+    .venv/bin/python bench/render_bench.py [PACKAGE_DIR] [--runs N] [--json]
 
-1. Whole set: `mcar render PACKAGE_DIR --force` in a fresh output folder, each run a new
-   process (cold Python, warm disk cache), N runs; default PACKAGE_DIR is the bundled
-   mobile_car_description (every part test file, chassis step and the complete robot).
-2. Pieces, in this process: importing the render stack, making the GL context, and the
-   time per 800x600 picture of the tutorial car with OpenGL and with the ray caster.
+1. Importing the render stack (numpy, trimesh, yourdfpy, mcar's render modules), then
+   making the OpenGL context (EGL; Mesa's llvmpipe on a machine without a GPU).
+2. For every robot file of the package (default: this repository's description), the time
+   per 800x600 picture with the context made and the modules loaded: expanding the xacro,
+   loading the meshes into a scene, drawing, and overlays + PNG encoding; median of N.
+3. Drawing the package's biggest scene with the ray-casting fallback instead (trimesh +
+   embreex, used where no OpenGL context can be made).
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import statistics
-import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
-MCAR = Path(sys.executable).parent / "mcar"
 
 
-def whole_set(package: Path, runs: int) -> None:
-    walls = []
-    for _ in range(runs):
-        with tempfile.TemporaryDirectory() as out:
-            started = time.perf_counter()
-            result = subprocess.run([str(MCAR), "render", str(package), "-o", out, "--force"],
-                                    capture_output=True, text=True, check=False)
-            walls.append(time.perf_counter() - started)
-            if result.returncode != 0:
-                sys.exit(f"mcar render failed:\n{result.stderr}")
-            pictures = len(list(Path(out).rglob("*.png"))) - 1  # less the contact sheet
-    print(f"whole set: {pictures} pictures + contact sheet at 800x600 from {package}")
-    print(f"  wall per run (new process each): min {min(walls):.2f} s, "
-          f"median {statistics.median(walls):.2f} s over {runs} runs")
-    print(f"  summary line of the last run: {result.stderr.strip().splitlines()[-1]}")
-
-
-def pieces(frames: int) -> None:
+def measure(package: Path, runs: int) -> dict:
     started = time.perf_counter()
     import numpy  # noqa: F401  (what the render stack pulls in, timed together)
     import trimesh  # noqa: F401
     import yourdfpy  # noqa: F401
 
     from mobile_car.packages import PackageSearch
-    from mobile_car.render.camera import fit_camera
-    from mobile_car.render.compose import compose, png_bytes
     from mobile_car.render.options import RenderOptions
-    from mobile_car.render.scene import ModelSource, load_scene
-    imported = time.perf_counter()
-    print(f"import numpy + trimesh + yourdfpy + mcar.render: {imported - started:.3f} s")
+    from mobile_car.render.picture import draw_views, finish_picture
+    from mobile_car.render.compose import png_bytes
+    from mobile_car.render.scene import load_scene
+    from mobile_car.render.session import load_source, package_jobs
+    imported = time.perf_counter() - started
 
-    from mobile_car.render.gl import GLRenderer
+    from mobile_car.render.backend import open_renderer
     started = time.perf_counter()
-    gl = GLRenderer()
-    print(f"GL context (in process, after the probe): {time.perf_counter() - started:.3f} s"
-          f"  [{gl.description}]")
+    renderer, notes = open_renderer("auto")
+    context = time.perf_counter() - started
+
+    options = RenderOptions()
+    files = []
+    for job in package_jobs(package, Path("unused")):
+        stages: dict[str, list[float]] = {"expand": [], "load": [], "draw": [], "finish": []}
+        for _ in range(runs):
+            search = PackageSearch(origin=job.source)
+            t0 = time.perf_counter()
+            source, _warnings = load_source(job.source, search)
+            t1 = time.perf_counter()
+            scene = load_scene(source, search)
+            t2 = time.perf_counter()
+            views = draw_views(renderer, scene, options)
+            t3 = time.perf_counter()
+            png_bytes(finish_picture(views, scene.bounds, options))
+            t4 = time.perf_counter()
+            for stage, seconds in zip(stages, (t1 - t0, t2 - t1, t3 - t2, t4 - t3)):
+                stages[stage].append(seconds)
+        medians = {stage: statistics.median(values) for stage, values in stages.items()}
+        files.append({"file": job.caption, "triangles": scene.triangle_count, **medians,
+                      "total": sum(medians.values())})
     from mobile_car.render.raycast import RaycastRenderer
 
-    car = REPO / "urdf/tutorial/03_color.urdf"
-    started = time.perf_counter()
-    scene = load_scene(ModelSource(car.read_bytes(), car, True), PackageSearch(origin=car))
-    print(f"load tutorial car ({scene.triangle_count} triangles): "
-          f"{time.perf_counter() - started:.3f} s")
-    options = RenderOptions()
-    camera = fit_camera("iso", scene.positions, 800, 600)
-    for renderer in (gl, RaycastRenderer()):
-        renderer.draw(scene, camera)  # first frame compiles shaders / builds the BVH
-        draws, totals = [], []
-        for _ in range(frames):
-            t0 = time.perf_counter()
-            model = renderer.draw(scene, camera)
-            t1 = time.perf_counter()
-            png_bytes(compose(model, camera, scene.bounds, options))
-            t2 = time.perf_counter()
-            draws.append(t1 - t0)
-            totals.append(t2 - t0)
-        print(f"{renderer.name:>8}: draw {statistics.median(draws) * 1000:6.1f} ms, "
-              f"draw + overlays + PNG {statistics.median(totals) * 1000:6.1f} ms per 800x600 "
-              f"picture (median of {frames})")
+    biggest = max(package_jobs(package, Path("unused")),
+                  key=lambda job: next(f["triangles"] for f in files
+                                       if f["file"] == job.caption))
+    search = PackageSearch(origin=biggest.source)
+    scene = load_scene(load_source(biggest.source, search)[0], search)
+    raycaster = RaycastRenderer()
+    draw_views(raycaster, scene, options)  # the first draw builds the ray tracer's BVH
+    raycast = []
+    for _ in range(runs):
+        started = time.perf_counter()
+        draw_views(raycaster, scene, options)
+        raycast.append(time.perf_counter() - started)
+    return {"import": imported, "context": context, "renderer": renderer.description,
+            "notes": notes, "files": files,
+            "raycast": {"file": biggest.caption, "draw": statistics.median(raycast)}}
 
 
 def main() -> None:
@@ -89,10 +86,20 @@ def main() -> None:
     parser.add_argument("package", nargs="?", type=Path, default=REPO,
                         help="a description package folder (default: this repository)")
     parser.add_argument("--runs", type=int, default=3)
-    parser.add_argument("--frames", type=int, default=10)
+    parser.add_argument("--json", action="store_true", help="one JSON document on stdout")
     args = parser.parse_args()
-    whole_set(args.package, args.runs)
-    pieces(args.frames)
+    result = measure(args.package, args.runs)
+    if args.json:
+        json.dump(result, sys.stdout, indent=1)
+        return
+    print(f"import numpy + trimesh + yourdfpy + mcar.render: {result['import']:.3f} s")
+    print(f"renderer ({result['renderer']}): {result['context']:.3f} s")
+    for entry in result["files"]:
+        print(f"{entry['file']:40s} {entry['triangles']:7d} triangles  "
+              + "  ".join(f"{stage} {entry[stage] * 1000:6.1f} ms"
+                          for stage in ("expand", "load", "draw", "finish", "total")))
+    raycast = result["raycast"]
+    print(f"ray-casting fallback, {raycast['file']}: draw {raycast['draw'] * 1000:.1f} ms")
 
 
 if __name__ == "__main__":

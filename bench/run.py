@@ -1,25 +1,36 @@
 """mcar against the tools a user would use instead, on the same inputs, in one run.
 
-    python bench/run.py [--quick] [-o docs/benchmarks.md]
+    python bench/run.py [--quick] [-o docs/benchmarks.md] [SECTION...]
 
-Every figure is the median wall time of several runs of a whole command (a fresh process,
-as in a shell script or CI), with the peak resident memory of that process, and the ratio
-to its peer measured in the same run. Peers: urdfdom's C++ check_urdf (Debian
-liburdfdom-tools) and the plain `xacro` command (PyPI xacro, the same library mcar calls).
+Every time is the median wall time of several runs of a whole command (a fresh process,
+as in a shell script or CI) with its output going to /dev/null, and every ratio compares
+two commands measured in the same run. Before the timed runs, each command runs once more
+under GNU time for its peak resident memory, with its output piped into a hash, so the
+table can say whether the peer and mcar printed the same bytes; every exit code is shown.
+Peers: urdfdom's C++ check_urdf (Debian liburdfdom-tools) and the plain `xacro` command
+(PyPI xacro, the same library mcar calls). The inputs are generated (bench/generate.py).
+bench/notes.md holds the explanations printed under the tables (profiles of the misses).
 """
 
 from __future__ import annotations
 
 import argparse
 import datetime
+import hashlib
+import importlib.metadata
+import json
 import os
 import platform
+import re
 import shutil
+import signal
 import statistics
 import subprocess
 import sys
 import tempfile
+import threading
 import time
+from dataclasses import dataclass, field
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -29,43 +40,165 @@ REPO = Path(__file__).resolve().parent.parent
 BIN = Path(sys.executable).parent
 MCAR = str(BIN / "mcar")
 XACRO = str(BIN / "xacro")
+GNU_TIME = "/usr/bin/time"
+RUN_TIMEOUT_S = 180
+NOTES = Path(__file__).resolve().parent / "notes.md"
 
 
-def run_once(cmd: list[str], env=None, cwd=None) -> tuple[float, int, int]:
-    """(wall seconds, peak RSS in MiB, exit code) of one run of cmd, output discarded."""
+def progress(text: str) -> None:
+    print(f"bench: {text}", file=sys.stderr, flush=True)
+
+
+# ---------------------------------------------------------------------------------------
+# Running commands
+
+
+@dataclass
+class Result:
+    """Timed runs of one command, and the one run that was watched for memory and output."""
+
+    walls: list[float] = field(default_factory=list)
+    codes: list[int] = field(default_factory=list)
+    peak_mib: float | None = None
+    digest: str | None = None
+
+    @property
+    def wall(self) -> float:
+        return statistics.median(self.walls)
+
+    @property
+    def ok(self) -> bool:
+        return all(code == 0 for code in self.codes)
+
+
+def exit_text(codes) -> str:
+    """Exit codes as shown in the tables: 0, 1, SIGSEGV, timeout."""
+    names = []
+    for code in dict.fromkeys(codes):
+        if code is None:
+            names.append("timeout")
+        elif code < 0:
+            try:
+                names.append(signal.Signals(-code).name)
+            except ValueError:
+                names.append(f"signal {-code}")
+        else:
+            names.append(str(code))
+    return ", ".join(names)
+
+
+def run_timed(cmd: list[str], env=None, cwd=None) -> tuple[float, int | None]:
+    """Wall seconds and exit code (negative: killed by that signal; None: timed out)."""
     start = time.perf_counter()
     process = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                stdin=subprocess.DEVNULL, env=env, cwd=cwd)
-    _pid, status, usage = os.wait4(process.pid, 0)
+    # Popen.wait(timeout=...) polls with sleeps of up to 50 ms, which would round every
+    # time up to its schedule; a blocking waitpid returns the moment the child exits.
+    timer = threading.Timer(RUN_TIMEOUT_S, process.kill)
+    timer.start()
+    _pid, status = os.waitpid(process.pid, 0)
     wall = time.perf_counter() - start
-    return wall, usage.ru_maxrss // 1024, os.waitstatus_to_exitcode(status)
+    timed_out = not timer.is_alive()
+    timer.cancel()
+    process.returncode = code = os.waitstatus_to_exitcode(status)
+    return wall, None if timed_out else code
 
 
-def measure(cmd: list[str], runs: int, env=None, cwd=None, timeout_s: float = 120) -> dict:
-    """Median wall time and peak memory over runs; stops early when one run is very slow."""
-    walls, peaks, codes = [], [], set()
+def run_watched(cmd: list[str], env=None, cwd=None) -> tuple[float | None, int | None, str]:
+    """Peak resident MiB (from GNU time), exit code, and SHA-256 of what cmd printed.
+
+    The peak cannot come from this process's wait4(): a child forked from a big Python
+    process starts with that process's resident size, and Linux keeps it as the child's
+    peak across exec. GNU time is small, so the peak it reports is the command's own.
+    """
+    digest = hashlib.sha256()
+    with tempfile.NamedTemporaryFile("r") as report:
+        watched = [GNU_TIME, "-f", "%M", "-o", report.name, *cmd] if HAVE_GNU_TIME else cmd
+        process = subprocess.Popen(watched, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                                   stdin=subprocess.DEVNULL, env=env, cwd=cwd)
+        timer = threading.Timer(RUN_TIMEOUT_S, process.kill)
+        timer.start()
+        while chunk := process.stdout.read(1 << 20):
+            digest.update(chunk)
+        code = process.wait()
+        timer.cancel()
+        peak = None
+        if HAVE_GNU_TIME:
+            numbers = re.findall(r"^(\d+)$", report.read(), re.M)
+            peak = int(numbers[-1]) / 1024 if numbers else None
+            # GNU time exits with the command's code, or 128 + the signal that killed it.
+            if code > 128 and "terminated by signal" in Path(report.name).read_text():
+                code = -(code - 128)
+    return peak, code, digest.hexdigest()
+
+
+def measure(cmd: list[str], runs: int, env=None, cwd=None, budget_s: float = 60) -> Result:
+    """One watched run, then ``runs`` timed runs (fewer if they exceed ``budget_s``)."""
+    result = Result()
+    result.peak_mib, code, result.digest = run_watched(cmd, env=env, cwd=cwd)
+    result.codes.append(code)
     for _ in range(runs):
-        wall, peak, code = run_once(cmd, env=env, cwd=cwd)
-        walls.append(wall)
-        peaks.append(peak)
-        codes.add(code)
-        if wall * runs > timeout_s:
+        wall, code = run_timed(cmd, env=env, cwd=cwd)
+        result.walls.append(wall)
+        result.codes.append(code)
+        if sum(result.walls) > budget_s or code is None:
             break
-    return {"wall": statistics.median(walls), "rss": max(peaks), "codes": codes,
-            "runs": len(walls)}
+    return result
+
+
+def _gnu_time_works() -> bool:
+    try:
+        return subprocess.run([GNU_TIME, "-f", "%M", "true"], capture_output=True,
+                              timeout=10).returncode == 0
+    except (OSError, subprocess.TimeoutExpired):
+        return False
+
+
+HAVE_GNU_TIME = _gnu_time_works()
+
+
+# ---------------------------------------------------------------------------------------
+# Formatting
 
 
 def fmt_time(seconds: float) -> str:
+    if seconds < 0.01:
+        return f"{seconds * 1000:.1f} ms"
     return f"{seconds * 1000:.0f} ms" if seconds < 10 else f"{seconds:.1f} s"
 
 
-def ratio(ours: float, theirs: float) -> str:
-    return f"{theirs / ours:.2f}x" if ours > 0 else "-"
+def fmt_peak(result: Result) -> str:
+    return "-" if result.peak_mib is None else f"{result.peak_mib:.0f} MiB"
 
 
-def exit_note(result: dict) -> str:
-    codes = sorted(result["codes"])
-    return "" if codes == [0] else f" (exit {','.join(map(str, codes))})"
+def time_cell(result: Result) -> str:
+    text = fmt_time(result.wall)
+    return text if result.ok else f"{text} (exit {exit_text(result.codes)})"
+
+
+def speedup(ours: Result, theirs: Result) -> float | None:
+    """Peer time / mcar time, or None when either did not run cleanly."""
+    if not (ours.ok and theirs.ok) or ours.wall <= 0:
+        return None
+    return theirs.wall / ours.wall
+
+
+def fmt_ratio(value: float | None) -> str:
+    return "-" if value is None else f"{value:.2f}x"
+
+
+def verdict(met: bool | None) -> str:
+    return {True: "met", False: "**missed**", None: "-"}[met]
+
+
+def notes_for(section: str) -> list[str]:
+    """The hand-written explanation of a section (bench/notes.md, `<!-- NAME -->` blocks)."""
+    if not NOTES.is_file():
+        return []
+    blocks = re.split(r"^<!-- (\w+) -->\n", NOTES.read_text(encoding="utf-8"), flags=re.M)
+    texts = dict(zip(blocks[1::2], blocks[2::2]))
+    text = texts.get(section, "").strip()
+    return [text, ""] if text else []
 
 
 def machine() -> str:
@@ -83,32 +216,75 @@ def machine() -> str:
         memory = f", {kib / 1024 / 1024:.0f} GiB RAM"
     except (OSError, ValueError, IndexError):
         pass
-    return (f"{cpu}, {os.cpu_count()} cores{memory}; {platform.platform()}; "
-            f"Python {platform.python_version()}")
+    system = platform.platform()
+    try:
+        release = dict(line.split("=", 1) for line in
+                       Path("/etc/os-release").read_text().splitlines() if "=" in line)
+        system = f"{release['PRETTY_NAME'].strip(chr(34))}, Linux {platform.release()}"
+    except (OSError, KeyError):
+        pass
+    return f"{cpu}, {os.cpu_count()} cores{memory}; {system}; Python {platform.python_version()}"
+
+
+def versions() -> str:
+    parts = []
+    try:
+        urdfdom = subprocess.run(["dpkg-query", "-W", "-f=${Version}", "liburdfdom-tools"],
+                                 capture_output=True, text=True, timeout=10).stdout.strip()
+        if urdfdom:
+            parts.append(f"check_urdf (liburdfdom-tools) {urdfdom}")
+    except (OSError, subprocess.TimeoutExpired):
+        pass
+    for name in ("mcar", "xacro", "lxml", "click"):
+        try:
+            parts.append(f"{name} {importlib.metadata.version(name)}")
+        except importlib.metadata.PackageNotFoundError:
+            pass
+    return ", ".join(parts)
+
+
+# ---------------------------------------------------------------------------------------
+# Sections
 
 
 def section_check(rows: list[str], work: Path, quick: bool) -> None:
+    sizes = [10, 100, 1000] if quick else [10, 100, 1000, 5000, 20000]
     rows += ["## `mcar check` vs `check_urdf`", "",
-             "Generated URDFs (box visual and inertial on every link; `bench/generate.py`). "
+             "Generated robots (`bench/generate.py`): every link with an inertial, a visual "
+             "and a collision, revolute/continuous/prismatic/fixed joints with origins, axes, "
+             "limits and dynamics. *distinct*: every number differs (a CAD export); "
+             "*repeated*: copies of four part models. *tree*: each link hangs from a random "
+             "earlier one (about 2.7 ln n deep); *chain*: one line, whose check_urdf tree "
+             "print grows as n² (4 spaces more per generation: 800 MB at 20,000). "
              "Target: mcar faster from 1,000 links up, at least 2x at 20,000.", "",
-             "| input | links | check_urdf | mcar check | speed-up | check_urdf peak | "
-             "mcar peak |", "|---|---:|---:|---:|---:|---:|---:|"]
-    sizes = [10, 100, 1000, 5000] + ([] if quick else [20000])
-    for shape in ("tree", "chain"):
-        for n in sizes:
-            path = work / f"{shape}_{n}.urdf"
-            path.write_text(getattr(generate, shape)(n))
-            runs = 5 if n <= 5000 else 3
-            peer = measure(["check_urdf", str(path)], runs)
-            ours = measure([MCAR, "check", str(path)], runs)
-            rows.append(f"| {shape} | {n:,} | {fmt_time(peer['wall'])}{exit_note(peer)} | "
-                        f"{fmt_time(ours['wall'])}{exit_note(ours)} | "
-                        f"{ratio(ours['wall'], peer['wall'])} | {peer['rss']} MiB | "
-                        f"{ours['rss']} MiB |")
+             "| robot | links | size | check_urdf | mcar check | speed-up | check_urdf peak "
+             "| mcar peak | exit codes (check_urdf / mcar) | same output | target |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---|---|---|"]
+    for shape in generate.SHAPES:
+        for parts in generate.PARTS:
+            for n in sizes:
+                path = work / f"{shape}_{parts}_{n}.urdf"
+                path.write_text(generate.robot(n, shape, parts))
+                runs = 3 if quick or n >= 20000 else (5 if n >= 5000 else 9)
+                peer = measure(["check_urdf", str(path)], runs, budget_s=40)
+                ours = measure([MCAR, "check", str(path)], runs, budget_s=40)
+                ratio = speedup(ours, peer)
+                target = None if n < 1000 else (
+                    ratio is not None and ratio >= (2.0 if n >= 20000 else 1.0))
+                same = "yes" if peer.digest == ours.digest else "**no**"
+                rows.append(
+                    f"| {shape}, {parts} | {n:,} | {path.stat().st_size / 1e6:.1f} MB | "
+                    f"{time_cell(peer)} | {time_cell(ours)} | {fmt_ratio(ratio)} | "
+                    f"{fmt_peak(peer)} | {fmt_peak(ours)} | {exit_text(peer.codes)} / "
+                    f"{exit_text(ours.codes)} | {same} | {verdict(target)} |")
+                progress(f"check {shape} {parts} {n}: check_urdf {fmt_time(peer.wall)}, "
+                         f"mcar {fmt_time(ours.wall)}")
+                path.unlink()
     rows.append("")
+    rows += notes_for("check")
 
 
-def _ament_shim(root: Path) -> dict:
+def _ament_prefix(root: Path) -> dict:
     """Let the plain xacro command find mobile_car_description the ROS 2 way (ament index)."""
     shim = root / "shim" / "ament_index_python"
     shim.mkdir(parents=True)
@@ -130,135 +306,221 @@ def _ament_shim(root: Path) -> dict:
     return env
 
 
+_BANNER_RE = re.compile(rb"<!-- \|\s+This document was autogenerated by xacro from .*?-->")
+
+
+def _same_urdf(peer_cmd, ours_cmd, work: Path, env) -> bool:
+    """True if both commands write the same URDF, apart from the banner naming the input."""
+    outputs = []
+    for name, cmd in (("xacro.urdf", peer_cmd), ("mcar.urdf", ours_cmd)):
+        target = work / name
+        subprocess.run([*cmd, "-o", str(target)], env=env if cmd is peer_cmd else None,
+                       capture_output=True, timeout=RUN_TIMEOUT_S)
+        outputs.append(_BANNER_RE.sub(b"", target.read_bytes()) if target.exists() else None)
+        target.unlink(missing_ok=True)
+    return outputs[0] is not None and outputs[0] == outputs[1]
+
+
 def section_build(rows: list[str], work: Path, quick: bool) -> None:
     rows += ["## `mcar build` vs `xacro`", "",
              "Both write the URDF to /dev/null; xacro finds the package through an ament "
-             "index prefix (as in ROS 2), mcar through its own package search. "
-             "Target: mcar at most 1.2x xacro's time.", "",
-             "| input | xacro | mcar build | mcar / xacro |", "|---|---:|---:|---:|"]
-    env = _ament_shim(work / "ament")
+             "index prefix (as in ROS 2), mcar through its own package search. *Same URDF*: "
+             "both outputs byte for byte equal but for xacro's banner comment, which names the "
+             "input. Target: mcar at most 1.2x xacro's time.", "",
+             "| input | xacro | mcar build | mcar / xacro | xacro peak | mcar peak | "
+             "same URDF | target |", "|---|---:|---:|---:|---:|---:|---|---|"]
+    env = _ament_prefix(work / "ament")
     macros = work / "macros_500.xacro"
     macros.write_text(generate.macros(500))
     inputs = [("complete robot (mobile_robot.xacro)", REPO / "urdf" / "mobile_robot.xacro"),
-              ("tutorial car (04_xacro.xacro)", REPO / "urdf" / "tutorial" / "04_xacro.xacro"),
-              ("500 macro calls", macros)]
-    runs = 5 if quick else 11
+              ("tutorial car (tutorial/04_xacro.xacro)",
+               REPO / "urdf" / "tutorial" / "04_xacro.xacro"),
+              ("500 macro calls (generated)", macros)]
+    runs = 3 if quick else 11
     for label, path in inputs:
-        peer = measure([XACRO, str(path), "-o", os.devnull], runs, env=env)
-        ours = measure([MCAR, "build", str(path), "-o", os.devnull], runs)
-        rows.append(f"| {label} | {fmt_time(peer['wall'])}{exit_note(peer)} | "
-                    f"{fmt_time(ours['wall'])}{exit_note(ours)} | "
-                    f"{ours['wall'] / peer['wall']:.2f} |")
+        peer_cmd, ours_cmd = [XACRO, str(path)], [MCAR, "build", str(path)]
+        peer = measure([*peer_cmd, "-o", os.devnull], runs, env=env)
+        ours = measure([*ours_cmd, "-o", os.devnull], runs)
+        ratio = ours.wall / peer.wall if peer.ok and ours.ok else None
+        same = "yes" if _same_urdf(peer_cmd, ours_cmd, work, env) else "**no**"
+        rows.append(f"| {label} | {time_cell(peer)} | {time_cell(ours)} | "
+                    f"{'-' if ratio is None else f'{ratio:.2f}'} | {fmt_peak(peer)} | "
+                    f"{fmt_peak(ours)} | {same} | "
+                    f"{verdict(None if ratio is None else ratio <= 1.2)} |")
+        progress(f"build {label}: xacro {fmt_time(peer.wall)}, mcar {fmt_time(ours.wall)}")
     rows.append("")
+    rows += notes_for("build")
 
 
 def section_startup(rows: list[str], work: Path, quick: bool) -> None:
     robot = work / "mobile_robot.urdf"
     subprocess.run([MCAR, "build", str(REPO / "urdf" / "mobile_robot.xacro"), "-o", str(robot)],
                    check=True)
-    rows += ["## Cold start", "",
-             "Targets: `mcar --version` under 150 ms, `mcar check` of the complete robot "
-             "under 250 ms.", "",
-             "| command | median | peak memory |", "|---|---:|---:|"]
-    runs = 7 if quick else 21
-    commands = [("python -c pass", [sys.executable, "-c", "pass"]),
-                ("mcar --version", [MCAR, "--version"]),
-                ("check_urdf mobile_robot.urdf", ["check_urdf", str(robot)]),
-                ("mcar check mobile_robot.urdf", [MCAR, "check", str(robot)]),
-                ("mcar build mobile_robot.xacro", [MCAR, "build",
-                                                   str(REPO / "urdf" / "mobile_robot.xacro"),
-                                                   "-o", os.devnull])]
-    for label, cmd in commands:
+    links = robot.read_text(encoding="utf-8").count("<link ")
+    rows += ["## Start-up", "",
+             f"The complete car ({links} links). Targets: `mcar --version` under 150 ms, "
+             "`mcar check` of the complete robot under 250 ms. The `python -c` rows are the "
+             "floor any Python command stands on.", "",
+             "| command | median | peak memory | exit | target |", "|---|---:|---:|---|---|"]
+    runs = 5 if quick else 21
+    python = sys.executable
+    commands = [
+        ("python -c pass", [python, "-c", "pass"], None),
+        ("python -c 'import click'", [python, "-c", "import click"], None),
+        ("python -c 'import click, lxml.etree'", [python, "-c", "import click, lxml.etree"],
+         None),
+        ("mcar --version", [MCAR, "--version"], 0.150),
+        ("check_urdf mobile_robot.urdf", ["check_urdf", str(robot)], None),
+        ("mcar check mobile_robot.urdf", [MCAR, "check", str(robot)], 0.250),
+        ("mcar build mobile_robot.xacro", [MCAR, "build", str(REPO / "urdf" / "mobile_robot.xacro"),
+                                           "-o", os.devnull], None),
+    ]
+    for label, cmd, limit in commands:
         result = measure(cmd, runs)
-        rows.append(f"| `{label}` | {fmt_time(result['wall'])}{exit_note(result)} | "
-                    f"{result['rss']} MiB |")
+        met = None if limit is None else (result.ok and result.wall < limit)
+        rows.append(f"| `{label}` | {time_cell(result)} | {fmt_peak(result)} | "
+                    f"{exit_text(result.codes)} | {verdict(met)} |")
     rows.append("")
+    rows += notes_for("startup")
+    progress("start-up measured")
 
 
 def section_batch(rows: list[str], work: Path, quick: bool) -> None:
-    count = 200 if quick else 1000
+    count = 100 if quick else 1000
     folder = work / "batch"
     folder.mkdir()
-    files = []
+    names = []
     for i in range(count):
-        path = folder / f"robot_{i:04d}.urdf"
-        path.write_text(generate.tree(5 + i % 10, seed=i))
-        files.append(str(path))
+        name = f"robot_{i:04d}.urdf"
+        (folder / name).write_text(generate.robot(5 + i % 10, "tree", "distinct", seed=i))
+        names.append(name)
+    # The expected output of one mcar call: each file's check_urdf output under a header.
+    expected = hashlib.sha256()
+    codes = []
     start = time.perf_counter()
-    for path in files:
-        subprocess.run(["check_urdf", path], stdout=subprocess.DEVNULL,
-                       stderr=subprocess.DEVNULL)
+    for name in names:
+        done = subprocess.run(["check_urdf", name], capture_output=True, cwd=folder,
+                              timeout=RUN_TIMEOUT_S)
+        codes.append(done.returncode)
+        expected.update(f"==> {name} <==\n".encode() + done.stdout)
     peer = time.perf_counter() - start
-    ours = measure([MCAR, "check", *files], 3)
+    ours = measure([MCAR, "check", *names], 3, cwd=folder)
+    same = "yes" if ours.digest == expected.hexdigest() else "**no**"
+    ratio = peer / ours.wall if ours.ok and not any(codes) else None
     rows += ["## Batch", "",
-             f"{count:,} small URDFs (5 to 14 links): one `mcar check` call with every file "
-             f"vs {count:,} `check_urdf` processes.", "",
-             "| check_urdf x N | mcar check (one call) | speed-up |", "|---:|---:|---:|",
-             f"| {fmt_time(peer)} | {fmt_time(ours['wall'])}{exit_note(ours)} | "
-             f"{ratio(ours['wall'], peer)} |", ""]
+             f"{count:,} small robots (5 to 14 links, every number distinct): one `mcar check` "
+             f"call with every file vs {count:,} `check_urdf` processes (a CI job checking a "
+             "folder). *Same output*: mcar's stdout equals each file's check_urdf output "
+             "under a `==> FILE <==` header.", "",
+             "| check_urdf x N | mcar check (one call) | speed-up | exit codes "
+             "(check_urdf / mcar) | same output |", "|---:|---:|---:|---|---|",
+             f"| {fmt_time(peer)} | {time_cell(ours)} | {fmt_ratio(ratio)} | "
+             f"{exit_text(codes)} / {exit_text(ours.codes)} | {same} |", ""]
+    rows += notes_for("batch")
+    progress(f"batch: check_urdf x {count} {fmt_time(peer)}, mcar {fmt_time(ours.wall)}")
 
 
 def section_render(rows: list[str], work: Path, quick: bool) -> None:
     out = work / "renders"
     runs = 1 if quick else 3
-    walls = []
+    walls, codes = [], []
     for _ in range(runs):
         shutil.rmtree(out, ignore_errors=True)
-        wall, peak, code = run_once([MCAR, "render", "--force", "-o", str(out), "--quiet"],
-                                    cwd=work)
+        wall, code = run_timed([MCAR, "render", "--force", "-o", str(out), "--quiet"], cwd=work)
         walls.append(wall)
+        codes.append(code)
     images = [p for p in out.rglob("*.png") if p.name != "index.png"]
-    one = measure([MCAR, "render", str(REPO / "urdf" / "wheel" / "test_wheel.urdf.xacro"),
-                   "-o", str(work / "wheel.png"), "--force"], 5 if quick else 9)
-    robot = measure([MCAR, "render", str(REPO / "urdf" / "mobile_robot.xacro"),
-                     "-o", str(work / "robot.png"), "--force"], 5 if quick else 9)
     total = statistics.median(walls)
+    one = measure([MCAR, "render", str(REPO / "urdf" / "wheel" / "test_wheel.urdf.xacro"),
+                   "-o", str(work / "wheel.png"), "--force"], 3 if quick else 7)
+    robot = measure([MCAR, "render", str(REPO / "urdf" / "mobile_robot.xacro"),
+                     "-o", str(work / "robot.png"), "--force"], 3 if quick else 7)
+    pieces = json.loads(subprocess.run(
+        [sys.executable, str(Path(__file__).with_name("render_bench.py")), "--json",
+         "--runs", "1" if quick else "5"],
+        capture_output=True, text=True, check=True, timeout=RUN_TIMEOUT_S).stdout)
+    whole_ok = all(code == 0 for code in codes)
     rows += ["## `mcar render`", "",
-             "800x600 PNGs through Mesa's llvmpipe (no GPU). Target: every part, step and the "
-             "complete robot, cold, in one call, under 3 s.", "",
-             "| what | median |", "|---|---:|",
-             f"| all {len(images)} images + contact sheet, one call{' (exit %d)' % code if code else ''}"
-             f" | {fmt_time(total)} ({len(images) / total:.1f} images/s) |",
-             f"| one part (wheel), whole process | {fmt_time(one['wall'])}{exit_note(one)} |",
-             f"| complete robot, whole process | {fmt_time(robot['wall'])}{exit_note(robot)} |",
-             ""]
+             "800x600 PNGs. Target: every part, step and the complete robot, cold (a new "
+             "process, warm disk cache), in one call, under 3 s.", "",
+             "| what | median | exit | target |", "|---|---:|---|---|",
+             f"| all {len(images)} pictures + contact sheet, one `mcar render --force` | "
+             f"{fmt_time(total)} ({len(images) / total:.1f} pictures/s) | {exit_text(codes)} | "
+             f"{verdict(whole_ok and total < 3.0)} |",
+             f"| one part (`mcar render wheel/test_wheel.urdf.xacro`), whole process | "
+             f"{time_cell(one)} | {exit_text(one.codes)} | - |",
+             f"| complete robot (`mcar render mobile_robot.xacro`), whole process | "
+             f"{time_cell(robot)} | {exit_text(robot.codes)} | - |", "",
+             f"Inside one process (`bench/render_bench.py`): importing numpy, trimesh, "
+             f"yourdfpy and the render modules {fmt_time(pieces['import'])}; making the "
+             f"renderer {fmt_time(pieces['context'])} ({pieces['renderer']}). Then per "
+             "picture (median):", "",
+             "| file | triangles | expand xacro | load scene | draw | overlays + PNG | "
+             "per picture |", "|---|---:|---:|---:|---:|---:|---:|"]
+    for entry in pieces["files"]:
+        rows.append(f"| {entry['file']} | {entry['triangles']:,} | "
+                    + " | ".join(fmt_time(entry[stage])
+                                 for stage in ("expand", "load", "draw", "finish", "total"))
+                    + " |")
+    raycast = pieces["raycast"]
+    draw = next(entry["draw"] for entry in pieces["files"] if entry["file"] == raycast["file"])
+    rows += ["", f"Where no OpenGL context can be made, mcar ray-casts with trimesh + embreex: "
+             f"drawing {raycast['file']} takes {fmt_time(raycast['draw'])} that way, "
+             f"{raycast['draw'] / draw:.0f}x OpenGL's {fmt_time(draw)}.", ""]
+    rows += notes_for("render")
+    progress(f"render: whole set {fmt_time(total)}")
 
 
 SECTIONS = {"check": section_check, "build": section_build, "startup": section_startup,
             "batch": section_batch, "render": section_render}
+NEEDS_CHECK_URDF = {"check", "startup", "batch"}
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="smaller inputs, fewer runs")
-    parser.add_argument("-o", "--output", default=str(REPO / "docs" / "benchmarks.md"))
+    parser.add_argument("--quick", action="store_true",
+                        help="smaller inputs, fewer runs (a smoke test; numbers are rough)")
+    parser.add_argument("-o", "--output", type=Path,
+                        help="where to write the tables (default: docs/benchmarks.md; with "
+                             "--quick, build/benchmarks-quick.md)")
     parser.add_argument("sections", nargs="*", metavar="SECTION",
                         help=f"only these sections ({', '.join(SECTIONS)}); default all")
     args = parser.parse_args()
     unknown = [s for s in args.sections if s not in SECTIONS]
     if unknown:
         parser.error(f"unknown section(s) {', '.join(unknown)}; choose from {', '.join(SECTIONS)}")
-    if shutil.which("check_urdf") is None:
-        print("bench: check_urdf not found (Debian package liburdfdom-tools)", file=sys.stderr)
-        return 2
     chosen = args.sections or list(SECTIONS)
+    if NEEDS_CHECK_URDF & set(chosen) and shutil.which("check_urdf") is None:
+        print("bench: check_urdf not found (Debian package liburdfdom-tools; `make bench` "
+              "installs it)", file=sys.stderr)
+        return 2
+    output = args.output or (REPO / "build" / "benchmarks-quick.md" if args.quick
+                             else REPO / "docs" / "benchmarks.md")
     rows = ["# Benchmarks", "",
             f"Measured {datetime.date.today().isoformat()} by `make bench` "
-            f"(`bench/run.py{' --quick' if args.quick else ''}`) on: {machine()}.", "",
-            "Medians of repeated whole-process runs; peak memory is the process's maximum "
-            "resident set. Speed-up = peer time / mcar time (above 1: mcar is faster).", ""]
+            f"(`bench/run.py{' --quick' if args.quick else ''}"
+            f"{' ' + ' '.join(args.sections) if args.sections else ''}`) on: {machine()}.",
+            "", f"Versions: {versions()}.", "",
+            "Times are medians of repeated whole-process runs, output to /dev/null. Peak "
+            "memory is the process's maximum resident set (GNU time). Speed-up = peer time / "
+            "mcar time (above 1: mcar is faster). An exit code other than 0 is shown next to "
+            "the time, and no ratio is computed from a failed run.", ""]
+    if not HAVE_GNU_TIME:
+        rows += ["(GNU time was not found at /usr/bin/time: no peak memory.)", ""]
     started = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="mcar-bench-") as tmp:
         for name in chosen:
             section_start = time.perf_counter()
-            SECTIONS[name](rows, Path(tmp), args.quick)
-            print(f"bench: {name} done in {time.perf_counter() - section_start:.1f} s",
-                  file=sys.stderr)
+            folder = Path(tmp) / name
+            folder.mkdir()
+            SECTIONS[name](rows, folder, args.quick)
+            progress(f"{name} done in {time.perf_counter() - section_start:.0f} s")
     rows.append(f"Whole run: {time.perf_counter() - started:.0f} s.")
     text = "\n".join(rows) + "\n"
-    Path(args.output).parent.mkdir(parents=True, exist_ok=True)
-    Path(args.output).write_text(text)
+    output.parent.mkdir(parents=True, exist_ok=True)
+    output.write_text(text, encoding="utf-8")
     print(text)
+    progress(f"wrote {output}")
     return 0
 
 

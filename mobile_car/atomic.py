@@ -1,13 +1,15 @@
 """Atomic file output: write to a temporary file beside the target, then rename.
 
 A reader never sees a half-written file, and a failure (an exception, a full disk, Ctrl-C)
-leaves whatever was at the target before untouched.
+leaves whatever was at the target before untouched. A target that exists and is not a
+regular file (``/dev/null``, ``/dev/stdout``, a named pipe) is written to in place: renaming
+over it would replace the device or pipe with a file (as root, ``/dev/null`` itself).
 """
 
 from __future__ import annotations
 
 import os
-import tempfile
+import stat
 from pathlib import Path
 
 from .errors import InputError
@@ -17,6 +19,15 @@ def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
     """Write ``data`` to ``path`` atomically, creating parent directories; returns the path."""
     target = Path(path)
     payload = data.encode("utf-8") if isinstance(data, str) else data
+    if _is_special(target):
+        try:
+            with open(target, "wb") as handle:
+                handle.write(payload)
+        except OSError as exc:
+            raise InputError(f"cannot write: {exc.strerror or exc}", file=str(target)) from None
+        return target
+    import tempfile  # 3 ms of start-up (shutil, random, bz2, lzma): only when writing a file
+
     try:
         target.parent.mkdir(parents=True, exist_ok=True)
         if target.is_dir():
@@ -45,3 +56,12 @@ def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
             raise InputError(f"cannot write: {exc.strerror or exc}", file=str(target)) from None
         raise
     return target
+
+
+def _is_special(target: Path) -> bool:
+    """True for an existing target that is neither a regular file nor a folder."""
+    try:
+        mode = target.stat().st_mode
+    except OSError:
+        return False
+    return not (stat.S_ISREG(mode) or stat.S_ISDIR(mode))

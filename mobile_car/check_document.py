@@ -85,7 +85,8 @@ def check_xacro_leftovers(root, data: bytes, report: Reporter) -> bool:
             report.add("E105", found[0], f"unexpanded xacro: <{tag_name(found[0])}>{more}; "
                                          f"this is a xacro file, {XACRO_HINT}")
             return True
-    if b"${" in data or b"$(" in data:
+    # A lone "$" is rare in a URDF: one quick search for it usually saves two slower ones.
+    if b"$" in data and (b"${" in data or b"$(" in data):
         places = [(element, attr, value) for element in root.iter()
                   if isinstance(element.tag, str)
                   for attr, value in element.attrib.items() if has_xacro_expression(value)]

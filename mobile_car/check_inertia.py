@@ -72,15 +72,18 @@ def _check_mass_inertia(inertial, parts: dict, owner: str, moving: bool,
 def tensor_problem(ixx, ixy, ixz, iyy, iyz, izz) -> tuple[str, str] | None:
     """(rule, message) if the inertia tensor is not physical, else None."""
     moments = principal_moments(ixx, ixy, ixz, iyy, iyz, izz)
-    scale = max(abs(m) for m in moments) or 1.0
-    shown = ", ".join(f"{m:.4g}" for m in moments)
-    if moments[0] <= 1e-12 * scale:
-        return "W204", f"inertia is not positive definite (principal moments {shown})"
     a, b, c = moments
+    scale = max(-a, c) or 1.0  # the largest magnitude: a <= b <= c
+    if a <= 1e-12 * scale:
+        return "W204", f"inertia is not positive definite (principal moments {_show(moments)})"
     if a + b < c * (1 - 1e-6):
-        return "W205", (f"principal moments {shown} break the triangle inequality "
+        return "W205", (f"principal moments {_show(moments)} break the triangle inequality "
                         "(no rigid body has them)")
     return None
+
+
+def _show(moments) -> str:
+    return ", ".join(f"{m:.4g}" for m in moments)
 
 
 def principal_moments(ixx, ixy, ixz, iyy, iyz, izz) -> tuple[float, float, float]:

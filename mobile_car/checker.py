@@ -14,7 +14,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import check_document as document
-from .build import build_file, display_path
 from .check_context import Reporter
 from .check_joints import check_joints
 from .check_links import material_colours
@@ -23,6 +22,7 @@ from .check_schema import check_schema
 from .check_structure import check_names, check_tree, moving_links
 from .diagnostics import Diagnostic, count
 from .errors import EXIT_OK, EXIT_PROBLEMS, BuildError, InputError, McarError
+from .inputs import display_path
 from .link_bodies import check_link_bodies
 from .packages import PackageSearch
 from .rules import RULES
@@ -72,15 +72,27 @@ class CheckResult:
 def check_urdf_data(data: bytes, file: str, *, base: Path, search: PackageSearch,
                     locate=None, structure_only: bool = False) -> CheckResult:
     """Check URDF text; ``structure_only`` stops after names and tree (for ``mcar tree``)."""
-    report = Reporter(file, locate)
-    result = CheckResult(file=file, where=locate)
     try:
         root = parse_xml(data)
     except XmlError as error:
+        report = Reporter(file, locate)
         report.add("E100", error.line, error.message)
-        return _finish(result, report)
-    report.line_of = line_of = SourceLines(root, data)
-    result.where = locate or (lambda element: (file, line_of(element), ""))
+        return _finish(CheckResult(file=file, where=locate), report)
+    line_of = SourceLines(root, data)
+    result = _check_document(root, data, file, base, search, locate, line_of, structure_only,
+                             quick_numbers=True)
+    if result is None:  # a number float() read differently from urdfdom: read them its way
+        result = _check_document(root, data, file, base, search, locate, line_of,
+                                 structure_only, quick_numbers=False)
+    return result
+
+
+def _check_document(root, data: bytes, file: str, base: Path, search: PackageSearch, locate,
+                    line_of: SourceLines, structure_only: bool,
+                    quick_numbers: bool) -> CheckResult | None:
+    """The checks of a parsed document; None if the quick reading of numbers fails its proof."""
+    report = Reporter(file, locate, line_of, quick_numbers=quick_numbers)
+    result = CheckResult(file=file, where=locate or (lambda element: (file, line_of(element), "")))
     document.check_doctype(data, report)
     document.normalise_default_namespace(root)
     if not document.check_root(root, report) or \
@@ -100,6 +112,8 @@ def check_urdf_data(data: bytes, file: str, *, base: Path, search: PackageSearch
     moving, root_link = moving_links(tree), tree.root if len(tree.roots) == 1 else None
     check_link_bodies(robot.links, report, materials, top_level, moving, root_link)
     check_meshes(root, base, search, report)
+    if not report.numbers_confirmed():
+        return None
     return _finish(result, report)
 
 
@@ -135,6 +149,8 @@ def check_input(name: str, mappings: dict[str, str] | None = None, package_paths
                 f"cannot read: {error.strerror or error}", file=file))
         return check_urdf_data(data, file, base=path.parent, search=search,
                                structure_only=structure_only)
+    from .build import build_file  # xacro and PyYAML: only for .xacro inputs
+
     try:
         built = build_file(path, mappings or {}, search, optional_args=optional_args)
     except BuildError as error:

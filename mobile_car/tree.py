@@ -151,35 +151,48 @@ def _closed_path(component: list[str], children: dict[str, list[Joint]]) -> list
 
 def check_urdf_text(robot_name: str, tree: KinematicTree) -> str:
     """What ``check_urdf`` prints on stdout for a sound robot, byte for byte."""
-    return "".join(check_urdf_chunks(robot_name, tree))
+    return b"".join(buffer for batch in check_urdf_batches(robot_name, tree)
+                    for buffer in batch).decode("utf-8")
 
 
-def check_urdf_chunks(robot_name: str, tree: KinematicTree, lines_per_chunk: int = 4096):
-    """:func:`check_urdf_text` in pieces: the text of a deep chain grows with the square of
-    its depth (each generation is indented four more spaces), so it is written as made."""
+def check_urdf_batches(robot_name: str, tree: KinematicTree, lines_per_batch: int = 511):
+    """:func:`check_urdf_text` as batches of UTF-8 buffers, each batch at most
+    ``2 * lines_per_batch + 1`` buffers (one ``os.writev`` call; Linux takes 1,024).
+
+    The text of a deep chain grows with the square of its depth: each generation is
+    indented four more spaces, so a 20,000-link chain prints 800 MB, nearly all of it
+    spaces. A line's indentation is therefore a slice of one shared run of spaces (a
+    memoryview: no copy), and only the ``child(N):  name`` part is made per line.
+    """
     root = tree.root
     kids = {link: [joint.child for joint in joints] for link, joints in tree.children.items()}
-    lines = [f"robot name is: {robot_name}",
-             "---------- Successfully Parsed XML ---------------",
-             f"root Link: {root} has {len(kids.get(root, ()))} child(ren)"]
-    append = lines.append
+    batch = [(f"robot name is: {robot_name}\n"
+              "---------- Successfully Parsed XML ---------------\n"
+              f"root Link: {root} has {len(kids.get(root, ()))} child(ren)\n").encode("utf-8")]
+    append = batch.append
+    spaces = memoryview(b" " * 4096)
     # A stack of iterators over (number, child): depth-first, in order, without recursion.
     stack = [enumerate(kids.get(root, ()), start=1)]
     while stack:
         for number, link in stack[-1]:
             # check_urdf indents two spaces per level and adds two levels per generation.
-            append(f"{'    ' * len(stack)}child({number}):  {link}")
+            indent = 4 * len(stack)
+            if indent > len(spaces):
+                spaces = memoryview(b" " * (2 * indent))
+            append(spaces[:indent])
+            append(f"child({number}):  {link}\n".encode("utf-8"))
             below = kids.get(link)
             if below:
                 stack.append(enumerate(below, start=1))
-            if len(lines) >= lines_per_chunk:
-                yield "\n".join(lines) + "\n"
-                lines.clear()
+            if len(batch) >= 2 * lines_per_batch:
+                yield batch
+                batch = []
+                append = batch.append
             break
         else:
             stack.pop()
-    if lines:
-        yield "\n".join(lines) + "\n"
+    if batch:
+        yield batch
 
 
 def _numbers(values) -> str:

@@ -18,7 +18,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from .build import display_path
+from .inputs import display_path
 from .urdf_model import tag_name
 
 

@@ -48,3 +48,20 @@ def test_interrupt_mid_write_keeps_the_old_file(tmp_path, monkeypatch):
         atomic_write(target, b"new")
     assert target.read_bytes() == b"old"
     assert os.listdir(tmp_path) == ["out.png"]
+
+
+def test_a_pipe_or_device_is_written_in_place_not_replaced(tmp_path):
+    """`mcar build x.xacro -o /dev/null` must not rename a file over /dev/null."""
+    import stat
+    import threading
+
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    received = []
+    reader = threading.Thread(target=lambda: received.append(fifo.read_bytes()), daemon=True)
+    reader.start()
+    atomic_write(fifo, "<robot name='r'/>")
+    reader.join(timeout=10)
+    assert received == [b"<robot name='r'/>"]
+    assert stat.S_ISFIFO(fifo.stat().st_mode)
+    assert os.listdir(tmp_path) == ["pipe"]

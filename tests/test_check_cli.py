@@ -316,3 +316,26 @@ def test_binary_stl_cut_short_is_W207_and_a_sound_one_needs_no_trimesh(run_mcar,
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           cwd=tmp_path)
     assert done.stdout.split() == ["None", "False"], done.stderr
+
+
+def test_gathered_write_finishes_after_partial_writes(monkeypatch):
+    """os.writev may write less than asked (a signal, a full pipe): the rest follows, in order."""
+    import os
+
+    from mobile_car.cli import check
+
+    real_writev = os.writev
+
+    def short_writev(fd, buffers):  # at most 7 bytes per call, often mid-buffer
+        data = b"".join(buffers)[:7]
+        return real_writev(fd, [data])
+
+    monkeypatch.setattr(os, "writev", short_writev)
+    spaces = memoryview(b" " * 64)
+    batches = [[b"robot name is: r\n", spaces[:4], b"child(1):  a\n"],
+               [spaces[:8], b"child(1):  b\n"]]
+    read_end, write_end = os.pipe()
+    with os.fdopen(write_end, "wb") as out:
+        check.write_batches(out, batches)
+    with os.fdopen(read_end, "rb") as pipe:
+        assert pipe.read() == b"robot name is: r\n    child(1):  a\n        child(1):  b\n"

@@ -30,9 +30,9 @@ def measure(package: Path, runs: int) -> dict:
     import yourdfpy  # noqa: F401
 
     from mobile_car.packages import PackageSearch
+    from mobile_car.render.compose import png_bytes
     from mobile_car.render.options import RenderOptions
     from mobile_car.render.picture import draw_views, finish_picture
-    from mobile_car.render.compose import png_bytes
     from mobile_car.render.scene import load_scene
     from mobile_car.render.session import load_source, package_jobs
     imported = time.perf_counter() - started
@@ -57,7 +57,7 @@ def measure(package: Path, runs: int) -> dict:
             t3 = time.perf_counter()
             png_bytes(finish_picture(views, scene.bounds, options))
             t4 = time.perf_counter()
-            for stage, seconds in zip(stages, (t1 - t0, t2 - t1, t3 - t2, t4 - t3)):
+            for stage, seconds in zip(stages, (t1 - t0, t2 - t1, t3 - t2, t4 - t3), strict=True):
                 stages[stage].append(seconds)
         medians = {stage: statistics.median(values) for stage, values in stages.items()}
         files.append({"file": job.caption, "triangles": scene.triangle_count, **medians,

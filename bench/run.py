@@ -196,7 +196,7 @@ def notes_for(section: str) -> list[str]:
     if not NOTES.is_file():
         return []
     blocks = re.split(r"^<!-- (\w+) -->\n", NOTES.read_text(encoding="utf-8"), flags=re.M)
-    texts = dict(zip(blocks[1::2], blocks[2::2]))
+    texts = dict(zip(blocks[1::2], blocks[2::2], strict=True))
     text = texts.get(section, "").strip()
     return [text, ""] if text else []
 

@@ -10,11 +10,11 @@ from pathlib import Path
 
 import click
 
-from mobile_car.inputs import display_path, parse_mapping_args
 from mobile_car.checker import STDIN, CheckResult, as_json, check_input
 from mobile_car.diagnostics import github_annotation
 from mobile_car.discover import robot_files, source_base
 from mobile_car.errors import EXIT_OK, EXIT_PROBLEMS, EXIT_USAGE, UsageError
+from mobile_car.inputs import display_path, parse_mapping_args
 from mobile_car.tree import check_urdf_batches
 
 from .common import (

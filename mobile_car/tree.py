@@ -168,7 +168,7 @@ def check_urdf_batches(robot_name: str, tree: KinematicTree, lines_per_batch: in
     kids = {link: [joint.child for joint in joints] for link, joints in tree.children.items()}
     batch = [(f"robot name is: {robot_name}\n"
               "---------- Successfully Parsed XML ---------------\n"
-              f"root Link: {root} has {len(kids.get(root, ()))} child(ren)\n").encode("utf-8")]
+              f"root Link: {root} has {len(kids.get(root, ()))} child(ren)\n").encode()]
     append = batch.append
     spaces = memoryview(b" " * 4096)
     # A stack of iterators over (number, child): depth-first, in order, without recursion.
@@ -180,7 +180,7 @@ def check_urdf_batches(robot_name: str, tree: KinematicTree, lines_per_batch: in
             if indent > len(spaces):
                 spaces = memoryview(b" " * (2 * indent))
             append(spaces[:indent])
-            append(f"child({number}):  {link}\n".encode("utf-8"))
+            append(f"child({number}):  {link}\n".encode())
             below = kids.get(link)
             if below:
                 stack.append(enumerate(below, start=1))

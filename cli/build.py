@@ -17,6 +17,7 @@ from mobile_car.resources import PACKAGE_NAME
 from .common import (
     CONFIG_ARG,
     config_options,
+    default_package,
     dimension_overrides,
     handle_errors,
     override_context,
@@ -120,9 +121,7 @@ def command(words, output, deps_only, quiet, package_paths, sets, config_files):
         if inputs:
             root = Path(inputs[0])
         else:
-            # The checkout the user stands in wins over the bundled copy.
-            search = PackageSearch(package_paths=list(package_paths), origin=Path.cwd())
-            root = search.find(PACKAGE_NAME)
+            root = default_package(package_paths)
         overrides = dimension_overrides(root, package_paths, sets, config_files)
         outdir = Path(output) if output else Path("build")
         with override_context(overrides) as extra:

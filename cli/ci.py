@@ -10,11 +10,11 @@ import click
 
 from mobile_car.build import display_path
 from mobile_car.errors import McarError
-from mobile_car.packages import PackageSearch
 from mobile_car.resources import PACKAGE_NAME
 
 from .common import (
     config_options,
+    default_package,
     dimension_overrides,
     handle_errors,
     package_path_option,
@@ -97,8 +97,7 @@ def command(package, output_format, build_dir, render_dir, no_render, renderer, 
 
     started = time.perf_counter()
     if package is None:
-        search = PackageSearch(package_paths=list(package_paths), origin=Path.cwd())
-        root = search.find(PACKAGE_NAME)
+        root = default_package(package_paths)
     else:
         root = Path(package)
         if not root.exists():

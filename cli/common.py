@@ -41,6 +41,15 @@ def config_options(func):
 CONFIG_ARG = "config"
 
 
+def default_package(package_paths) -> Path:
+    """The mobile_car_description a command without INPUT works on: the checkout the user
+    stands in wins over ROS paths and the copy bundled with mcar."""
+    from mobile_car.packages import PackageSearch
+    from mobile_car.resources import PACKAGE_NAME
+
+    return PackageSearch(package_paths=list(package_paths), origin=Path.cwd()).find(PACKAGE_NAME)
+
+
 def dimension_overrides(origin: Path, package_paths, sets, config_files) -> dict[str, float]:
     """Validated --set/--config overrides for inputs at origin ({} when none are given)."""
     if not sets and not config_files:

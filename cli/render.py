@@ -25,6 +25,7 @@ from mobile_car.resources import PACKAGE_NAME
 
 from .common import (
     config_options,
+    default_package,
     dimension_overrides,
     handle_errors,
     override_context,
@@ -207,7 +208,6 @@ def command(words, output, view, size, collision, background, grid, axes, render
 
 def _plan(kind: str, inputs: list, output: str | None, package_paths):
     """The jobs, the output folder (None for stdout) and whether to make a contact sheet."""
-    from mobile_car.packages import PackageSearch
     from mobile_car.render.session import file_job, package_jobs, picture_name
 
     if kind == "files":
@@ -225,8 +225,7 @@ def _plan(kind: str, inputs: list, output: str | None, package_paths):
     if kind == "dir":
         root = inputs[0]
     else:
-        search = PackageSearch(package_paths=list(package_paths), origin=Path.cwd())
-        root = search.find(PACKAGE_NAME)
+        root = default_package(package_paths)
     outdir = Path(output) if output else Path("renders")
     return package_jobs(root, outdir, inputs if kind == "parts" else ()), outdir, True
 

@@ -14,13 +14,13 @@ from pathlib import Path
 
 from .atomic import atomic_write
 from .build import build_file, display_path
+from .config import CONFIG_ARG
 from .diagnostics import Diagnostic
 from .discover import output_name, require_robot_files, source_base
 from .errors import McarError
 from .packages import PackageSearch
 
 STEPS = ("build", "check", "render")
-CONFIG_ARG = "config"
 
 
 @dataclass

@@ -29,12 +29,20 @@ def measure(package: Path, runs: int) -> dict:
     import trimesh  # noqa: F401
     import yourdfpy  # noqa: F401
 
-    from mobile_car.packages import PackageSearch
+    from mobile_car.load.inputs import select
+    from mobile_car.load.robot import LoadOptions, load_robot
+    from mobile_car.packages.search import PackageSearch
     from mobile_car.render.compose import png_bytes
     from mobile_car.render.options import RenderOptions
     from mobile_car.render.picture import draw_views, finish_picture
     from mobile_car.render.scene import load_scene
-    from mobile_car.render.session import load_source, package_jobs
+    from mobile_car.render.session import model_source, selection_jobs
+
+    def load_source(inp, search):
+        return model_source(load_robot(inp, LoadOptions())), []
+
+    def package_jobs(root, outdir):
+        return selection_jobs(select([str(root)], lambda: root), outdir)
     imported = time.perf_counter() - started
 
     from mobile_car.render.backend import open_renderer
@@ -47,9 +55,9 @@ def measure(package: Path, runs: int) -> dict:
     for job in package_jobs(package, Path("unused")):
         stages: dict[str, list[float]] = {"expand": [], "load": [], "draw": [], "finish": []}
         for _ in range(runs):
-            search = PackageSearch(origin=job.source)
+            search = PackageSearch(origin=job.input.path)
             t0 = time.perf_counter()
-            source, _warnings = load_source(job.source, search)
+            source, _warnings = load_source(job.input, search)
             t1 = time.perf_counter()
             scene = load_scene(source, search)
             t2 = time.perf_counter()
@@ -67,8 +75,8 @@ def measure(package: Path, runs: int) -> dict:
     biggest = max(package_jobs(package, Path("unused")),
                   key=lambda job: next(f["triangles"] for f in files
                                        if f["file"] == job.caption))
-    search = PackageSearch(origin=biggest.source)
-    scene = load_scene(load_source(biggest.source, search)[0], search)
+    search = PackageSearch(origin=biggest.input.path)
+    scene = load_scene(load_source(biggest.input, search)[0], search)
     raycaster = RaycastRenderer()
     draw_views(raycaster, scene, options)  # the first draw builds the ray tracer's BVH
     raycast = []

@@ -8,29 +8,28 @@ from pathlib import Path
 import click
 
 from mobile_car.atomic import atomic_write
-from mobile_car.build import build_file, display_path, parse_mapping_args
-from mobile_car.discover import output_name, require_robot_files, source_base
-from mobile_car.errors import EXIT_OK, EXIT_PROBLEMS, McarError, UsageError
-from mobile_car.packages import PackageSearch
-from mobile_car.resources import PACKAGE_NAME
+from mobile_car.errors import EXIT_OK, McarError, UsageError, combine_exit_codes
+from mobile_car.load.inputs import display_path
+from mobile_car.packages.discover import output_name
 
 from .common import (
-    CONFIG_ARG,
-    config_options,
-    default_package,
-    dimension_overrides,
+    INPUT_HELP,
     handle_errors,
-    override_context,
-    package_path_option,
+    load_inputs,
+    print_warning,
     report,
+    robot_options,
+    stdin_for,
 )
 
-HELP = """Expand xacro into URDF.
+HELP = f"""Expand xacro into URDF.
 
 \b
   mcar build FILE.xacro [NAME:=VALUE ...]      URDF on stdout
   mcar build FILE.xacro -o OUT.urdf            URDF written to OUT.urdf
+  mcar build - < FILE.xacro                    xacro text from stdin
   mcar build DIR [-o OUTDIR]                   every robot file of a package
+  mcar build wheel chassis                     the robot files of those parts
   mcar build                                   the mobile car: every robot file of
                                                mobile_car_description into build/
 
@@ -51,15 +50,17 @@ cannot make a working robot) and apply to every file that includes config.xacro.
 
 Outputs are written atomically: a failed build leaves an earlier output untouched.
 Errors are printed as FILE:LINE: error: message, then xacro's macro/include stack.
+
+{INPUT_HELP}
+
+\b
+Exit codes:
+  0  every input was built
+  1  xacro could not expand an input (its error is printed, located)
+  2  usage or I/O error: bad option or argument, missing or unreadable file, a macro
+     file given as a robot, overrides the input cannot take, unknown package
+  130  interrupted (Ctrl-C); 143 terminated
 """
-
-
-def _write_or_print(xml: str, output: str | None) -> None:
-    if output is None or output == "-":
-        sys.stdout.write(xml)
-        sys.stdout.flush()
-    else:
-        atomic_write(output, xml)
 
 
 def _print_deps(deps: list[Path]) -> None:
@@ -67,78 +68,72 @@ def _print_deps(deps: list[Path]) -> None:
         click.echo(dep)
 
 
-def _build_tree(root: Path, outdir: Path, mappings: dict[str, str], package_paths,
-                deps_only: bool, quiet: bool) -> int:
-    """Build every robot file under root into outdir; go on past failures; exit code."""
-    base = source_base(root)
-    sources = require_robot_files(root)
-    failures = 0
-    for source in sources:
-        search = PackageSearch(package_paths=list(package_paths), origin=source)
+def _build_one(inp, options, stdin, output: str | None, deps_only: bool) -> None:
+    """One file (or stdin) to stdout or to ``-o OUT``."""
+    from mobile_car.load.robot import load_robot
+
+    loaded = load_robot(inp, options, stdin)
+    for warning in loaded.warnings:
+        print_warning(inp.label, warning)
+    if deps_only:
+        _print_deps(loaded.deps)
+    elif output is None or output == "-":
+        sys.stdout.buffer.write(loaded.urdf)
+        sys.stdout.flush()
+    else:
+        atomic_write(output, loaded.urdf)
+
+
+def _build_many(inputs, options, outdir: Path, deps_only: bool, quiet: bool) -> int:
+    """Build every input into outdir, mirrored below its folder; go on past failures."""
+    from mobile_car.load.robot import load_robot
+
+    codes = []
+    for inp in inputs:
         try:
-            # Dimension overrides reach only the files that include config.xacro.
-            result = build_file(source, mappings, search, optional_args=frozenset({CONFIG_ARG}))
+            loaded = load_robot(inp, options)
         except UsageError:
-            raise
+            raise  # the command line is wrong for every file alike
         except McarError as error:
             report(error)
-            failures += 1
+            codes.append(error.exit_code)
             continue
-        for warning in result.warnings:
-            click.echo(f"{display_path(source)}: {warning}", err=True)
+        for warning in loaded.warnings:
+            print_warning(inp.label, warning)
         if deps_only:
-            _print_deps(result.deps)
+            _print_deps(loaded.deps)
             continue
-        target = outdir / output_name(source, base)
-        atomic_write(target, result.xml)
+        target = outdir / output_name(inp.path, inp.base or inp.path.parent)
+        atomic_write(target, loaded.urdf)
         if not quiet:
             click.echo(f"built {display_path(target)}", err=True)
     if not quiet:
-        click.echo(f"{len(sources) - failures} of {len(sources)} files built"
+        click.echo(f"{len(inputs) - len(codes)} of {len(inputs)} files built"
                    + ("" if deps_only else f" into {display_path(outdir)}"), err=True)
-    return EXIT_PROBLEMS if failures else EXIT_OK
+    return combine_exit_codes(codes) if codes else EXIT_OK
 
 
 @click.command("build", help=HELP, short_help="Expand xacro into URDF.")
-@click.argument("words", nargs=-1, metavar="[INPUT] [NAME:=VALUE]...")
+@click.argument("words", nargs=-1, metavar="[INPUT]... [NAME:=VALUE]...")
 @click.option("-o", "--output", metavar="OUT",
-              help="Output file (with a file INPUT; default: stdout) or folder "
-                   "(with a folder or no INPUT; default: build/).")
+              help="Output file (one file INPUT; default: stdout) or folder "
+                   "(a folder, parts, several files or no INPUT; default: build/).")
 @click.option("--deps", "deps_only", is_flag=True,
               help="Print the files the expansion reads, one per line (for Make); build nothing.")
 @click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
-@config_options
-@package_path_option
+@robot_options
 @handle_errors
 def command(words, output, deps_only, quiet, package_paths, sets, config_files):
-    inputs = [w for w in words if ":=" not in w]
-    mappings = parse_mapping_args([w for w in words if ":=" in w])
-    if CONFIG_ARG in mappings and (sets or config_files):
-        raise UsageError(f"{CONFIG_ARG}:= and --set/--config both give overrides; use one")
-    if len(inputs) > 1:
-        raise UsageError(f"one INPUT at a time, got {len(inputs)}: {' '.join(inputs)}")
-    if not inputs or Path(inputs[0]).is_dir():
-        if inputs:
-            root = Path(inputs[0])
-        else:
-            root = default_package(package_paths)
-        overrides = dimension_overrides(root, package_paths, sets, config_files)
+    with load_inputs(words, package_paths, sets, config_files, through_xacro=True) as (
+            selection, options):
+        if selection.kind == "files" and len(selection.inputs) == 1:
+            _build_one(selection.inputs[0], options, stdin_for(selection), output, deps_only)
+            return
+        if selection.reads_stdin:
+            raise UsageError("- (stdin) is built alone, to stdout")
+        if output == "-":
+            raise UsageError("-o - (stdout) works with one file INPUT only")
+        if output and output.endswith((".urdf", ".xml")):
+            raise UsageError(f"-o names a folder when building several files, not {output}")
         outdir = Path(output) if output else Path("build")
-        with override_context(overrides) as extra:
-            sys.exit(_build_tree(root, outdir, {**mappings, **extra}, package_paths,
-                                 deps_only, quiet))
-    source = Path(inputs[0])
-    search = PackageSearch(package_paths=list(package_paths), origin=source)
-    overrides = dimension_overrides(source, package_paths, sets, config_files)
-    with override_context(overrides) as extra:
-        result = build_file(source, {**mappings, **extra}, search,
-                            optional_args=frozenset({CONFIG_ARG}))
-    if overrides and CONFIG_ARG not in result.known_args:
-        raise UsageError(f"--set/--config change {PACKAGE_NAME}'s config.xacro, which "
-                         f"{display_path(source)} does not include")
-    for warning in result.warnings:
-        click.echo(f"{display_path(source)}: {warning}", err=True)
-    if deps_only:
-        _print_deps(result.deps)
-        return
-    _write_or_print(result.xml, output)
+        sys.exit(_build_many(selection.inputs, options, outdir, deps_only, quiet))

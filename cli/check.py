@@ -6,27 +6,25 @@ import gc
 import json
 import os
 import sys
-from pathlib import Path
 
 import click
 
-from mobile_car.checker import STDIN, CheckResult, as_json, check_input
-from mobile_car.diagnostics import github_annotation
-from mobile_car.discover import robot_files, source_base
-from mobile_car.errors import EXIT_OK, EXIT_PROBLEMS, EXIT_USAGE, UsageError
-from mobile_car.inputs import display_path, parse_mapping_args
-from mobile_car.tree import check_urdf_batches
+from mobile_car.check.checker import CheckResult, as_json, check_input
+from mobile_car.check.diagnostics import github_annotation
+from mobile_car.check.tree import check_urdf_batches
+from mobile_car.errors import combine_exit_codes
 
 from .common import (
-    config_options,
-    dimension_overrides,
+    INPUT_HELP,
     handle_errors,
-    override_context,
-    package_path_option,
+    load_inputs,
+    print_diagnostic,
     report,
+    robot_options,
+    stdin_for,
 )
 
-HELP = """Check URDF files: check_urdf's verdict and tree, and the errors it misses.
+HELP = f"""Check URDF files: check_urdf's verdict and tree, and the errors it misses.
 
 \b
   mcar check robot.urdf                  check_urdf's output, problems on stderr
@@ -44,42 +42,18 @@ Errors (E1xx) fail the check; warnings (W2xx) fail it only with --strict. For a
 .xacro input, FILE:LINE point into the xacro sources where the element's name can
 be found there, else at the input with the line of the expanded URDF.
 
+{INPUT_HELP}
+
 \b
 Exit codes:
   0  every input is sound (warnings allowed unless --strict)
   1  problems found: an error, or a warning with --strict
-  2  usage or I/O error: bad option, missing or unreadable file, unknown package
+  2  usage or I/O error: bad option, missing or unreadable file, a macro file given
+     as a robot, unknown package
+  130  interrupted (Ctrl-C); 143 terminated
 """
 
 FORMATS = ("text", "json", "github")
-
-
-def split_words(words) -> tuple[list[str], dict[str, str]]:
-    """Inputs and NAME:=VALUE mappings, as mcar build takes them."""
-    inputs = [w for w in words if ":=" not in w]
-    mappings = parse_mapping_args([w for w in words if ":=" in w])
-    if not inputs:
-        raise UsageError("no INPUT given (a file, a folder, or - for stdin)")
-    return inputs, mappings
-
-
-def expand_inputs(inputs: list[str]) -> list[str]:
-    """Folders become their .urdf files and robot .xacro files; files and - stay."""
-    expanded = []
-    for name in inputs:
-        path = Path(name)
-        if name != STDIN and path.is_dir():
-            base = source_base(path)
-            found = sorted({*base.rglob("*.urdf"), *robot_files(path)})
-            if not found:
-                raise UsageError("no .urdf or robot .xacro files in this folder",
-                                 file=display_path(path))
-            expanded += [str(p) for p in found]
-        else:
-            expanded.append(name)
-    if expanded.count(STDIN) > 1:
-        raise UsageError("- (stdin) can be given only once")
-    return expanded
 
 
 def _emit_text(results: list[CheckResult], quiet: bool) -> None:
@@ -94,7 +68,7 @@ def _emit_text(results: list[CheckResult], quiet: bool) -> None:
             # check_urdf writes names byte for byte: UTF-8 whatever the locale says.
             write_batches(out, check_urdf_batches(result.robot.name, result.tree))
         for diagnostic in result.diagnostics:
-            click.echo(diagnostic.text(), err=True)
+            print_diagnostic(diagnostic)
     errors = sum(r.errors for r in results)
     warnings = sum(r.warnings for r in results)
     failed = sum(1 for r in results if r.failure is not None)
@@ -156,41 +130,27 @@ def _emit_json(results: list[CheckResult], exit_code: int) -> None:
 
 
 def overall_exit(results: list[CheckResult], strict: bool) -> int:
-    codes = {r.exit_code(strict) for r in results}
-    for code in (EXIT_USAGE, EXIT_PROBLEMS):
-        if code in codes:
-            return code
-    return EXIT_OK
+    return combine_exit_codes(r.exit_code(strict) for r in results)
 
 
 @click.command("check", help=HELP, short_help="Check URDF files (a stricter check_urdf).")
-@click.argument("words", nargs=-1, metavar="INPUT... [NAME:=VALUE]...")
+@click.argument("words", nargs=-1, metavar="[INPUT]... [NAME:=VALUE]...")
 @click.option("--format", "output_format", type=click.Choice(FORMATS), default="text",
               show_default=True, help="text: check_urdf's output on stdout, problems on "
               "stderr; json: one JSON document on stdout; github: workflow annotations.")
 @click.option("--strict", is_flag=True, help="Warnings fail the check too (exit 1).")
 @click.option("-q", "--quiet", is_flag=True,
               help="text format: print only problems, not check_urdf's tree.")
-@config_options
-@package_path_option
+@robot_options
 @handle_errors
 def command(words, output_format, strict, quiet, package_paths, sets, config_files):
     # One short run builds hundreds of thousands of objects and no garbage cycles worth
     # collecting; the cyclic collector's passes over them cost a quarter of the run.
     gc.disable()
     try:
-        inputs, mappings = split_words(words)
-        inputs = expand_inputs(inputs)
-        xacros = [name for name in inputs if name.endswith(".xacro")]
-        if (mappings or sets or config_files) and not xacros:
-            raise UsageError("NAME:=VALUE, --set and --config apply to .xacro inputs, "
-                             "and none was given")
-        overrides = dimension_overrides(Path(xacros[0]) if xacros else Path.cwd(),
-                                        package_paths, sets, config_files)
-        stdin = click.get_binary_stream("stdin") if STDIN in inputs else None
-        with override_context(overrides) as extra:
-            results = [check_input(name, {**mappings, **extra}, package_paths, stdin=stdin,
-                                   optional_args=frozenset(extra)) for name in inputs]
+        with load_inputs(words, package_paths, sets, config_files) as (selection, options):
+            stdin = stdin_for(selection)
+            results = [check_input(inp, options, stdin=stdin) for inp in selection.inputs]
         exit_code = overall_exit(results, strict)
         if output_format == "json":
             _emit_json(results, exit_code)

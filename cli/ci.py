@@ -8,17 +8,17 @@ from pathlib import Path
 
 import click
 
-from mobile_car.build import display_path
 from mobile_car.errors import McarError
-from mobile_car.resources import PACKAGE_NAME
+from mobile_car.load.inputs import display_path
+from mobile_car.packages.bundled import PACKAGE_NAME
 
 from .common import (
-    config_options,
-    default_package,
-    dimension_overrides,
+    INPUT_HELP,
     handle_errors,
-    package_path_option,
-    use_color,
+    load_inputs,
+    print_diagnostic,
+    report,
+    robot_options,
 )
 
 HELP = f"""Build, check (strict) and render every robot file of a description package.
@@ -38,6 +38,16 @@ that file's later steps; the other files go on. A summary table ends the run.
 
 Exit 0 only if every step of every file passed; 1 if any file has problems; 2 if the
 run could not be made (no package, no renderer: --no-render skips drawing).
+
+{INPUT_HELP}
+
+\b
+Exit codes:
+  0  every step of every file passed
+  1  problems found: a build error, a check error or warning, a robot not drawn
+  2  usage, I/O or environment error: no such package, a macro file given as a robot,
+     no renderer (--no-render skips drawing)
+  130  interrupted (Ctrl-C); 143 terminated
 """
 
 
@@ -61,19 +71,20 @@ def _table(items) -> list[str]:
     return [line(header), *map(line, rows)]
 
 
-def _problems(item) -> list[str]:
+def _problems(item) -> list:
+    """What to print for an item: diagnostics, and the errors of failed steps."""
     lines = []
     for step in item.steps:
         if step.status != "failed":
-            lines += [d.text() for d in step.diagnostics]  # warnings of a passed step
+            lines += step.diagnostics  # warnings of a passed step
             continue
-        lines += [d.text() for d in step.diagnostics] or [f"{item.label}: {step.name} "
-                                                          f"failed: {step.message}"]
+        lines += step.diagnostics or [step.error or f"{item.label}: {step.name} failed: "
+                                      f"{step.message}"]
     return lines
 
 
 @click.command("ci", help=HELP, short_help="Build, check and render a whole package.")
-@click.argument("package", required=False, type=click.Path(file_okay=False))
+@click.argument("words", nargs=-1, metavar="[INPUT]... [NAME:=VALUE]...")
 @click.option("--format", "output_format", type=click.Choice(["text", "junit", "github"]),
               default="text", show_default=True,
               help="text: the summary table on stdout, problems on stderr; junit: JUnit XML "
@@ -88,46 +99,42 @@ def _problems(item) -> list[str]:
 @click.option("--junit-xml", metavar="FILE", type=click.Path(dir_okay=False),
               help="Also write the JUnit XML report to FILE (whatever --format is).")
 @click.option("-q", "--quiet", is_flag=True, help="text format: print only problems.")
-@config_options
-@package_path_option
+@robot_options
 @handle_errors
-def command(package, output_format, build_dir, render_dir, no_render, renderer, junit_xml,
+def command(words, output_format, build_dir, render_dir, no_render, renderer, junit_xml,
             quiet, sets, config_files, package_paths):
-    from mobile_car import pipeline
+    from mobile_car.ci import pipeline
 
     started = time.perf_counter()
-    if package is None:
-        root = default_package(package_paths)
-    else:
-        root = Path(package)
-        if not root.exists():
-            raise McarError("no such package folder", file=package)
-    overrides = dimension_overrides(root, package_paths, sets, config_files)
-    items = pipeline.plan(root, Path(build_dir), None if no_render else Path(render_dir))
-    checked = [item for item in items
-               if pipeline.build_and_check(item, package_paths, overrides) is not None]
+    with load_inputs(words, package_paths, sets, config_files, through_xacro=True) as (
+            selection, options):
+        items = pipeline.plan(selection, Path(build_dir), None if no_render else Path(render_dir))
+        checked = [item for item in items
+                   if pipeline.build_and_check(item, options) is not None]
     if not no_render and checked:
-        _render(checked, root, Path(render_dir), renderer, package_paths)
+        roots = [selection.root] if selection.root is not None else []
+        _render(checked, Path(render_dir), renderer, [*package_paths, *roots])
     code = pipeline.exit_code(items)
     if junit_xml:
         from mobile_car.atomic import atomic_write
-        from mobile_car.junit import junit_report
+        from mobile_car.ci.junit import junit_report
 
         atomic_write(junit_xml, junit_report(items))
     _emit(items, output_format, quiet, time.perf_counter() - started, no_render)
     sys.exit(code)
 
 
-def _render(items, root: Path, render_dir: Path, renderer: str, package_paths) -> None:
-    from mobile_car import pipeline
+def _render(items, render_dir: Path, renderer: str, package_paths) -> None:
+    from mobile_car.ci import pipeline
+    from mobile_car.load.robot import LoadOptions
     from mobile_car.render.manifest import Manifest
     from mobile_car.render.options import RenderOptions
     from mobile_car.render.session import RenderSession
 
     manifest = Manifest(render_dir)
     # The built URDFs live outside the package: let their package:// URIs find it.
-    with RenderSession(RenderOptions(), renderer=renderer,
-                       package_paths=[*package_paths, root]) as session:
+    load = LoadOptions(package_paths=[Path(p) for p in package_paths])
+    with RenderSession(RenderOptions(), renderer=renderer, load=load) as session:
         try:
             for item in items:
                 pipeline.render_step(item, session, manifest)
@@ -142,7 +149,7 @@ def _render(items, root: Path, render_dir: Path, renderer: str, package_paths) -
 
 def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: bool) -> None:
     if output_format == "junit":
-        from mobile_car.junit import junit_report
+        from mobile_car.ci.junit import junit_report
 
         click.echo(junit_report(items), nl=False)
         return
@@ -152,14 +159,19 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
                 for diagnostic in step.diagnostics:
                     click.echo(diagnostic.github())
                 if step.status == "failed" and not step.diagnostics:
-                    from mobile_car.diagnostics import github_annotation
+                    from mobile_car.check.diagnostics import github_annotation
 
                     click.echo(github_annotation("error", str(item.source), None,
                                                  f"mcar ci {step.name}", step.message))
     else:
         for item in items:
             for line in _problems(item):
-                click.echo(line, err=True, color=use_color())
+                if isinstance(line, str):
+                    click.echo(line, err=True)
+                elif isinstance(line, McarError):
+                    report(line)
+                else:
+                    print_diagnostic(line)
     if not quiet or output_format == "github":
         click.echo("\n".join(_table(items)))
     passed = sum(item.ok for item in items)

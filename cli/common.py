@@ -10,7 +10,7 @@ from pathlib import Path
 
 import click
 
-from mobile_car.errors import EXIT_USAGE, McarError
+from mobile_car.errors import EXIT_USAGE, McarError, UsageError
 
 package_path_option = click.option(
     "--package-path", "package_paths", multiple=True, metavar="DIR",
@@ -36,42 +36,82 @@ def config_options(func):
     return func
 
 
-# The xacro argument config.xacro reads overrides from; kept here, not imported from
-# mobile_car.config, so that commands run without overrides never import it.
-CONFIG_ARG = "config"
+INPUT_HELP = """\b
+INPUT is what every command takes: a .urdf or .xacro file, a folder (its .urdf files
+and robot .xacro files, below its urdf/ when it has one), - for stdin, or the name
+of a part folder of the package (wheel, chassis); none means the whole
+mobile_car_description (the checkout you stand in, else the bundled copy).
+NAME:=VALUE words set xacro arguments."""
+
+_color: bool | None = None  # --color/--no-color of this run; None: the NO_COLOR/TTY rule
+
+
+def _set_color(ctx, param, value):
+    global _color
+    _color = value
+    return value
+
+
+def robot_options(func):
+    """The options every command that loads a robot takes: --set, --config,
+    --package-path, --color/--no-color."""
+    func = click.option("--color/--no-color", "color", default=None, expose_value=False,
+                        callback=_set_color, is_eager=True,
+                        help="Colour the severity of problems (default: on a terminal, "
+                             "unless NO_COLOR is set).")(func)
+    return package_path_option(config_options(func))
 
 
 def default_package(package_paths) -> Path:
     """The mobile_car_description a command without INPUT works on: the checkout the user
     stands in wins over ROS paths and the copy bundled with mcar."""
-    from mobile_car.packages import PackageSearch
-    from mobile_car.resources import PACKAGE_NAME
+    from mobile_car.packages.bundled import PACKAGE_NAME
+    from mobile_car.packages.search import PackageSearch
 
     return PackageSearch(package_paths=list(package_paths), origin=Path.cwd()).find(PACKAGE_NAME)
 
 
-def dimension_overrides(origin: Path, package_paths, sets, config_files) -> dict[str, float]:
-    """Validated --set/--config overrides for inputs at origin ({} when none are given)."""
+@contextlib.contextmanager
+def load_inputs(words, package_paths, sets, config_files, through_xacro: bool = False):
+    """What the user named, ready to load: yields (Selection, LoadOptions).
+
+    Arguments the inputs cannot take are refused here, before anything is loaded; the
+    overrides are validated and written once, for every input, and removed afterwards.
+    """
+    from mobile_car.load.inputs import select, split_words
+    from mobile_car.load.robot import CONFIG_ARG, LoadOptions, refuse_unused_arguments
+
+    names, mappings = split_words(words)
+    if CONFIG_ARG in mappings and (sets or config_files):
+        raise UsageError(f"{CONFIG_ARG}:= and --set/--config both give overrides; use one")
+    selection = select(names, lambda: default_package(package_paths))
+    refuse_unused_arguments(selection.inputs, LoadOptions(
+        mappings, through_xacro=through_xacro), overriding=bool(sets or config_files))
     if not sets and not config_files:
-        return {}
-    from mobile_car.config import resolve_overrides
-    from mobile_car.packages import PackageSearch
+        yield selection, LoadOptions(mappings, [Path(p) for p in package_paths],
+                                     through_xacro=through_xacro)
+        return
+    from mobile_car.config.overrides import prepared_overrides
+    from mobile_car.packages.search import PackageSearch
 
+    xacros = [inp.path for inp in selection.inputs if inp.is_xacro]
+    origin = xacros[0] if xacros else (selection.root or Path.cwd())
     search = PackageSearch(package_paths=list(package_paths), origin=origin)
-    return resolve_overrides(search, sets, config_files)[1]
+    with prepared_overrides(search, sets, config_files) as overrides:
+        yield selection, LoadOptions(mappings, [Path(p) for p in package_paths], overrides,
+                                     through_xacro)
 
 
-def override_context(overrides: dict[str, float]):
-    """A context yielding the xacro arguments that apply the overrides ({} for none)."""
-    if not overrides:
-        return contextlib.nullcontext({})
-    from mobile_car.config import override_mappings
-
-    return override_mappings(overrides)
+def stdin_for(selection):
+    """The binary stdin stream when an input is ``-``, else None."""
+    return click.get_binary_stream("stdin") if selection.reads_stdin else None
 
 
 def use_color() -> bool | None:
-    """False with NO_COLOR set (https://no-color.org); else None: click colours a TTY only."""
+    """--color/--no-color when given; else False with NO_COLOR set (https://no-color.org);
+    else None: click colours a terminal only."""
+    if _color is not None:
+        return _color
     return False if os.environ.get("NO_COLOR") else None
 
 
@@ -80,8 +120,24 @@ def severity_label(severity: str) -> str:
     return click.style(f"{severity}:", fg="red" if severity == "error" else "yellow", bold=True)
 
 
+def print_diagnostic(diagnostic) -> None:
+    """One ``FILE:LINE: error: message [E104]`` line on stderr, the severity coloured."""
+    plain = f"{diagnostic.severity}:"
+    text = diagnostic.text().replace(f" {plain} ", f" {severity_label(diagnostic.severity)} ", 1)
+    click.echo(text, err=True, color=use_color())
+
+
+def print_warning(where: str, message: str) -> None:
+    click.echo(f"{where}: {severity_label('warning')} {message}", err=True, color=use_color())
+
+
 def report(error: McarError) -> None:
-    """Print an error as one `FILE:LINE: error: message` line, then its context lines."""
+    """Print an error as one `FILE:LINE: error: message` line, then its context lines; a
+    robot that failed its check prints the check's diagnostics instead."""
+    for diagnostic in getattr(error, "diagnostics", ()):
+        print_diagnostic(diagnostic)
+    if getattr(error, "diagnostics", None):
+        return
     where = error.location()
     prefix = f"{where}: " if where else "mcar: "
     click.echo(f"{prefix}{severity_label('error')} {error.message}", err=True, color=use_color())

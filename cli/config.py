@@ -7,13 +7,12 @@ from pathlib import Path
 
 import click
 
-from mobile_car.build import display_path
-from mobile_car.config import config_table, resolve_overrides
-from mobile_car.packages import PackageSearch
+from mobile_car.errors import UsageError
+from mobile_car.load.inputs import display_path
 
-from .common import config_options, handle_errors, package_path_option
+from .common import INPUT_HELP, handle_errors, load_inputs, robot_options
 
-HELP = """Show the robot's dimensions: value, unit, source, meaning, FILE:LINE.
+HELP = f"""Show the robot's dimensions: value, unit, source, meaning, FILE:LINE.
 
 \b
   mcar config                               the table, then the derived values
@@ -23,7 +22,19 @@ HELP = """Show the robot's dimensions: value, unit, source, meaning, FILE:LINE.
 The dimensions live once, in urdf/config.xacro (one <xacro:property> each, with a
 "UNIT; SOURCE: meaning" comment); derived ones are xacro expressions of the others,
 evaluated here by xacro itself. The config is that of the mobile_car_description
-package found from the current folder (a checkout you stand in, else the bundled one).
+package found from INPUT (a robot .xacro, a folder or part of the package), else from
+the current folder (a checkout you stand in, else the bundled one). A URDF has no
+dimensions to show.
+
+{INPUT_HELP}
+
+\b
+Exit codes:
+  0  the table was printed
+  1  config.xacro's own dimensions do not fit together
+  2  usage or I/O error: an unknown or invalid --set/--config value, dimensions that
+     do not fit together, a URDF or macro file as INPUT, unknown package
+  130  interrupted (Ctrl-C); 143 terminated
 """
 
 
@@ -51,14 +62,35 @@ def _text(table: dict) -> str:
 
 
 @click.command("config", help=HELP, short_help="Show the robot's dimensions.")
+@click.argument("words", nargs=-1, metavar="[INPUT]...")
 @click.option("--format", "fmt", type=click.Choice(["text", "json", "yaml"]), default="text",
               show_default=True, help="Output format; json and yaml can be read by --config.")
-@config_options
-@package_path_option
+@robot_options
 @handle_errors
-def command(fmt, sets, config_files, package_paths):
-    search = PackageSearch(package_paths=list(package_paths), origin=Path.cwd())
-    spec, overrides, values = resolve_overrides(search, sets, config_files)
+def command(words, fmt, sets, config_files, package_paths):
+    from mobile_car.config.overrides import config_table, resolve_overrides
+    from mobile_car.load.robot import load_robot, require_robot_file
+    from mobile_car.packages.search import PackageSearch
+
+    with load_inputs(words, package_paths, sets, config_files) as (selection, options):
+        if options.mappings:
+            raise UsageError("NAME:=VALUE does not change dimensions: use --set NAME=VALUE")
+        if selection.reads_stdin:
+            raise UsageError("config reads the package's config.xacro, not stdin")
+        for inp in selection.inputs if selection.kind == "files" else ():
+            require_robot_file(inp)
+            if not inp.is_xacro:
+                raise UsageError("a URDF has no dimensions to show: give the .xacro it was "
+                                 "built from", file=inp.label)
+            load_robot(inp, options)  # refuses what every command refuses for this file
+        if options.overrides is not None:
+            spec, overrides = options.overrides.spec, options.overrides.values
+            values = options.overrides.effective
+        else:
+            origin = selection.inputs[0].path if selection.kind == "files" else \
+                (selection.root or Path.cwd())
+            search = PackageSearch(package_paths=list(package_paths), origin=origin)
+            spec, overrides, values = resolve_overrides(search, (), ())
     table = config_table(spec, values, overrides)
     if fmt == "json":
         click.echo(json.dumps(table, indent=2))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import signal
 import sys
 import time
@@ -11,7 +12,8 @@ from pathlib import Path
 
 import click
 
-from mobile_car.errors import EXIT_OK, InputError, UsageError
+from mobile_car.errors import EXIT_OK, UsageError, combine_exit_codes
+from mobile_car.packages.bundled import PACKAGE_NAME
 from mobile_car.render.options import (
     DEFAULT_BACKGROUND,
     RENDERER_ENV,
@@ -21,16 +23,16 @@ from mobile_car.render.options import (
     parse_color,
     parse_size,
 )
-from mobile_car.resources import PACKAGE_NAME
 
 from .common import (
-    config_options,
-    default_package,
-    dimension_overrides,
+    INPUT_HELP,
     handle_errors,
-    override_context,
-    package_path_option,
+    load_inputs,
+    print_diagnostic,
+    print_warning,
     report,
+    robot_options,
+    stdin_for,
 )
 
 HELP = f"""Draw robot descriptions as PNG pictures, with no display and no GPU.
@@ -40,9 +42,14 @@ HELP = f"""Draw robot descriptions as PNG pictures, with no display and no GPU.
                                      into renders/, plus the contact sheet
                                      renders/index.png
   mcar render wheel chassis          only the files of those part folders
-  mcar render DIR [-o OUTDIR]        every robot file of a package folder
+  mcar render DIR [-o OUTDIR]        every robot file of a folder
   mcar render FILE [-o OUT.png]      one .urdf or .xacro file (default:
                                      renders/NAME.png; -o - writes to stdout)
+  mcar build X.xacro | mcar render -   a URDF from stdin (renders/stdin.png)
+
+Every robot is checked first, as by `mcar check`: one with errors, or with a missing
+mesh in the geometry to draw, is reported with check's diagnostics (exit 1) and
+nothing is drawn for it.
 
 Pictures mirror the urdf/ tree: urdf/wheel/test_wheel.urdf.xacro ->
 renders/wheel/test_wheel.png. A picture whose inputs (URDF, meshes, options) have not
@@ -62,7 +69,17 @@ relative paths) are found as by mcar build.
 Renderer: OpenGL through EGL (Mesa's llvmpipe on machines with no GPU; Debian packages
 libegl1 libegl-mesa0 libgl1-mesa-dri libgl1). With --renderer auto, if no OpenGL context
 can be made within a few seconds, pictures are ray-cast with trimesh + embreex instead
-(same camera and lighting). Exit 2 when neither can run, naming what to install.
+(same camera and lighting).
+
+{INPUT_HELP}
+
+\b
+Exit codes:
+  0  every picture was drawn (or was up to date)
+  1  a robot has problems: check's errors, a missing mesh; nothing drawn for it
+  2  usage, I/O or environment error: bad option, missing file, a macro file given as
+     a robot, no renderer can run (the message names what to install)
+  130  interrupted (Ctrl-C); 143 terminated
 """
 
 
@@ -105,28 +122,6 @@ def _ctrl_c_survives_imports():
         raise KeyboardInterrupt
 
 
-def _classify(words: list[str]) -> tuple[str, list[Path] | list[str]]:
-    """("package", []) | ("dir", [DIR]) | ("files", FILES) | ("parts", NAMES)."""
-    if not words:
-        return "package", []
-    paths = [Path(word) for word in words]
-    existing = [path.exists() for path in paths]
-    if all(existing):
-        if len(paths) == 1 and paths[0].is_dir():
-            return "dir", paths
-        folders = [str(p) for p in paths if p.is_dir()]
-        if folders:
-            raise UsageError(f"give one folder at a time, or files only: {' '.join(folders)}")
-        return "files", paths
-    looks_like_files = [w for w, e in zip(words, existing, strict=False)
-                        if not e and (("/" in w) or w.endswith((".urdf", ".xacro")))]
-    if looks_like_files:
-        raise InputError("no such file", file=looks_like_files[0])
-    if any(existing):
-        raise UsageError("give files, or part names, not both")
-    return "parts", words
-
-
 def _progress(jobs, quiet: bool):
     """A progress bar on stderr, only on a terminal and not with --quiet."""
     stream = sys.stderr
@@ -137,7 +132,7 @@ def _progress(jobs, quiet: bool):
 
 
 @click.command("render", help=HELP, short_help="Draw robot descriptions as PNG pictures.")
-@click.argument("words", nargs=-1, metavar="[FILE|DIR|PART]...")
+@click.argument("words", nargs=-1, metavar="[INPUT]... [NAME:=VALUE]...")
 @click.option("-o", "--output", metavar="OUT",
               help="Output PNG (one FILE; '-' for stdout) or folder (default: renders/).")
 @click.option("--view", type=click.Choice(VIEW_CHOICES), default="iso", show_default=True,
@@ -157,77 +152,72 @@ def _progress(jobs, quiet: bool):
               help="OpenGL (gl), ray casting (raycast), or gl with raycast as fallback (auto).")
 @click.option("--force", is_flag=True, help="Draw every picture, even if unchanged.")
 @click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
-@config_options
-@package_path_option
+@robot_options
 @handle_errors
 def command(words, output, view, size, collision, background, grid, axes, renderer, force,
             quiet, package_paths, sets, config_files):
     started = time.perf_counter()
     options = RenderOptions(view=view, width=size[0], height=size[1], collision=collision,
                             background=background, grid=grid, axes=axes)
-    kind, inputs = _classify(list(words))
-    if kind == "files" and len(inputs) > 1 and output and output.endswith(".png"):
-        raise UsageError("-o names a folder when rendering several files")
-    if output == "-" and not (kind == "files" and len(inputs) == 1):
-        raise UsageError("-o - (stdout) works with one FILE only")
+    with load_inputs(words, package_paths, sets, config_files) as (selection, load):
+        load = dataclasses.replace(load, size_limited=True)
+        jobs, outdir, sheet = _plan(selection, output)
+        # Try OpenGL in a child process now, while numpy, trimesh and xacro load here.
+        from mobile_car.render.backend import GLProbe
 
-    # Try OpenGL in a child process now, while numpy, trimesh and xacro load here.
-    from mobile_car.render.backend import GLProbe
-
-    probe = GLProbe() if renderer != "raycast" else None
-    try:
-        with _ctrl_c_survives_imports():
-            from mobile_car.render.manifest import Manifest
-            from mobile_car.render.session import RenderSession
-    except KeyboardInterrupt:
-        if probe is not None:
-            probe.cancel()
-        raise
-
-    overrides = dimension_overrides(Path(inputs[0]) if kind in ("files", "dir") else Path.cwd(),
-                                    package_paths, sets, config_files)
-    with override_context(overrides) as mappings, \
-            RenderSession(options, renderer=renderer, package_paths=package_paths, force=force,
-                          probe=probe, mappings=mappings) as session:
-        # (closing the session stops the GL probe if it was not needed)
-        jobs, outdir, sheet = _plan(kind, inputs, output, package_paths)
-        manifest = Manifest(outdir) if outdir is not None else None
-        outcome = _run(session, jobs, manifest, quiet)
-        if output == "-" and outcome.last_png is not None:
-            sys.stdout.buffer.write(outcome.last_png)
-            sys.stdout.flush()
-        if sheet:
-            if kind == "package" or kind == "dir":
-                manifest.forget_all_but({manifest.key(job.target) for job in jobs}
-                                        | {"index.png"})
-            session.write_contact_sheet(manifest)
-        if not quiet:
-            _summary(session, outcome, len(jobs), outdir, sheet, time.perf_counter() - started)
+        probe = GLProbe() if renderer != "raycast" else None
+        try:
+            with _ctrl_c_survives_imports():
+                from mobile_car.render.manifest import Manifest
+                from mobile_car.render.session import RenderSession
+        except KeyboardInterrupt:
+            if probe is not None:
+                probe.cancel()
+            raise
+        with RenderSession(options, renderer=renderer, load=load, force=force, probe=probe,
+                           stdin=stdin_for(selection)) as session:
+            # (closing the session stops the GL probe if it was not needed)
+            manifest = Manifest(outdir) if outdir is not None else None
+            outcome = _run(session, jobs, manifest, quiet)
+            if output == "-" and outcome.last_png is not None:
+                sys.stdout.buffer.write(outcome.last_png)
+                sys.stdout.flush()
+            if sheet:
+                if selection.kind in ("package", "folder"):
+                    manifest.forget_all_but({manifest.key(job.target) for job in jobs}
+                                            | {"index.png"})
+                session.write_contact_sheet(manifest)
+            if not quiet:
+                _summary(session, outcome, len(jobs), outdir, sheet,
+                         time.perf_counter() - started)
     sys.exit(outcome.exit_code)
 
 
-def _plan(kind: str, inputs: list, output: str | None, package_paths):
+def _plan(selection, output: str | None):
     """The jobs, the output folder (None for stdout) and whether to make a contact sheet."""
-    from mobile_car.render.session import file_job, package_jobs, picture_name
+    from mobile_car.render.session import file_job, selection_jobs
 
-    if kind == "files":
+    inputs = selection.inputs
+    if selection.kind == "files":
+        if len(inputs) > 1 and output and output.endswith(".png"):
+            raise UsageError("-o names a folder when rendering several files")
+        if output == "-" and len(inputs) != 1:
+            raise UsageError("-o - (stdout) works with one INPUT only")
         if len(inputs) == 1 and output and (output == "-" or not Path(output).is_dir()):
             target = None if output == "-" else Path(output)
             return [file_job(inputs[0], target)], None if target is None else target.parent, False
         outdir = Path(output) if output else Path("renders")
-        jobs = [file_job(path, outdir / picture_name(path)) for path in inputs]
+        jobs = selection_jobs(selection, outdir)
         names = [job.target.name for job in jobs]
         clashes = sorted({name for name in names if names.count(name) > 1})
         if clashes:
             raise UsageError(f"several inputs would all be drawn to {', '.join(clashes)}; "
                              "render them one at a time with -o")
         return jobs, outdir, False
-    if kind == "dir":
-        root = inputs[0]
-    else:
-        root = default_package(package_paths)
+    if output == "-":
+        raise UsageError("-o - (stdout) works with one INPUT only")
     outdir = Path(output) if output else Path("renders")
-    return package_jobs(root, outdir, inputs if kind == "parts" else ()), outdir, True
+    return selection_jobs(selection, outdir), outdir, True
 
 
 @dataclass
@@ -239,8 +229,6 @@ class _Outcome:
 
 def _run(session, jobs, manifest, quiet: bool) -> _Outcome:
     """Render every job, printing errors and warnings as they come."""
-    from mobile_car.build import display_path
-
     outcome = _Outcome()
     bar = _progress(jobs, quiet)
     if bar is not None:
@@ -254,12 +242,16 @@ def _run(session, jobs, manifest, quiet: bool) -> _Outcome:
                 click.echo(f"mcar: warning: {note}", err=True)
             session.notes.clear()
             for warning in result.warnings:
-                click.echo(f"{display_path(result.job.source)}: warning: {warning}", err=True)
+                if isinstance(warning, str):
+                    print_warning(result.job.input.label, warning)
+                else:
+                    print_diagnostic(warning)
             if result.error is not None:
                 if bar is not None:
                     click.echo("", err=True)
                 report(result.error)
-                outcome.exit_code = max(outcome.exit_code, result.error.exit_code)
+                outcome.exit_code = combine_exit_codes([outcome.exit_code,
+                                                        result.error.exit_code])
             if result.png is not None:
                 outcome.last_png = result.png
     finally:
@@ -270,7 +262,7 @@ def _run(session, jobs, manifest, quiet: bool) -> _Outcome:
 
 def _summary(session, outcome: _Outcome, total: int, outdir, sheet: bool,
              seconds: float) -> None:
-    from mobile_car.build import display_path
+    from mobile_car.load.inputs import display_path
 
     counts = outcome.counts
     where = f" in {display_path(outdir)}" if outdir is not None else ""

@@ -6,15 +6,21 @@ import sys
 
 import click
 
-from mobile_car.checker import STDIN, check_input
+from mobile_car.check.checker import check_input
+from mobile_car.check.graphviz import write_graph
+from mobile_car.check.tree import graphviz_dot, rich_text
 from mobile_car.errors import EXIT_PROBLEMS, UsageError
-from mobile_car.graphviz import write_graph
-from mobile_car.tree import graphviz_dot, rich_text
 
-from .check import split_words
-from .common import handle_errors, package_path_option
+from .common import (
+    INPUT_HELP,
+    handle_errors,
+    load_inputs,
+    print_diagnostic,
+    robot_options,
+    stdin_for,
+)
 
-HELP = """Print the kinematic tree of a URDF or xacro file, with its joints.
+HELP = f"""Print the kinematic tree of one robot (a URDF or xacro file), with its joints.
 
 \b
   mcar tree robot.urdf
@@ -25,33 +31,40 @@ Each link is shown under its parent with the joint that carries it: name, type,
 origin (xyz, rpy), axis and limits. Children are in check_urdf's order (by joint
 name). Drawing .svg, .png or .pdf needs Graphviz's `dot` (Debian package graphviz);
 a .dot file needs nothing. Only the tree is checked here; `mcar check` checks the rest.
+One robot at a time: a folder or a part name must hold exactly one robot file.
+
+{INPUT_HELP}
 
 \b
 Exit codes:
   0  the tree was printed (and drawn)
   1  there is no single tree: two parents, a cycle, a stray link, a broken file
-  2  usage or I/O error, or `dot` missing or failing
+  2  usage or I/O error (a macro file given as a robot, several robots), or `dot`
+     missing or failing
+  130  interrupted (Ctrl-C); 143 terminated
 """
 
 
 @click.command("tree", help=HELP, short_help="Print the kinematic tree with its joints.")
-@click.argument("words", nargs=-1, metavar="INPUT [NAME:=VALUE]...")
+@click.argument("words", nargs=-1, metavar="[INPUT] [NAME:=VALUE]...")
 @click.option("--graphviz", "graph_output", metavar="OUT",
               help="Also write the tree as Graphviz: OUT.dot/.gv (text) or OUT.svg/.png/.pdf "
                    "(drawn by `dot`).")
 @click.option("-q", "--quiet", is_flag=True, help="Do not print the tree (with --graphviz).")
-@package_path_option
+@robot_options
 @handle_errors
-def command(words, graph_output, quiet, package_paths):
-    inputs, mappings = split_words(words)
-    if len(inputs) != 1:
-        raise UsageError(f"one INPUT at a time, got {len(inputs)}: {' '.join(inputs)}")
-    stdin = click.get_binary_stream("stdin") if inputs[0] == STDIN else None
-    result = check_input(inputs[0], mappings, package_paths, stdin=stdin, structure_only=True)
+def command(words, graph_output, quiet, package_paths, sets, config_files):
+    with load_inputs(words, package_paths, sets, config_files) as (selection, options):
+        if len(selection.inputs) != 1:
+            shown = " ".join(inp.label for inp in selection.inputs[:4])
+            more = " ..." if len(selection.inputs) > 4 else ""
+            raise UsageError(f"one INPUT at a time, got {len(selection.inputs)}: {shown}{more}")
+        result = check_input(selection.inputs[0], options, stdin=stdin_for(selection),
+                             structure_only=True)
     if result.failure is not None:
         raise result.failure
     for diagnostic in result.diagnostics:
-        click.echo(diagnostic.text(), err=True)
+        print_diagnostic(diagnostic)
     if not result.tree_is_drawable:
         click.echo(f"mcar tree: {result.file} has no single kinematic tree", err=True)
         sys.exit(EXIT_PROBLEMS)

@@ -61,3 +61,19 @@ class RenderError(McarError):
 
 class RendererUnavailableError(McarError):
     """Neither OpenGL (EGL) nor the ray-casting fallback can run on this machine."""
+
+
+class CheckFailed(McarError):
+    """A robot that ``mcar check`` rejects was given to a command that uses it (render):
+    its diagnostics say why, exactly as ``mcar check`` prints them."""
+
+    exit_code = EXIT_PROBLEMS
+
+    def __init__(self, file: str, diagnostics: list):
+        super().__init__("the robot does not pass mcar check", file=file)
+        self.diagnostics = list(diagnostics)
+
+
+def combine_exit_codes(codes) -> int:
+    """The exit code of a run over many inputs: the worst of theirs (2 > 1 > 0)."""
+    return max(codes, default=EXIT_OK)

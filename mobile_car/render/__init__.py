@@ -25,14 +25,18 @@ def render_file(path: str | Path, options: RenderOptions | None = None,
                 renderer: str = "auto", package_paths=()) -> bytes:
     """One URDF or xacro file as PNG bytes (nothing is written).
 
-    Raises the errors of :mod:`mobile_car.errors`: RenderError or BuildError for a bad
-    input, RendererUnavailableError when neither OpenGL nor ray casting can run.
+    Raises the errors of :mod:`mobile_car.errors`: CheckFailed (with mcar check's
+    diagnostics) or RenderError for a bad input, RendererUnavailableError when neither
+    OpenGL nor ray casting can run.
     """
+    from ..load.inputs import RobotInput
+    from ..load.robot import LoadOptions
     from .session import RenderSession, file_job
 
-    with RenderSession(options or RenderOptions(), renderer=renderer,
-                       package_paths=package_paths, force=True) as session:
-        result = session.render_one(file_job(Path(path), None), manifest=None)
+    load = LoadOptions(package_paths=[Path(p) for p in package_paths])
+    with RenderSession(options or RenderOptions(), renderer=renderer, load=load,
+                       force=True) as session:
+        result = session.render_one(file_job(RobotInput(Path(path)), None), manifest=None)
     if result.error is not None:
         raise result.error
     return result.png

@@ -9,7 +9,7 @@ colours primitives and meshes that carry no colour of their own (yourdfpy writes
 the mesh's face colours); meshes with their own materials (COLLADA) keep them. Collision
 geometry has no material in URDF, so it takes its link's first visual colour, as rviz does.
 
-Mesh files are resolved with :class:`~mobile_car.packages.PackageSearch`, the same search
+Mesh files are resolved with :class:`~mobile_car.packages.search.PackageSearch`, the same search
 ``mcar build`` uses, and are checked before loading so that a missing one is reported with
 its file and line instead of being dropped silently (yourdfpy only logs a warning).
 """
@@ -28,9 +28,9 @@ import trimesh
 import yourdfpy
 from lxml import etree
 
-from ..build import display_path
 from ..errors import McarError, RenderError
-from ..packages import PackageSearch
+from ..expand.xacro_build import display_path
+from ..packages.search import PackageSearch
 
 # Faces meeting at less than this angle are shaded as one smooth surface (cylinder
 # sides, spheres); sharper edges (box corners, cylinder rims) stay crisp.

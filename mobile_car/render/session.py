@@ -12,7 +12,7 @@ from __future__ import annotations
 import io
 import time
 from collections import deque
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterator
 from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -20,16 +20,17 @@ from pathlib import Path
 from PIL import Image
 
 from ..atomic import atomic_write
-from ..build import build_file, check_input_size, display_path
-from ..discover import output_name, robot_files, source_base
-from ..errors import InputError, McarError, RendererUnavailableError, UsageError
-from ..packages import PackageSearch
+from ..check.checker import CheckResult, check_input
+from ..errors import CheckFailed, McarError, RendererUnavailableError
+from ..load.inputs import RobotInput, Selection
+from ..load.robot import LoadedRobot, LoadOptions
+from ..packages.discover import output_name
 from .backend import GLProbe, open_renderer
 from .compose import png_bytes
 from .manifest import DRAWING_VERSION, Manifest, input_fingerprint, sha256
 from .options import RenderOptions
 from .picture import DrawnView, draw_views, finish_picture
-from .scene import ModelSource, load_scene, mesh_files, parse_urdf
+from .scene import ModelSource, load_scene
 from .sheet import THUMBNAIL_WIDTH, contact_sheet
 
 CONTACT_SHEET = "index.png"
@@ -40,9 +41,9 @@ URDF_SUFFIXES = (".urdf.xacro", ".xacro", ".urdf")
 
 @dataclass
 class RenderJob:
-    """One input file and the PNG it becomes (None: return the bytes, write nothing)."""
+    """One robot input and the PNG it becomes (None: return the bytes, write nothing)."""
 
-    source: Path
+    input: RobotInput
     target: Path | None
     caption: str
 
@@ -54,7 +55,7 @@ class JobResult:
     job: RenderJob
     status: str
     error: McarError | None = None
-    warnings: list[str] = field(default_factory=list)
+    warnings: list = field(default_factory=list)  # the check's Diagnostics worth showing
     png: bytes | None = None
     seconds: float = 0.0
 
@@ -68,7 +69,7 @@ class _Drawn:
     bounds: object
     fingerprint: str
     renderer: str
-    warnings: list[str]
+    warnings: list
     started: float
 
 
@@ -88,8 +89,10 @@ def _sheet_copy(image: Image.Image) -> Image.Image:
     return copy
 
 
-def picture_name(path: Path) -> str:
-    """``test_wheel.urdf.xacro`` -> ``test_wheel.png``."""
+def picture_name(path: Path | None) -> str:
+    """``test_wheel.urdf.xacro`` -> ``test_wheel.png``; stdin -> ``stdin.png``."""
+    if path is None:
+        return "stdin.png"
     name = path.name
     for suffix in URDF_SUFFIXES:
         if name.endswith(suffix) and len(name) > len(suffix):
@@ -98,72 +101,57 @@ def picture_name(path: Path) -> str:
     return name + ".png"
 
 
-def package_parts(root: Path) -> list[str]:
-    """The part folders of a description package (``urdf/wheel``, ...) holding robot files."""
-    base = source_base(root)
-    return sorted({source.relative_to(base).parts[0] for source in robot_files(root)
-                   if len(source.relative_to(base).parts) > 1})
+def picture_path(inp: RobotInput) -> Path:
+    """Where an input's picture goes below the output folder: mirrored below the folder
+    it was found in (``wheel/test_wheel.png``), else just its name."""
+    if inp.path is None or inp.base is None:
+        return Path(picture_name(inp.path))
+    return output_name(inp.path, inp.base).with_name(picture_name(inp.path))
 
 
-def package_jobs(root: Path, outdir: Path, parts: Iterable[str] = ()) -> list[RenderJob]:
-    """A job per robot file of the package (or of the named part folders), mirrored."""
-    base = source_base(root)
-    sources = robot_files(root)
-    parts = list(parts)
-    if parts:
-        known = package_parts(root)
-        unknown = [part for part in parts if part not in known]
-        if unknown:
-            raise UsageError(f"no file or part named {', '.join(map(repr, unknown))}; parts of "
-                             f"{display_path(base)}: {', '.join(known) or 'none'}")
-        sources = [s for s in sources if s.relative_to(base).parts[0] in parts]
-    if not sources:
-        raise UsageError("no robot files (.xacro with <robot name=...>) in this folder",
-                         file=display_path(base))
+def selection_jobs(selection: Selection, outdir: Path) -> list[RenderJob]:
+    """A job per input, its picture mirrored into outdir."""
     jobs = []
-    for source in sources:
-        relative = output_name(source, base).with_name(picture_name(source))
-        jobs.append(RenderJob(source, outdir / relative, relative.with_suffix("").as_posix()))
+    for inp in selection.inputs:
+        relative = picture_path(inp)
+        caption = relative.with_suffix("").as_posix() if inp.base is not None \
+            else relative.stem
+        jobs.append(RenderJob(inp, outdir / relative, caption))
     return jobs
 
 
-def file_job(source: Path, target: Path | None) -> RenderJob:
-    return RenderJob(source, target, picture_name(source)[: -len(".png")])
+def file_job(inp: RobotInput, target: Path | None) -> RenderJob:
+    return RenderJob(inp, target, picture_name(inp.path)[: -len(".png")])
 
 
-def load_source(path: Path, search: PackageSearch, mappings: dict[str, str] | None = None
-                ) -> tuple[ModelSource, list[str]]:
-    """The URDF for a file: a .xacro is expanded with xacro, anything else read as is.
+def model_source(loaded: LoadedRobot) -> ModelSource:
+    """The URDF a loaded robot became, for the scene: a plain URDF's lines are its file's."""
+    path = loaded.input.path if loaded.input.path is not None else Path.cwd() / "<stdin>"
+    return ModelSource(loaded.urdf, path, lines_match=not loaded.from_xacro)
 
-    ``mappings`` (dimension overrides) reach the files that declare them and no others.
-    """
-    if path.name.endswith(".xacro"):
-        mappings = dict(mappings or {})
-        result = build_file(path, mappings, search, optional_args=frozenset(mappings))
-        return ModelSource(result.xml.encode("utf-8"), path, lines_match=False), result.warnings
-    try:
-        check_input_size(path)
-        data = path.read_bytes()
-    except FileNotFoundError:
-        raise InputError("no such file", file=display_path(path)) from None
-    except IsADirectoryError:
-        raise InputError("is a directory, not a URDF or xacro file",
-                         file=display_path(path)) from None
-    except OSError as exc:
-        raise InputError(f"cannot read: {exc.strerror or exc}", file=display_path(path)) from None
-    return ModelSource(data, path, lines_match=True), []
+
+def blocking_diagnostics(result: CheckResult, collision: bool) -> list:
+    """What stops a robot from being drawn: any check error, and a missing or broken mesh
+    (W207) of the geometry to draw; all the check's diagnostics then, else none."""
+    if result.failure is not None:
+        raise result.failure
+    kind = "collision" if collision else "visual"
+    mesh_missing = any(not mesh.sound for mesh in result.mesh_files if mesh.kind == kind)
+    if result.errors or not result.tree_is_drawable or mesh_missing:
+        return result.diagnostics
+    return []
 
 
 class RenderSession:
     """Renders jobs with one renderer, chosen lazily; use as a context manager."""
 
     def __init__(self, options: RenderOptions, renderer: str = "auto",
-                 package_paths: Iterable[Path] = (), force: bool = False,
-                 probe: GLProbe | None = None, mappings: dict[str, str] | None = None):
+                 load: LoadOptions | None = None, force: bool = False,
+                 probe: GLProbe | None = None, stdin=None):
         self.options = options
-        self.mappings = dict(mappings or {})  # xacro args for every file (overrides)
+        self.load = load or LoadOptions()  # how every input is loaded (arguments, overrides)
+        self.stdin = stdin  # the binary stream an input "-" reads
         self.renderer_choice = renderer
-        self.package_paths = [Path(p) for p in package_paths]
         self.force = force
         self._probe = probe
         if self._probe is None and renderer != "raycast":
@@ -197,23 +185,28 @@ class RenderSession:
         return {"options": self.options.fingerprint()}
 
     def _draw(self, job: RenderJob, manifest: Manifest | None) -> JobResult | _Drawn:
-        """First stage, on the calling thread: expand, check for changes, load, draw.
+        """First stage, on the calling thread: load and check, look for changes, draw.
 
         Returns a finished JobResult (unchanged, or failed) or the drawn views to finish.
+        A robot that ``mcar check`` rejects fails with the check's diagnostics.
         """
         started = time.perf_counter()
         try:
-            search = PackageSearch(package_paths=list(self.package_paths), origin=job.source)
-            source, warnings = load_source(job.source, search, self.mappings)
-            meshes = mesh_files(parse_urdf(source), source, search, self.options.collision)
+            result = check_input(job.input, self.load, stdin=self.stdin)
+            blocking = blocking_diagnostics(result, self.options.collision)
+            if blocking:
+                raise CheckFailed(job.input.label, blocking)
+            warnings = [d for d in result.diagnostics if d.rule == "W220"]
+            kind = "collision" if self.options.collision else "visual"
+            meshes = [mesh.path for mesh in result.mesh_files if mesh.kind == kind]
+            source = model_source(result.loaded)
             fingerprint = input_fingerprint(source.xml, meshes, self.settings())
             if (manifest is not None and job.target is not None and not self.force
                     and manifest.is_current(job.target, fingerprint, self.renderer_choice)):
                 return JobResult(job, "unchanged", warnings=warnings,
                                  seconds=time.perf_counter() - started)
-            scene = load_scene(source, search, collision=self.options.collision)
+            scene = load_scene(source, result.loaded.search, collision=self.options.collision)
             if not scene.triangle_count:
-                kind = "collision" if self.options.collision else "visual"
                 warnings.append(f"no {kind} geometry to draw")
             renderer = self._renderer()
             views = draw_views(renderer, scene, self.options)

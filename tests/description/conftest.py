@@ -61,7 +61,7 @@ def load_urdf():
     """Load a built URDF with yourdfpy, package:// resolved by mcar's PackageSearch."""
     import yourdfpy
 
-    from mobile_car.packages import PackageSearch
+    from mobile_car.packages.search import PackageSearch
 
     search = PackageSearch(package_paths=[REPO])
     loaded: dict[Path, yourdfpy.URDF] = {}
@@ -133,7 +133,7 @@ def posed():
     """posed(urdf, "collision"|"visual") -> list of Posed elements, root frame = world."""
     import trimesh
 
-    from mobile_car.packages import PackageSearch
+    from mobile_car.packages.search import PackageSearch
 
     search = PackageSearch(package_paths=[REPO])
 

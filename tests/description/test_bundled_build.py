@@ -9,8 +9,9 @@ from tests.description.conftest import URDF, built_name
 
 
 def robot_files_of_checkout() -> set[str]:
-    """Built names of the checkout's robot files: .xacro files whose <robot> has a name."""
-    names = set()
+    """Built names of the checkout's robot files: .urdf files, and .xacro files whose
+    <robot> has a name."""
+    names = {path.relative_to(URDF).as_posix() for path in URDF.rglob("*.urdf")}
     for path in URDF.rglob("*.xacro"):
         if etree.parse(str(path)).getroot().get("name"):
             names.add(built_name(path.relative_to(URDF)).as_posix())

@@ -19,7 +19,7 @@ PROBE = """<robot name="inertia_probe" xmlns:xacro="http://www.ros.org/wiki/xacr
 
 
 def expand(tmp_path, call: str) -> etree._Element:
-    from mobile_car.build import build_file
+    from mobile_car.expand.xacro_build import build_file
 
     source = tmp_path / "probe.urdf.xacro"
     source.write_text(PROBE.format(define=URDF / "define.xacro", call=call))

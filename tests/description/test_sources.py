@@ -18,7 +18,7 @@ MACRO = f"{{{XACRO_NS}}}macro"
 # The tutorial's hand-written steps are the seed's, kept as they are; the rules are for the car.
 SOURCES = sorted(p for p in URDF.rglob("*.xacro") if "tutorial" not in p.relative_to(URDF).parts)
 # The comment grammar is mcar's own (`mcar config` reads it): one definition.
-from mobile_car.config import COMMENT_RE as CONFIG_COMMENT  # noqa: E402
+from mobile_car.config.spec import COMMENT_RE as CONFIG_COMMENT  # noqa: E402
 
 DECIMAL = re.compile(r"(?<![\w.])\d*\.\d+|\d+(?:\.\d*)?[eE][-+]?\d+")
 
@@ -117,7 +117,7 @@ def test_top_level_properties_are_defined_once_and_pi_is_xacros():
 
 
 def test_config_total_mass_is_the_built_robots(complete_robot, tmp_path):
-    from mobile_car.build import build_file
+    from mobile_car.expand.xacro_build import build_file
 
     probe = tmp_path / "mass.urdf.xacro"
     probe.write_text(f'<robot name="mass" xmlns:xacro="{XACRO_NS}">'

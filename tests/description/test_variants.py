@@ -85,18 +85,19 @@ def dimensions(draw):
           derandomize=True)
 @given(dims=dimensions())
 def test_random_valid_overrides_stand_level(dims, tmp_path_factory, load_urdf, posed):
-    from mobile_car.build import build_file
-    from mobile_car.config import config_file, evaluate, load_spec, override_mappings
+    from mobile_car.config.overrides import evaluate, override_mappings
+    from mobile_car.config.spec import config_file, load_spec
     from mobile_car.errors import UsageError
-    from mobile_car.packages import PackageSearch
+    from mobile_car.expand.xacro_build import build_file
+    from mobile_car.packages.search import PackageSearch
 
     search = PackageSearch(origin=REPO / "urdf" / "mobile_robot.xacro")
     spec = load_spec(config_file(search))
-    try:
-        evaluate(spec, dims, search)
-    except UsageError:
-        assume(False)  # the validator refused them: nothing to build, nothing to check
     with override_mappings(dims) as mappings:
+        try:
+            evaluate(spec, mappings, search)
+        except UsageError:
+            assume(False)  # the validator refused them: nothing to build, nothing to check
         xml = build_file(REPO / "urdf" / "mobile_robot.xacro", mappings, search).xml
     path = tmp_path_factory.mktemp("random") / "mobile_robot.urdf"
     path.write_text(xml)

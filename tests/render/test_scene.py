@@ -8,9 +8,11 @@ import numpy as np
 import pytest
 
 from mobile_car.errors import BuildError, RenderError
-from mobile_car.packages import PackageSearch
+from mobile_car.load.inputs import RobotInput
+from mobile_car.load.robot import LoadOptions, load_robot
+from mobile_car.packages.search import PackageSearch
 from mobile_car.render.scene import ModelSource, load_scene
-from mobile_car.render.session import load_source
+from mobile_car.render.session import model_source
 
 PKG = Path(__file__).parent / "pkg"
 REPO = Path(__file__).parents[2]
@@ -19,7 +21,8 @@ REPO = Path(__file__).parents[2]
 def scene_of(path: Path, collision=False, text: str | None = None):
     search = PackageSearch(origin=path)
     if text is None:
-        source, _ = load_source(path, search)
+        loaded = load_robot(RobotInput(path), LoadOptions())
+        source, search = model_source(loaded), loaded.search
     else:
         source = ModelSource(text.encode(), path, lines_match=True)
     return load_scene(source, search, collision=collision)
@@ -115,8 +118,14 @@ def test_malformed_xml_names_its_line():
 
 
 def test_a_macro_file_is_not_a_robot():
-    with pytest.raises(RenderError) as caught:
+    from mobile_car.load.robot import MacroFileError
+
+    with pytest.raises(MacroFileError) as caught:
         scene_of(PKG / "urdf/define.xacro")
+    assert caught.value.message.endswith("define.xacro is a macro file: include it from a "
+                                         "robot file, or build its test file")
+    with pytest.raises(RenderError) as caught:  # the scene refuses it too, given as text
+        scene_of(PKG / "urdf/define.xacro", text="<robot><link name='a'/></robot>")
     assert caught.value.message.startswith("<robot> has no name: a macro file is not a robot")
 
 

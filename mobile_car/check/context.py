@@ -1,0 +1,170 @@
+"""What every check module shares: collecting diagnostics and reading numbers strictly.
+
+A :class:`Reporter` turns "rule R broken at this element" into a :class:`Diagnostic` with
+the right FILE:LINE. For a URDF file that is the element's own line; for a URDF built
+from xacro, a locator maps the element back to the xacro source where it can.
+
+Numbers are read quickly first: Python's ``float`` reads every number urdfdom reads, and
+a few more (``nan``, ``1_0``, a trailing space, a tab between numbers). Each text read
+that way is kept, and :meth:`Reporter.numbers_confirmed` then proves in one pass over
+their joined bytes that every one of them is spelled with digits, ``.eE+-`` and (in lists)
+spaces only, where Python and urdfdom read exactly alike. A document that fails the proof
+is checked again with urdfdom's grammar (:mod:`mobile_car.check.urdf_model`) throughout, so the
+verdicts are always urdfdom's; the quick way only saves the grammar's regular expression
+on the common spelling (a fifth of checking a robot whose every number differs).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from math import isfinite
+
+from .diagnostics import Diagnostic
+from .urdf_model import parse_number, parse_numbers, tag_name
+
+# (file, line or None, a note to append to the message or "")
+Locator = Callable[[object], tuple[str, "int | None", str]]
+
+
+_CLEAN: set = set()
+_CLEAN_LIMIT = 1_000_000
+_LISTS_KEPT = 4096
+# Texts read by float() are joined by "," (which no number read that way contains) and
+# must then consist of these bytes only.
+_SINGLE_BYTES = b"0123456789.eE+-,"
+_LIST_BYTES = _SINGLE_BYTES + b" "
+
+
+def has_xacro_expression(text: str) -> bool:
+    return "${" in text or "$(" in text
+
+
+def shorten(text: str, limit: int = 60) -> str:
+    text = text.replace("\t", "\\t").replace("\n", "\\n").replace("\r", "\\r")
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+class Reporter:
+    """Collects the diagnostics of one input.
+
+    ``quick_numbers``: read numbers with ``float`` and prove the spelling afterwards (see
+    the module docstring); False reads each with urdfdom's grammar straight away.
+    """
+
+    def __init__(self, file: str, locate: Locator | None = None, line_of=None,
+                 quick_numbers: bool = True):
+        self.file = file
+        self.locate = locate
+        self.line_of = line_of or (lambda element: element.sourceline)
+        self.diagnostics: list[Diagnostic] = []
+        self.quick_numbers = quick_numbers
+        self._read_singles: list[str] = []
+        self._read_lists: list[str] = []
+        # Lists read so far, up to _LISTS_KEPT: robots repeat "0 0 1" and "0 0 0" thousands
+        # of times and those come early; remembering every list of a CAD export, where
+        # almost none repeats, would cost more than it saves.
+        self._lists: dict[str, tuple[float, ...]] = {}
+        # Keys found clean here; they join _CLEAN only once the numbers are confirmed.
+        self._clean_here: set = set()
+
+    def once_clean(self, key, check, *args) -> None:
+        """Run ``check(*args)`` unless an element with the same ``key`` already passed it.
+
+        Robots repeat the same origins, shapes and limits thousands of times; a check
+        whose verdict depends only on ``key`` runs once per distinct clean value.
+        """
+        if key in _CLEAN or key in self._clean_here:
+            return
+        before = len(self.diagnostics)
+        check(*args)
+        if len(self.diagnostics) == before:
+            self._clean_here.add(key)
+
+    def numbers_confirmed(self) -> bool:
+        """True if urdfdom reads every number read so far as ``float`` did; then the
+        values found clean here are remembered for the next inputs too."""
+        if self.quick_numbers:
+            singles = ",".join(self._read_singles).encode()
+            lists = ",".join(self._read_lists).encode()
+            if singles.translate(None, _SINGLE_BYTES) or lists.translate(None, _LIST_BYTES):
+                return False
+        if len(_CLEAN) < _CLEAN_LIMIT:
+            _CLEAN.update(self._clean_here)
+        return True
+
+    def add(self, rule: str, where, message: str) -> None:
+        """Record ``rule`` at ``where``: an lxml element, or a line number, or None."""
+        if where is None or isinstance(where, int):
+            file, line, note = self.file, where, ""
+            if self.locate is not None and where is not None:
+                file, line, note = self.locate(where)
+        elif self.locate is not None:
+            file, line, note = self.locate(where)
+        else:
+            file, line, note = self.file, self.line_of(where), ""
+        self.diagnostics.append(Diagnostic(rule, file, line, message + note))
+
+    def value(self, text: str | None) -> float | None:
+        """The number urdfdom reads from ``text``, or None (absent or unreadable); silent."""
+        if not self.quick_numbers:
+            return parse_number(text)
+        try:
+            value = float(text)
+        except (TypeError, ValueError):  # TypeError: no text
+            return parse_number(text)
+        if not isfinite(value):
+            return None  # nan, inf, 1e400: C++ reads none of them
+        self._read_singles.append(text)
+        return value
+
+    def values(self, text: str | None, count: int) -> tuple[float, ...] | None:
+        """Exactly ``count`` numbers from ``text``, or None (absent or unreadable); silent."""
+        if self.quick_numbers and text is not None:
+            known = self._lists.get(text)
+            if known is not None and len(known) == count:
+                return known
+            pieces = text.split()
+            if len(pieces) == count:
+                try:
+                    values = tuple(map(float, pieces))
+                except ValueError:
+                    values = None
+                if values is not None and all(map(isfinite, values)):
+                    self._read_lists.append(text)
+                    if len(self._lists) < _LISTS_KEPT:
+                        self._lists[text] = values
+                    return values
+        value = parse_numbers(text, count)
+        return value if value.__class__ is tuple else None
+
+    def number(self, element, attr: str, owner: str) -> float | None:
+        """The number in ``attr``, or None (absent, unreadable: E114, or xacro: E105)."""
+        text = element.get(attr)
+        if text is None:
+            return None
+        value = self.value(text)
+        if value is None and not has_xacro_expression(text):
+            self.add("E114", element, f"{owner}: <{tag_name(element)} {attr}="
+                                      f"\"{shorten(text)}\"> is not a number urdfdom can read")
+        return value
+
+    def numbers(self, element, attr: str, count: int, owner: str) -> tuple[float, ...] | None:
+        """Exactly ``count`` numbers from ``attr``, or None (absent or unreadable: E114)."""
+        text = element.get(attr)
+        if text is None:
+            return None
+        value = self.values(text, count)
+        if value is None and not has_xacro_expression(text):
+            self.add("E114", element, f"{owner}: <{tag_name(element)} {attr}="
+                                      f"\"{shorten(text)}\">: {parse_numbers(text, count)}")
+        return value
+
+    def origin(self, origin, owner: str) -> None:
+        """Check the numbers of an ``<origin>`` Node (None: there is none)."""
+        if origin is not None:
+            self.once_clean(("origin", origin.get("xyz"), origin.get("rpy")),
+                            self._origin, origin, owner)
+
+    def _origin(self, origin, owner: str) -> None:
+        self.numbers(origin, "xyz", 3, owner)
+        self.numbers(origin, "rpy", 3, owner)

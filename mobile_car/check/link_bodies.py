@@ -1,0 +1,69 @@
+"""Read and check what is inside the links (inertials, visuals, collisions): most of a
+robot's elements, read only by ``mcar check`` (``mcar tree`` needs none of it).
+
+Robots repeat parts: wheels, fingers, track segments, the segments of a generated chain.
+A link whose content (everything between ``<link ...>`` and ``</link>``) is byte for byte
+that of a link already found clean, in the same role (moving or not, root or not), is
+clean too: every check of a link's content depends on that content, on those two roles
+and on the materials defined before it in the same robot, which only grow. Such a link is
+not read again: serialising it to compare (libxml2, in C) costs a tenth of reading it. A
+robot that turns out not to repeat itself is not compared any further. A link written the
+usual way is proved clean by :mod:`mobile_car.check.plain_links`; only the others are read into
+:class:`~mobile_car.check.urdf_reader.Link` parts and put through every check, with messages.
+"""
+
+from __future__ import annotations
+
+from lxml import etree
+
+from .context import Reporter
+from .inertia import check_inertia
+from .links import check_links
+from .plain_links import plainly_clean
+from .schema import report_anomalies
+from .urdf_reader import Anomalies, Link, read_links
+from .urdf_vocabulary import LINK
+
+# Links looked at before giving up comparing, on a robot with fewer than 10% repeats.
+_TRIAL = 500
+
+
+def check_link_bodies(links: list[Link], report: Reporter, materials: set[str],
+                      top_level: set, moving: set[str], root: str | None) -> None:
+    """Read ``links`` and check their geometry, materials, inertia and vocabulary."""
+    notes = Anomalies()
+    # Per robot: whether a material is defined depends on the robot, not on the content.
+    clean: set = set()
+    compare, repeats = True, 0
+    for count, link in enumerate(links):
+        element = link.element
+        if count == _TRIAL and repeats * 10 < _TRIAL:
+            compare = False  # serialising every link would cost more than it saves
+        key = (_content(element), link.name in moving, link.name == root) if compare else None
+        if key in clean:
+            repeats += 1
+            if not LINK.attrs_ok(element.keys()):  # the start tag is not in the key
+                notes.attributes.append(element)
+            continue
+        if plainly_clean(element, report, materials, top_level, link.name in moving,
+                         root is not None and link.name == root):
+            if key is not None:
+                clean.add(key)
+            continue
+        before = _counts(report, notes)
+        read_links([link], notes)
+        check_links([link], report, materials, top_level)
+        check_inertia([link], report, moving, root)
+        if key is not None and _counts(report, notes) == before:
+            clean.add(key)
+    report_anomalies(notes, report)
+
+
+def _content(element) -> bytes:
+    text = etree.tostring(element, with_tail=False)
+    return text[text.index(b">") + 1:]
+
+
+def _counts(report: Reporter, notes: Anomalies) -> tuple[int, int, int, int]:
+    return (len(report.diagnostics), len(notes.unknown), len(notes.attributes),
+            len(notes.repeats))

@@ -1,0 +1,127 @@
+"""The rules ``mcar check`` applies, each with a stable id, like a linter's.
+
+``E1xx`` are errors (the file is wrong: exit 1), ``W2xx`` are warnings (doubtful: exit 0,
+or 1 with ``--strict``). Ids never change meaning; a retired rule keeps its number.
+``urdfdom`` says what Debian's ``check_urdf`` (urdfdom 3.0) does with the same problem:
+``rejects`` (exit 255), ``ignores`` (logs an error or nothing, still exits 0, drops the
+element), or ``hangs`` (prints the tree forever, then crashes).
+
+The README's rule table is generated from :data:`RULES` (``tests/check/test_rules.py`` keeps the
+two equal).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+ERROR = "error"
+WARNING = "warning"
+
+
+@dataclass(frozen=True)
+class Rule:
+    id: str
+    name: str
+    summary: str
+    urdfdom: str
+
+    @property
+    def severity(self) -> str:
+        return ERROR if self.id.startswith("E") else WARNING
+
+    @property
+    def blocks_tree(self) -> bool:
+        """True if the kinematic tree cannot be drawn while this problem is present."""
+        return self.id in _TREE_BLOCKERS
+
+
+_TABLE = [
+    # The document
+    Rule("E100", "xml-syntax", "not well-formed XML", "rejects"),
+    Rule("E101", "no-robot", "the root element is not `<robot>`", "rejects"),
+    Rule("E102", "robot-name", "`<robot>` has no name, or an empty one", "rejects if absent"),
+    Rule("E103", "urdf-version", "`version` is not `1.0` (the only version urdfdom 3.0 reads)",
+         "rejects"),
+    Rule("E104", "dtd-subset", "a DOCTYPE with an internal subset (entity declarations)",
+         "rejects"),
+    Rule("E105", "xacro-unexpanded", "xacro left in a URDF: `<xacro:...>` elements, `${...}` "
+         "or `$(...)` in values (build it first)", "ignores or rejects"),
+    Rule("E106", "no-links", "the robot has no `<link>`", "rejects"),
+    Rule("E107", "missing-name", "a link, joint or material without a name (or an empty one)",
+         "rejects for joints, ignores otherwise"),
+    Rule("E108", "duplicate-name", "two links, two joints or two materials with the same name",
+         "rejects"),
+    # Links: geometry, inertia, materials
+    Rule("E110", "geometry-missing", "`<visual>`/`<collision>` without `<geometry>`, or an "
+         "empty `<geometry>`", "ignores"),
+    Rule("E111", "geometry-unknown", "an unknown geometry type (urdfdom 3.0 knows box, "
+         "cylinder, sphere, mesh)", "ignores"),
+    Rule("E112", "geometry-size-missing", "a box without `size`, a cylinder without `radius` "
+         "and `length`, a sphere without `radius`, a mesh without `filename`", "ignores"),
+    Rule("E113", "geometry-size-nonpositive", "a size, radius or length <= 0, or a mesh scale "
+         "of 0", "accepts"),
+    Rule("E114", "bad-number", "a value urdfdom cannot read as numbers: not a number, the "
+         "wrong count (xyz, rpy, size, scale need 3, rgba 4), a tab or line break between "
+         "numbers, an rgba component outside 0..1", "rejects in joints, ignores in links"),
+    Rule("E115", "inertial-incomplete", "`<inertial>` without `<mass value>` or `<inertia>`, "
+         "or an inertia missing one of ixx ixy ixz iyy iyz izz", "ignores"),
+    Rule("E116", "material-undefined", "a material used by name but never defined with a "
+         "`<color>` or `<texture>`", "ignores (warns)"),
+    # Joints
+    Rule("E120", "joint-type", "a joint without a type, or of an unknown type", "rejects"),
+    Rule("E121", "joint-link-missing", "a joint without `<parent link>` or `<child link>`",
+         "rejects"),
+    Rule("E122", "joint-link-undefined", "a joint naming a link that is not defined",
+         "rejects"),
+    Rule("E123", "joint-limit-missing", "a revolute or prismatic joint without `<limit>`, or "
+         "a `<limit>` without `effort` and `velocity`", "rejects"),
+    Rule("E124", "limit-order", "a `<limit>` with lower > upper", "accepts"),
+    Rule("E125", "axis-zero", "a joint axis of length 0 (`<axis>` without `xyz` is 0 0 0 in "
+         "urdfdom)", "accepts"),
+    Rule("E126", "mimic", "a `<mimic>` without `joint`, naming an unknown joint, or itself",
+         "rejects if no joint, accepts otherwise"),
+    Rule("E127", "joint-element-incomplete", "`<dynamics>` with neither damping nor friction, "
+         "`<safety_controller>` without `k_velocity`", "rejects"),
+    # The kinematic tree
+    Rule("E130", "two-parents", "a link that is the child of two joints", "accepts"),
+    Rule("E131", "cycle", "joints that form a cycle, reachable from the root or detached",
+         "hangs if reachable from the root, accepts if detached, rejects if no root is left"),
+    Rule("E132", "self-loop", "a joint whose parent and child are the same link", "hangs"),
+    Rule("E133", "disconnected", "a link not connected to the tree (a second root)",
+         "rejects"),
+    # Inputs that are built first
+    Rule("E140", "xacro-error", "a `.xacro` input that xacro cannot expand", "n/a"),
+    # Warnings
+    Rule("W201", "unknown-element", "an element URDF does not define (a typo such as "
+         "`<visul>`, `<limits>`), with a did-you-mean", "ignores"),
+    Rule("W202", "unknown-attribute", "an attribute URDF does not define (a typo such as "
+         "`xzy=`), with a did-you-mean", "ignores"),
+    Rule("W203", "mass-nonpositive", "mass <= 0 on a moving link (child of a non-fixed joint)",
+         "accepts"),
+    Rule("W204", "inertia-not-positive-definite", "an inertia tensor that is not positive "
+         "definite", "accepts"),
+    Rule("W205", "inertia-triangle", "principal moments that break the triangle inequality "
+         "(no rigid body has them)", "accepts"),
+    Rule("W206", "inertial-missing", "a moving link with no `<inertial>`", "accepts"),
+    Rule("W207", "mesh-unreadable", "a mesh that cannot be found or loaded (package://, "
+         "file:// and relative paths resolved like `mcar build`)", "accepts"),
+    Rule("W208", "root-inertia", "a root link with an inertia: KDL (robot_state_publisher, "
+         "MoveIt) ignores it", "accepts"),
+    Rule("W209", "duplicate-element", "a second `<origin>`, `<geometry>`, `<limit>`, ... "
+         "where urdfdom reads only the first", "ignores"),
+    Rule("W220", "xacro-warning", "xacro printed a warning while expanding a `.xacro` input",
+         "n/a"),
+]
+
+RULES: dict[str, Rule] = {rule.id: rule for rule in _TABLE}
+
+_TREE_BLOCKERS = {"E100", "E101", "E102", "E104", "E106", "E107", "E108", "E120", "E121",
+                  "E122", "E130", "E131", "E132", "E133", "E140"}
+
+
+def markdown_table() -> str:
+    """The rule table as Markdown, for the README."""
+    lines = ["| id | name | what it finds | check_urdf |", "|---|---|---|---|"]
+    for rule in _TABLE:
+        lines.append(f"| {rule.id} | {rule.name} | {rule.summary} | {rule.urdfdom} |")
+    return "\n".join(lines)

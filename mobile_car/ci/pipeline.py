@@ -1,0 +1,177 @@
+"""``mcar ci`` as a library: build, strictly check and render every robot file of a package.
+
+The plan is every robot file of the package (parts, steps, complete robots) and, for each
+variant file in ``urdf/variants/*.yaml``, the package's top-level robot files (those
+directly in ``urdf/``) built with that variant's dimensions. Each item goes through three
+steps; a failed step is recorded and the item's later steps are skipped, while the other
+items go on. Nothing here prints: the command line formats the :class:`CiItem` list.
+"""
+
+from __future__ import annotations
+
+import contextlib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..atomic import atomic_write
+from ..check.diagnostics import Diagnostic
+from ..errors import McarError, combine_exit_codes
+from ..load.inputs import RobotInput, Selection, display_path
+from ..load.robot import LoadOptions
+from ..packages.discover import output_name, source_base
+
+STEPS = ("build", "check", "render")
+
+
+@dataclass
+class Step:
+    """The outcome of one step: ``status`` is passed, failed or skipped."""
+
+    name: str
+    status: str = "passed"
+    message: str = ""  # why it failed (first line), or what it wrote
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    seconds: float = 0.0
+    exit_code: int = 0  # of a failed step: 1 problems in the input, 2 environment/usage
+    error: McarError | None = None  # what failed a step that has no diagnostics
+
+
+@dataclass
+class CiItem:
+    label: str  # e.g. "wheel/test_wheel.urdf.xacro" or "mobile_robot.xacro @ small"
+    input: RobotInput
+    variant: Path | None
+    urdf: Path
+    png: Path | None
+    steps: list[Step] = field(default_factory=list)
+    links: int | None = None
+    joints: int | None = None
+
+    @property
+    def source(self) -> Path:
+        return self.input.path
+
+    @property
+    def ok(self) -> bool:
+        return all(step.status == "passed" for step in self.steps)
+
+    @property
+    def errors(self) -> int:
+        return sum(1 for step in self.steps for d in step.diagnostics if d.is_error) + \
+            sum(1 for step in self.steps if step.status == "failed" and not step.diagnostics)
+
+    @property
+    def warnings(self) -> int:
+        return sum(1 for step in self.steps for d in step.diagnostics if not d.is_error)
+
+
+def variant_files(root: Path) -> list[Path]:
+    return sorted((source_base(root) / "variants").glob("*.yaml"))
+
+
+def plan(selection: Selection, build_dir: Path, render_dir: Path | None) -> list[CiItem]:
+    """Every item of a CI run over the inputs, in a stable order: each input, then for a
+    package (or folder) with variants, its top-level robot files once per variant."""
+    items = []
+
+    def item(inp: RobotInput, variant: Path | None) -> CiItem:
+        relative = output_name(inp.path, inp.base or inp.path.parent)
+        prefix = Path("variants") / variant.stem if variant else Path()
+        png = None
+        if render_dir is not None:
+            png = render_dir / prefix / relative.with_name(
+                relative.name[: -len(".urdf")] + ".png")
+        label = (inp.relative.as_posix() if inp.base is not None else inp.label) + \
+            (f" @ {variant.stem}" if variant else "")
+        return CiItem(label, inp, variant, build_dir / prefix / relative, png)
+
+    if selection.reads_stdin:
+        from ..errors import UsageError
+
+        raise UsageError("mcar ci builds files into --build-dir: give files, not - (stdin)")
+    items += [item(inp, None) for inp in selection.inputs]
+    if selection.kind in ("package", "folder"):
+        top_level = [inp for inp in selection.inputs if len(inp.relative.parts) == 1
+                     and inp.is_xacro]
+        for variant in variant_files(selection.root):
+            items += [item(inp, variant) for inp in top_level]
+    return items
+
+
+def _fail(item: CiItem, name: str, message: str, diagnostics=(), exit_code: int = 1,
+          error: McarError | None = None) -> None:
+    item.steps.append(Step(name, "failed", message, list(diagnostics), exit_code=exit_code,
+                           error=error))
+    done = {step.name for step in item.steps}
+    item.steps += [Step(rest, "skipped", f"skipped: {name} failed")
+                   for rest in STEPS if rest not in done]
+
+
+@contextlib.contextmanager
+def _item_options(item: CiItem, options: LoadOptions):
+    """The load options of an item: a variant's dimensions (validated as --config is),
+    with the command line's overrides on top."""
+    if item.variant is None:
+        yield options
+        return
+    from ..config.overrides import evaluate, override_mappings, read_overrides
+    from ..packages.search import PackageSearch
+
+    search = PackageSearch(package_paths=list(options.package_paths), origin=item.source)
+    spec, values = read_overrides(search, [], [item.variant])
+    if options.overrides is not None:
+        values.update(options.overrides.values)
+    with override_mappings(values) as mappings:
+        evaluate(spec, mappings, search)
+        yield LoadOptions({**options.mappings, **mappings}, options.package_paths,
+                          through_xacro=True)
+
+
+def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> bytes | None:
+    """The build and check steps of one item; returns the built URDF, or None."""
+    import time
+
+    from ..check.checker import check_loaded
+    from ..load.robot import load_robot
+
+    started = time.perf_counter()
+    try:
+        with _item_options(item, options) as item_options:
+            loaded = load_robot(item.input, item_options)
+        atomic_write(item.urdf, loaded.urdf)
+    except McarError as error:
+        _fail(item, "build", str(error), exit_code=error.exit_code, error=error)
+        return None
+    item.steps.append(Step("build", message=f"wrote {display_path(item.urdf)}",
+                           seconds=time.perf_counter() - started))
+    started = time.perf_counter()
+    result = check_loaded(loaded)
+    if result.robot is not None:
+        item.links, item.joints = len(result.robot.links), len(result.robot.joints)
+    if result.errors or (strict and result.warnings):
+        _fail(item, "check", result.diagnostics[0].text(), result.diagnostics)
+        return None
+    item.steps.append(Step("check", diagnostics=result.diagnostics,
+                           seconds=time.perf_counter() - started))
+    return loaded.urdf
+
+
+def render_step(item: CiItem, session, manifest) -> None:
+    """Draw the built URDF of an item that passed build and check."""
+    from ..render.session import RenderJob
+
+    if item.png is None:
+        return
+    result = session.render_one(RenderJob(RobotInput(item.urdf), item.png, item.label), manifest)
+    if result.error is not None:
+        _fail(item, "render", str(result.error), getattr(result.error, "diagnostics", ()),
+              exit_code=result.error.exit_code, error=result.error)
+        return
+    verb = "unchanged" if result.status == "unchanged" else "wrote"
+    item.steps.append(Step("render", message=f"{verb} {display_path(item.png)}",
+                           seconds=result.seconds))
+
+
+def exit_code(items: list[CiItem]) -> int:
+    return combine_exit_codes(step.exit_code for item in items for step in item.steps
+                              if step.status == "failed")

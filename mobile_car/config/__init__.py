@@ -1,0 +1,2 @@
+"""The robot's dimensions: config.xacro's spec, overrides (--set/--config), their
+evaluation by xacro itself, and units."""

@@ -1,0 +1,176 @@
+"""The robot's dimensions: read from ``urdf/config.xacro``, overridden, validated.
+
+``config.xacro`` is the one source of truth. Each dimension is a ``<xacro:property>`` with a
+comment on its line, ``UNIT[ (BOUND)]; SOURCE: meaning``; SOURCE ``derived`` marks a value
+computed from the others by an xacro expression. Values are never re-computed here: they
+are evaluated by xacro itself, by building a small probe that includes ``config.xacro``.
+
+This module reads the spec and validates override values one by one (unit, sign, known
+name); :mod:`mobile_car.config.overrides` applies them.
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import InputError, UsageError
+from ..packages.bundled import PACKAGE_NAME
+from ..packages.search import PackageSearch
+
+XACRO_NS = "http://www.ros.org/wiki/xacro"
+CONFIG_ARG = "config"
+# "m (>=0); listing: hub boss length" -> unit, optional flag, source, meaning.
+COMMENT_RE = re.compile(
+    r"^ (?P<unit>m|kg|kg/m\^3|rad/s|rad|N\*m|Hz|1)(?: \((?P<flag>>=0|any sign|mesh)\))?; "
+    r"(?P<source>datasheet|listing|estimate|design|derived): (?P<meaning>\S.*\S) $")
+_KIND = {"m": "a length", "kg": "a mass"}
+
+
+def quoteattr(value: str) -> str:
+    """A double-quoted XML attribute value (xml.sax.saxutils would import urllib: slow)."""
+    return '"' + (value.replace("&", "&amp;").replace("<", "&lt;").replace('"', "&quot;")
+                  .replace("\n", "&#10;")) + '"'
+
+
+@dataclass(frozen=True)
+class Dimension:
+    """One property of config.xacro and what its comment says about it."""
+
+    name: str
+    expression: str
+    unit: str
+    bound: str  # ">0" (the default), ">=0" or "any sign"
+    baked: bool  # baked into a generated mesh: not overridable
+    source: str
+    meaning: str
+    file: Path
+    line: int
+
+    @property
+    def derived(self) -> bool:
+        return self.source == "derived"
+
+
+@dataclass
+class ConfigSpec:
+    path: Path
+    dimensions: dict[str, Dimension]
+
+    def base(self) -> list[Dimension]:
+        return [d for d in self.dimensions.values() if not d.derived]
+
+    def derived(self) -> list[Dimension]:
+        return [d for d in self.dimensions.values() if d.derived]
+
+
+def config_file(search: PackageSearch) -> Path:
+    return search.find(PACKAGE_NAME) / "urdf" / "config.xacro"
+
+
+def load_spec(path: Path) -> ConfigSpec:
+    """Every documented property of a config.xacro, in file order."""
+    from lxml import etree
+
+    try:
+        root = etree.parse(str(path), etree.XMLParser(resolve_entities=False,
+                                                      no_network=True)).getroot()
+    except (OSError, etree.XMLSyntaxError) as error:
+        raise InputError(f"cannot read the dimension config: {error}", file=str(path)) from None
+    dimensions: dict[str, Dimension] = {}
+    for prop in root.findall(f"{{{XACRO_NS}}}property"):
+        comment = prop.getnext()
+        match = None
+        if isinstance(comment, etree._Comment) and comment.sourceline == prop.sourceline:
+            match = COMMENT_RE.match(comment.text or "")
+        if match is None:
+            raise InputError(f"property '{prop.get('name')}' has no 'UNIT; SOURCE: meaning' "
+                             "comment on its line", file=str(path), line=prop.sourceline)
+        dimensions[prop.get("name")] = Dimension(
+            name=prop.get("name"), expression=prop.get("value", ""), unit=match["unit"],
+            bound=match["flag"] if match["flag"] in (">=0", "any sign") else ">0",
+            baked=match["flag"] == "mesh", source=match["source"], meaning=match["meaning"],
+            file=path, line=prop.sourceline)
+    return ConfigSpec(path=path, dimensions=dimensions)
+
+
+def _check_bound(dimension: Dimension, value: float, origin: str) -> None:
+    kind = _KIND.get(dimension.unit, "the value")
+    if dimension.bound == ">0" and value <= 0:
+        raise UsageError(f"{origin}: {dimension.name} = {value:g} {dimension.unit}: "
+                         f"{kind} must be > 0")
+    if dimension.bound == ">=0" and value < 0:
+        raise UsageError(f"{origin}: {dimension.name} = {value:g} {dimension.unit}: "
+                         f"{kind} must be >= 0")
+
+
+def _override(spec: ConfigSpec, name: str, raw, origin: str) -> float:
+    from .units import parse_quantity
+
+    dimension = spec.dimensions.get(name)
+    if dimension is None:
+        close = difflib.get_close_matches(name, list(spec.dimensions), n=1)
+        hint = f" (did you mean '{close[0]}'?)" if close else ""
+        raise UsageError(f"{origin}: unknown dimension '{name}'{hint}; "
+                         "`mcar config` lists them")
+    if dimension.derived:
+        raise UsageError(f"{origin}: {name} is derived ({dimension.expression.strip('${}')}), "
+                         "not set: change what it is computed from")
+    value = parse_quantity(raw, dimension.unit, f"{origin}: {name}")
+    if dimension.baked and value != float(dimension.expression):
+        raise UsageError(f"{origin}: {name} is baked into a mesh (scripts/make_meshes.py); "
+                         "change it in config.xacro and regenerate the meshes instead")
+    _check_bound(dimension, value, origin)
+    return value
+
+
+def parse_set_options(spec: ConfigSpec, words: list[str]) -> dict[str, float]:
+    """``--set NAME=VALUE`` words as SI overrides."""
+    overrides = {}
+    for word in words:
+        name, sep, raw = word.partition("=")
+        if not sep or not name.strip() or not raw.strip():
+            raise UsageError(f"--set {word}: expected NAME=VALUE, e.g. wheel_radius=0.04")
+        overrides[name.strip()] = _override(spec, name.strip(), raw.strip(), f"--set {word}")
+    return overrides
+
+
+def read_config_file(spec: ConfigSpec, path: Path) -> dict[str, float]:
+    """A partial config file: ``name: value`` pairs, or the JSON/YAML `mcar config` writes."""
+    import yaml
+
+    shown = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+        node = yaml.compose(text, Loader=yaml.SafeLoader)
+        data = yaml.safe_load(text)
+    except FileNotFoundError:
+        raise InputError("no such file", file=shown) from None
+    except IsADirectoryError:
+        raise InputError("is a directory, not a config file", file=shown) from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise InputError(f"cannot read: {error}", file=shown) from None
+    except yaml.YAMLError as error:
+        mark = getattr(error, "problem_mark", None)
+        problem = getattr(error, "problem", None) or "not valid YAML"
+        raise UsageError(f"not valid YAML: {problem}", file=shown,
+                         line=mark.line + 1 if mark else None) from None
+    if data is None:
+        return {}
+    if not isinstance(data, dict):
+        raise UsageError("expected a mapping of dimension names to values", file=shown)
+    lines = {}
+    if isinstance(node, yaml.MappingNode):
+        lines = {k.value: k.start_mark.line + 1 for k, _v in node.value}
+    if isinstance(data.get("dimensions"), dict):  # the document `mcar config` prints
+        data = {name: (entry.get("value") if isinstance(entry, dict) else entry)
+                for name, entry in data["dimensions"].items()}
+    overrides = {}
+    for name, raw in data.items():
+        origin = f"{shown}:{lines[name]}" if name in lines else shown
+        if not isinstance(raw, (int, float, str)) or isinstance(raw, bool):
+            raise UsageError(f"{origin}: {name}: expected a number, got {raw!r}")
+        overrides[str(name)] = _override(spec, str(name), raw, origin)
+    return overrides

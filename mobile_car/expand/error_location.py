@@ -1,0 +1,147 @@
+"""Where an xacro error is: xacro knows the file (sometimes), mcar finds the line.
+
+xacro raises many kinds of exceptions, most with only a message; this turns each into one
+:class:`~mobile_car.errors.BuildError` with ``FILE:LINE`` (found by searching the files on
+xacro's macro and include stacks for the text the message quotes) and the stack itself.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import xml.parsers.expat
+from pathlib import Path
+
+import xacro
+
+from ..errors import BuildError, McarError
+from ..load.inputs import display_path
+
+_QUOTED_RE = re.compile(r"'([^']+)'")
+_COMMENT_RE = re.compile(r"<!--.*?-->", re.S)
+_MAX_STACK_LINES = 8
+
+
+def error_from(exc: BaseException, parsing: list, source: Path) -> McarError:
+    """Turn whatever xacro raised into one located BuildError (or the McarError inside)."""
+    inner = getattr(exc, "exc", None)
+    if isinstance(exc, McarError) or isinstance(inner, McarError):
+        error = exc if isinstance(exc, McarError) else inner
+        if error.file is None:  # say which file asked for the package, and where
+            error.file, error.line = _locate(source, _needles(error.message))
+        return error
+    if isinstance(inner, OSError) and inner.filename:
+        exc = BuildError(f"cannot read {display_path(inner.filename)}: "
+                         f"{inner.strerror or inner}")
+        needles = [os.path.basename(str(inner.filename))]
+    else:
+        needles = _needles(str(exc))
+    if isinstance(exc, xml.parsers.expat.ExpatError):
+        bad = parsing[-1] if parsing and parsing[-1] else str(source)
+        message = xml.parsers.expat.ErrorString(exc.code) if exc.code else str(exc)
+        return BuildError(f"XML parse error: {message} (column {exc.offset + 1})",
+                          file=display_path(bad), line=exc.lineno, details=_stack_details())
+    if isinstance(exc, RecursionError):
+        macros = list(xacro.macrostack or [])
+        files = [f for f in (xacro.filestack or []) if f]
+        if macros:
+            needles = [f"<xacro:{macros[-1].body.getAttribute('name')}"]
+        else:
+            needles = [os.path.basename(files[-1])] if files else []
+        file, line = _locate(source, needles)
+        return BuildError("recursion too deep: a macro or an include that calls itself?",
+                          file=file, line=line, details=_stack_details())
+    message = " ".join(str(exc).split()) or type(exc).__name__
+    if isinstance(inner, MemoryError) or isinstance(exc, MemoryError):
+        message = f"out of memory {message}".strip()
+    # xacro.fatal("...") is the author's own message: xacro's "when evaluating" adds noise.
+    message = re.sub(r" when evaluating expression 'xacro\.fatal\(.*$", "", message)
+    file, line = _locate(source, needles)
+    return BuildError(message, file=file, line=line, details=_stack_details())
+
+
+def _locate(source: Path, needles: list[str]) -> tuple[str, int | None]:
+    """The file and line an xacro error is about, as well as text search can tell."""
+    # Inside a macro the faulty text is in the macro's own file; else in the current file.
+    macros = list(xacro.macrostack or [])
+    candidates = []
+    if macros and macros[-1].history:
+        candidates.append(macros[-1].history[-1][-1])
+    candidates += [f for f in reversed(xacro.filestack or []) if f]
+    candidates.append(str(source))
+    for candidate in candidates:
+        line = _find_line(candidate, needles)
+        if line:
+            return display_path(candidate), line
+    return display_path(candidates[0]), None
+
+
+def _needles(message: str) -> list[str]:
+    """Fragments of an xacro message worth searching the source for, most specific first."""
+    needles = []
+    match = re.search(r"when evaluating expression '(.+)'", message, re.S)
+    if match:
+        needles += ["${" + match.group(1) + "}", match.group(1)]
+    match = re.search(r"Undefined substitution argument (\S+)", message)
+    if match:
+        needles.append(f"$(arg {match.group(1)})")
+    match = re.search(r"No such file or directory: (\S+)", message)
+    if match:
+        needles.append(os.path.basename(match.group(1).rstrip("'")))
+    match = re.search(r"unknown macro name:? (\S+)", message)
+    if match:
+        needles.append(f"<{match.group(1)}")
+    match = re.search(r"package '([^']+)' not found", message)
+    if match:
+        needles.append(f"find {match.group(1)}")
+    needles += [q for q in _QUOTED_RE.findall(message) if len(q) > 1]
+    return needles
+
+
+def _find_line(path: str | None, needles: list[str]) -> int | None:
+    if not path or not needles:
+        return None
+    try:
+        text = Path(path).read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return None
+    # A comment that mentions the name is not where the error is: blank comments out,
+    # keeping their newlines so line numbers stay right.
+    lines = _COMMENT_RE.sub(lambda m: "\n" * m.group(0).count("\n"), text).splitlines()
+    for needle in needles:
+        for number, text in enumerate(lines, start=1):
+            if needle in text:
+                return number
+    return None
+
+
+def _stack_details() -> list[str]:
+    """xacro's macro and include stack, innermost first, as print_location would say it."""
+    details = []
+    macros = list(xacro.macrostack or [])
+    for i, macro in enumerate(reversed(macros)):
+        defined = macro.history[-1][-1] if macro.history else None
+        verb = "when instantiating macro:" if i == 0 else "instantiated from:"
+        details.append(f"{verb} {macro.body.getAttribute('name')} "
+                       f"({display_path(defined) if defined else '???'})")
+    files = [f for f in (xacro.filestack or []) if f]
+    for i, name in enumerate(reversed(files)):
+        verb = ("in file:" if macros else "when processing file:") if i == 0 else "included from:"
+        details.append(f"{verb} {display_path(name)}")
+    return _collapse_repeats(details)
+
+
+def _collapse_repeats(lines: list[str]) -> list[str]:
+    """A runaway recursion repeats one stack line hundreds of times: say it once."""
+    out: list[str] = []
+    count = 0
+    for i, line in enumerate(lines):
+        count += 1
+        if i + 1 < len(lines) and lines[i + 1] == line:
+            continue
+        out.append(line if count == 1 else f"{line} (x{count})")
+        count = 0
+    if len(out) > _MAX_STACK_LINES:  # a loop through several files or macros
+        hidden = len(out) - _MAX_STACK_LINES + 1
+        out = out[: _MAX_STACK_LINES - 1] + [f"... and {hidden} more (a loop?)"]
+    return out

@@ -1,0 +1,161 @@
+"""The one loader: a robot input (file or stdin), xacro arguments and dimension overrides in,
+the expanded robot out (URDF bytes, the files read, a map back to source lines, warnings),
+or a located error.
+
+Every command loads through :func:`load_robot`, so they take the same inputs and refuse
+the same things with the same words and exit codes:
+
+* a missing, unreadable or directory input: :class:`~mobile_car.errors.InputError` (2);
+* a ``.xacro`` macro file given as a robot: :class:`MacroFileError` (2);
+* a ``.xacro`` that xacro cannot expand: :class:`~mobile_car.errors.BuildError` (1), with
+  its file, line and macro/include stack;
+* xacro arguments or overrides the input cannot take: :class:`~mobile_car.errors.UsageError` (2).
+
+A plain URDF is read as it is (``mcar check`` has no size limit and never imports xacro);
+with ``through_xacro`` (``mcar build``) it goes through xacro like a ``.xacro`` does.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from ..errors import InputError, UsageError
+from ..packages.search import PackageSearch
+from .inputs import RobotInput, check_input_size, check_size, display_path
+
+if TYPE_CHECKING:  # checking a plain URDF imports neither xacro nor the config code
+    from ..config.overrides import Overrides
+
+# The xacro argument config.xacro reads overrides from (mobile_car.config.spec.CONFIG_ARG,
+# not imported from there for the reason above).
+CONFIG_ARG = "config"
+
+
+class MacroFileError(UsageError):
+    """A ``.xacro`` whose ``<robot>`` has no name: it defines macros, it is not a robot."""
+
+
+@dataclass
+class LoadOptions:
+    """How every input of one command is loaded."""
+
+    mappings: dict[str, str] = field(default_factory=dict)  # NAME:=VALUE
+    package_paths: list[Path] = field(default_factory=list)
+    overrides: Overrides | None = None  # --set/--config, validated and written once
+    through_xacro: bool = False  # a plain URDF goes through xacro too (mcar build)
+    # Refuse inputs over MCAR_MAX_INPUT_MB (xacro always does): for commands that hold
+    # ~45x the file in memory (render); `mcar check` reads any size.
+    size_limited: bool = False
+
+    @property
+    def has_arguments(self) -> bool:
+        return bool(self.mappings) or self.overrides is not None
+
+
+@dataclass
+class LoadedRobot:
+    """An expanded robot, ready to check and use."""
+
+    input: RobotInput
+    urdf: bytes
+    search: PackageSearch
+    deps: list[Path] = field(default_factory=list)  # the files read, the input first
+    warnings: list[str] = field(default_factory=list)  # xacro's warnings
+    locate: object = None  # a SourceLocator for a .xacro: built element -> source line
+    from_xacro: bool = False
+
+    @property
+    def label(self) -> str:
+        return self.input.label
+
+    @property
+    def base(self) -> Path:
+        """The folder relative mesh and file paths are taken from."""
+        return self.input.path.parent if self.input.path is not None else Path.cwd()
+
+
+def load_robot(inp: RobotInput, options: LoadOptions, stdin=None) -> LoadedRobot:
+    """Load one input; ``stdin`` is the binary stream ``-`` reads."""
+    origin = inp.path if inp.path is not None else Path.cwd()
+    search = PackageSearch(package_paths=list(options.package_paths), origin=origin)
+    if inp.path is None:
+        data = stdin.read() if stdin is not None else b""
+        if options.size_limited:
+            check_size(len(data), inp.label)
+        if not options.through_xacro:
+            return LoadedRobot(inp, data, search)
+        return _expand(inp, options, search, text=data)
+    require_robot_file(inp)
+    if not inp.is_xacro and not options.through_xacro:
+        try:
+            if options.size_limited:
+                check_input_size(inp.path)
+            data = inp.path.read_bytes()
+        except OSError as error:
+            raise InputError(f"cannot read: {error.strerror or error}", file=inp.label) from None
+        return LoadedRobot(inp, data, search, deps=[inp.path])
+    return _expand(inp, options, search)
+
+
+def _expand(inp: RobotInput, options: LoadOptions, search: PackageSearch,
+            text: bytes | None = None) -> LoadedRobot:
+    from ..expand.source_map import SourceLocator
+    from ..expand.xacro_build import build_file
+
+    mappings = dict(options.mappings)
+    if options.overrides is not None:
+        mappings.update(options.overrides.mappings)
+    built = build_file(inp.path, mappings, search, optional_args=frozenset({CONFIG_ARG}),
+                       text=text)
+    # A file found in a folder may leave config.xacro out; one the user named may not.
+    if options.overrides is not None and inp.base is None and CONFIG_ARG not in built.known_args:
+        raise UsageError("--set/--config change config.xacro, which this file does not "
+                         "include", file=inp.label)
+    locate = SourceLocator(inp.path, built.deps) if inp.path is not None else None
+    return LoadedRobot(inp, built.xml.encode("utf-8"), search, deps=built.deps,
+                       warnings=built.warnings, locate=locate, from_xacro=True)
+
+
+def refuse_unused_arguments(inputs: list[RobotInput], options: LoadOptions,
+                            overriding: bool = False) -> None:
+    """UsageError (naming the file) when arguments are given and no input can take them:
+    xacro arguments and dimension overrides (``overriding``) apply to ``.xacro`` files
+    only; stdin, which ``mcar build`` expands, may take them."""
+    if not (options.has_arguments or overriding):
+        return
+    if options.through_xacro and any(inp.path is None for inp in inputs):
+        return
+    if any(inp.is_xacro for inp in inputs):
+        return
+    first = inputs[0].label if inputs else None
+    raise UsageError("NAME:=VALUE, --set and --config apply to .xacro inputs, and this is a "
+                     "URDF: give the .xacro it was built from", file=first)
+
+
+def require_robot_file(inp: RobotInput) -> None:
+    """InputError unless the input is a readable file; MacroFileError for a macro file."""
+    _require_readable(inp.path)
+    if inp.is_xacro and is_macro_file(inp.path):
+        raise MacroFileError(f"{inp.label} is a macro file: include it from a robot file, "
+                             "or build its test file")
+
+
+def _require_readable(path: Path) -> None:
+    shown = display_path(path)
+    if not path.exists():
+        raise InputError("no such file", file=shown)
+    if path.is_dir():
+        raise InputError("is a directory, not a URDF or xacro file", file=shown)
+    if not os.access(path, os.R_OK):
+        raise InputError("permission denied", file=shown)
+
+
+def is_macro_file(path: Path) -> bool:
+    """True for a well-formed file whose root is a ``<robot>`` without a name."""
+    from ..packages.discover import root_element
+
+    root = root_element(path)
+    return root is not None and root[0] == "robot" and not root[1]

@@ -1,0 +1,71 @@
+"""Find the robot files of a description package: what every command takes from a folder.
+
+A robot file is a ``.urdf`` file, or a ``.xacro`` whose root is ``<robot name="...">``.
+Macro libraries (``define.xacro``, ``wheel/wheel.xacro``) have a nameless ``<robot>``
+root: they are included, never built alone. Deciding by content, not by file name,
+lets another team's package work with no configuration.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+# Folders of a package that hold outputs or tools, never robot files to take as inputs.
+_NOT_SOURCES = {"build", "install", "log", "renders", "node_modules", "__pycache__"}
+
+
+def root_element(path: Path) -> tuple[str, str | None] | None:
+    """The root element's local name and ``name`` attribute; None when unreadable or
+    not well-formed (a broken file is reported by whoever loads it)."""
+    from lxml import etree  # only folder inputs and .xacro files need it: keep URDF checks light
+
+    try:
+        for _event, element in etree.iterparse(str(path), events=("start",),
+                                               resolve_entities=False, no_network=True):
+            return etree.QName(element).localname, element.get("name")
+    except (etree.XMLSyntaxError, OSError):
+        return None
+    return None
+
+
+def is_robot_file(path: Path) -> bool:
+    """True if the file's root element is a ``<robot>`` with a ``name`` attribute."""
+    root = root_element(path)
+    if root is not None:
+        return root[0] == "robot" and bool(root[1])
+    # A broken robot file is still a robot file: building it reports the error.
+    try:
+        head = path.read_text(encoding="utf-8", errors="replace")[:4096]
+    except OSError:
+        return False
+    return "<robot" in head and "name=" in head.split("<robot", 1)[1].split(">", 1)[0]
+
+
+def source_base(root: Path) -> Path:
+    """The folder holding a package's robot files: its ``urdf/``, or the folder itself."""
+    return root / "urdf" if (root / "urdf").is_dir() else root
+
+
+def robot_files(root: Path) -> list[Path]:
+    """Every ``.urdf`` file and robot ``.xacro`` below ``root`` (its ``urdf/`` if it has
+    one), sorted; hidden folders and output folders (build/, renders/, ...) are skipped."""
+    base = source_base(root)
+    found = []
+    for path in base.rglob("*"):
+        if any(part.startswith(".") or part in _NOT_SOURCES
+               for part in path.relative_to(base).parts[:-1]):
+            continue
+        if path.name.endswith(".urdf") and path.is_file():
+            found.append(path)
+        elif path.name.endswith(".xacro") and path.is_file() and is_robot_file(path):
+            found.append(path)
+    return sorted(found)
+
+
+def output_name(source: Path, base: Path) -> Path:
+    """Where a built file goes, relative to the output folder: ``wheel/test_wheel.urdf``."""
+    relative = source.relative_to(base)
+    name = relative.name[: -len(".xacro")] if relative.name.endswith(".xacro") else relative.name
+    if not name.endswith(".urdf"):
+        name += ".urdf"
+    return relative.with_name(name)

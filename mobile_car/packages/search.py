@@ -1,0 +1,166 @@
+"""Find ROS packages without ROS, for ``$(find PKG)`` and ``package://PKG/...``.
+
+A package is a directory holding a ``package.xml`` whose ``<name>`` is the package name.
+The search order, first match wins:
+
+1. the package that contains the input file (so a checkout being edited beats any copy);
+2. directories given with ``--package-path`` (each searched recursively, like ROS 1);
+3. ``ROS_PACKAGE_PATH`` (colon separated, searched recursively);
+4. ``AMENT_PREFIX_PATH`` (colon separated, ``PREFIX/share/PKG``, as ROS 2 installs them);
+5. the description bundled with mcar.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import InputError, PackageNotFoundError
+from .bundled import PACKAGE_NAME, description_dir
+
+_NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
+# Directories never worth crawling for package.xml files.
+_SKIP_DIRS = {".git", ".hg", ".svn", "__pycache__", "node_modules", "build", "install", "log"}
+_MAX_CRAWL_DEPTH = 8
+
+
+def package_name(package_xml: Path) -> str | None:
+    """The ``<name>`` of a package.xml, or None if it has none or cannot be read."""
+    try:
+        head = package_xml.read_bytes()[:65536]
+    except OSError:
+        return None
+    match = _NAME_RE.search(head)
+    return match.group(1).decode("utf-8", "replace") if match else None
+
+
+def enclosing_package(path: Path) -> tuple[str, Path] | None:
+    """The (name, directory) of the package a file or folder lies in, walking up from it."""
+    start = Path(path).resolve()
+    for directory in ([start] if start.is_dir() else []) + list(start.parents):
+        xml = directory / "package.xml"
+        if xml.is_file():
+            name = package_name(xml)
+            return (name, directory) if name else None
+    return None
+
+
+def _crawl(root: Path, found: dict[str, Path]) -> None:
+    """Record every package under root; like rospack, do not descend into a package."""
+    stack = [(root, 0)]
+    while stack:
+        directory, depth = stack.pop()
+        xml = directory / "package.xml"
+        if xml.is_file():
+            name = package_name(xml)
+            if name:
+                found.setdefault(name, directory)
+            continue
+        if depth >= _MAX_CRAWL_DEPTH or (directory / "CATKIN_IGNORE").exists():
+            continue
+        try:
+            children = sorted(os.scandir(directory), key=lambda e: e.name, reverse=True)
+        except OSError:
+            continue
+        for entry in children:
+            if entry.is_dir(follow_symlinks=False) and entry.name not in _SKIP_DIRS \
+                    and not entry.name.startswith("."):
+                stack.append((Path(entry.path), depth + 1))
+
+
+def _split_path_list(value: str | None) -> list[Path]:
+    return [Path(p) for p in (value or "").split(os.pathsep) if p]
+
+
+@dataclass
+class PackageSearch:
+    """Resolves package names to directories; build one per command and reuse it."""
+
+    package_paths: list[Path] = field(default_factory=list)
+    origin: Path | None = None  # the input file, whose own package wins
+    environ: dict[str, str] | None = None
+    _cache: dict[str, Path] = field(default_factory=dict, init=False, repr=False)
+    _crawled: dict[str, Path] | None = field(default=None, init=False, repr=False)
+
+    def __post_init__(self):
+        for path in self.package_paths:
+            if not Path(path).is_dir():
+                raise InputError(f"--package-path {path}: not a directory")
+        self.package_paths = [Path(p) for p in self.package_paths]
+
+    @property
+    def _env(self) -> dict[str, str]:
+        return dict(os.environ) if self.environ is None else self.environ
+
+    def where_looked(self) -> list[str]:
+        places = []
+        if self.origin is not None:
+            own = enclosing_package(self.origin)
+            places.append(f"the package holding {self.origin} ({own[0] if own else 'none'})")
+        places += [f"--package-path {p}" for p in self.package_paths]
+        ros = self._env.get("ROS_PACKAGE_PATH")
+        places.append(f"ROS_PACKAGE_PATH={ros}" if ros else "ROS_PACKAGE_PATH (unset)")
+        ament = self._env.get("AMENT_PREFIX_PATH")
+        places.append(f"AMENT_PREFIX_PATH={ament}" if ament else "AMENT_PREFIX_PATH (unset)")
+        places.append(f"the bundled {PACKAGE_NAME}")
+        return places
+
+    def _crawled_packages(self) -> dict[str, Path]:
+        if self._crawled is None:
+            found: dict[str, Path] = {}
+            for root in self.package_paths + _split_path_list(self._env.get("ROS_PACKAGE_PATH")):
+                if root.is_dir():
+                    _crawl(root, found)
+            self._crawled = found
+        return self._crawled
+
+    def find(self, name: str) -> Path:
+        """The directory of package ``name``; PackageNotFoundError names where it looked."""
+        if name in self._cache:
+            return self._cache[name]
+        result = self._lookup(name)
+        if result is None:
+            raise PackageNotFoundError(
+                f"package '{name}' not found; looked in: " + "; ".join(self.where_looked()))
+        self._cache[name] = result
+        return result
+
+    def _lookup(self, name: str) -> Path | None:
+        if self.origin is not None:
+            own = enclosing_package(self.origin)
+            if own and own[0] == name:
+                return own[1]
+        crawled = self._crawled_packages().get(name)
+        if crawled is not None:
+            return crawled
+        for prefix in _split_path_list(self._env.get("AMENT_PREFIX_PATH")):
+            share = prefix / "share" / name
+            if (share / "package.xml").is_file() or (
+                    prefix / "share" / "ament_index" / "resource_index" / "packages" / name
+            ).is_file():
+                return share
+        if name == PACKAGE_NAME:
+            return description_dir()
+        return None
+
+    def resolve_uri(self, uri: str, base: Path | None = None) -> Path:
+        """A mesh or file URI (``package://``, ``file://``, or a relative path) as a path.
+
+        A ``package://`` path may not climb out of its package with ``..``.
+        """
+        if uri.startswith("package://"):
+            rest = uri[len("package://"):]
+            name, _, inner = rest.partition("/")
+            root = self.find(name).resolve()
+            path = (root / inner).resolve()
+            if root != path and root not in path.parents:
+                raise InputError(f"{uri}: path leaves package '{name}' ({root})")
+            return path
+        if uri.startswith("file://"):
+            return Path(uri[len("file://"):])
+        path = Path(uri)
+        if not path.is_absolute() and base is not None:
+            path = Path(base) / path
+        return path

@@ -1,0 +1,334 @@
+"""The quick paths of ``mcar check`` find exactly what the full checks find.
+
+Three shortcuts make a clean robot cheaper to check: links and joints written the usual
+way are proved clean (``mobile_car.check.plain_links``, ``check_joints._plainly_sound``) instead
+of going through every check with its messages, and numbers are read with ``float`` and
+their spelling proved afterwards (``Reporter.numbers_confirmed``). Each test here checks
+a document twice, with the shortcuts and with all of them turned off, and requires the
+same diagnostics; the documents are a realistic robot, that robot with one thing broken
+or oddly spelled, and the whole check corpus. The mutated robots must also really be
+reported, so a test cannot pass by both ways finding nothing.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from lxml import etree
+
+from mobile_car.check import checker, link_bodies
+from mobile_car.check import context as check_context
+from mobile_car.check import joints as check_joints
+from mobile_car.packages.search import PackageSearch
+
+CORPUS = Path(__file__).resolve().parents[1] / "check_corpus"
+BASE = CORPUS / "valid"  # meshes/cube.stl is there
+
+ROBOT = b"""<?xml version="1.0"?>
+<robot name="arm">
+  <material name="grey"><color rgba="0.6 0.6 0.6 1"/></material>
+  <link name="base_link"/>
+  <link name="upper">
+    <inertial>
+      <origin xyz="0 0 0.1" rpy="0 0 0"/>
+      <mass value="1.5"/>
+      <inertia ixx="0.01" ixy="0.001" ixz="0" iyy="0.012" iyz="0" izz="0.004"/>
+    </inertial>
+    <visual name="shell">
+      <origin xyz="0 0 0.1" rpy="0 1.5708 0"/>
+      <geometry><cylinder radius="0.03" length="0.2"/></geometry>
+      <material name="orange"><color rgba="1 0.4 0 1"/></material>
+    </visual>
+    <visual>
+      <geometry><box size="0.05 0.05 0.02"/></geometry>
+      <material name="orange"/>
+    </visual>
+    <collision>
+      <origin xyz="0 0 0.1"/>
+      <geometry><mesh filename="meshes/cube.stl" scale="0.1 0.1 0.2"/></geometry>
+    </collision>
+  </link>
+  <link name="tool">
+    <inertial>
+      <mass value="0.2"/>
+      <inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/>
+    </inertial>
+    <visual>
+      <geometry><sphere radius="0.02"/></geometry>
+      <material name="grey"/>
+    </visual>
+  </link>
+  <link name="camera">
+    <visual><geometry><box size="0.02 0.06 0.02"/></geometry></visual>
+  </link>
+  <joint name="shoulder" type="revolute">
+    <parent link="base_link"/><child link="upper"/>
+    <origin xyz="0 0 0.05" rpy="0 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-1.57" upper="1.57" effort="10" velocity="2"/>
+  </joint>
+  <joint name="wrist" type="continuous">
+    <parent link="upper"/><child link="tool"/>
+    <origin xyz="0 0 0.2"/><axis xyz="0 0 1"/>
+  </joint>
+  <joint name="camera_mount" type="fixed">
+    <parent link="upper"/><child link="camera"/>
+  </joint>
+</robot>
+"""
+
+
+def _check(data: bytes, quick: bool, monkeypatch, base: Path = BASE) -> list[tuple]:
+    """Every diagnostic of ``data`` as (rule, line, message), with or without shortcuts."""
+    with monkeypatch.context() as patch:
+        patch.setattr(check_context, "_CLEAN", set())  # no verdicts from earlier tests
+        if not quick:
+            patch.setattr(link_bodies, "plainly_clean", lambda *args: False)
+            patch.setattr(check_joints, "_plainly_sound", lambda *args: False)
+            full = checker._check_document
+
+            def never_quick(*args, quick_numbers):
+                return full(*args, quick_numbers=False)
+
+            patch.setattr(checker, "_check_document", never_quick)
+        result = checker.check_urdf_data(data, "robot.urdf", base=base,
+                                         search=PackageSearch(origin=base / "robot.urdf"))
+    return [(d.rule, d.line, d.message) for d in result.diagnostics]
+
+
+def _mutated(change) -> bytes:
+    root = etree.fromstring(ROBOT)
+    change(root)
+    return etree.tostring(root)
+
+
+def test_the_robot_is_clean_and_its_links_are_proved_so_quickly(monkeypatch):
+    assert _check(ROBOT, True, monkeypatch) == _check(ROBOT, False, monkeypatch) == []
+    from mobile_car.check.context import Reporter
+    from mobile_car.check.plain_links import plainly_clean
+
+    root = etree.fromstring(ROBOT)
+    report = Reporter("robot.urdf")
+    materials = {"grey"}
+    proved = [plainly_clean(link, report, materials, {"grey"}, moving=name != "camera",
+                            is_root=False)
+              for name in ("upper", "tool", "camera")
+              for link in root.iterfind(f"link[@name='{name}']")]
+    assert proved == [True, True, True]
+    assert materials == {"grey", "orange"}  # the colour upper's visual defines
+    assert report.diagnostics == [] and report.numbers_confirmed()
+
+
+def _set(path: str, attr: str, value: str):
+    return lambda root: root.find(path).set(attr, value)
+
+
+def _drop_attr(path: str, attr: str):
+    return lambda root: root.find(path).attrib.pop(attr)
+
+
+def _remove(path: str):
+    return lambda root: root.find(path).getparent().remove(root.find(path))
+
+
+def _append(path: str, xml: str):
+    return lambda root: root.find(path).append(etree.fromstring(xml))
+
+
+def _duplicate(path: str):
+    def change(root):
+        element = root.find(path)
+        element.addnext(etree.fromstring(etree.tostring(element, with_tail=False)))
+    return change
+
+
+def _move_inertial_to_root(root):
+    inertial = root.find("link[@name='tool']/inertial")
+    root.find("link[@name='base_link']").append(inertial)
+
+
+UPPER = "link[@name='upper']"
+INERTIAL = f"{UPPER}/inertial"
+SHELL = f"{UPPER}/visual[@name='shell']"
+STRUCTURE = {
+    "mass missing": _remove(f"{INERTIAL}/mass"),
+    "inertia missing": _remove(f"{INERTIAL}/inertia"),
+    "ixy missing": _drop_attr(f"{INERTIAL}/inertia", "ixy"),
+    "mass value missing": _drop_attr(f"{INERTIAL}/mass", "value"),
+    "geometry missing": _remove(f"{SHELL}/geometry"),
+    "geometry empty": _remove(f"{SHELL}/geometry/cylinder"),
+    "two shapes": _append(f"{SHELL}/geometry", "<box size='1 1 1'/>"),
+    "unknown shape": _append(f"{UPPER}/visual[2]/geometry", "<capsule radius='1'/>"),
+    "box without size": _drop_attr(f"{UPPER}/visual[2]/geometry/box", "size"),
+    "cylinder without length": _drop_attr(f"{SHELL}/geometry/cylinder", "length"),
+    "mesh without filename": _drop_attr(f"{UPPER}/collision/geometry/mesh", "filename"),
+    "mesh not found": _set(f"{UPPER}/collision/geometry/mesh", "filename", "meshes/no.stl"),
+    "unknown element in link": _append(UPPER, "<visul/>"),
+    "unknown element in visual": _append(SHELL, "<colour/>"),
+    "material in collision": _append(f"{UPPER}/collision", "<material name='grey'/>"),
+    "unknown attribute": _set(f"{SHELL}/origin", "xzy", "0 0 0"),
+    "unknown link attribute": _set(UPPER, "type", "arm"),
+    "unknown geometry attribute": _set(f"{SHELL}/geometry", "kind", "x"),
+    "unknown inertial attribute": _set(INERTIAL, "frame", "x"),
+    "second origin": _duplicate(f"{SHELL}/origin"),
+    "second inertial": _duplicate(INERTIAL),
+    "second mass": _duplicate(f"{INERTIAL}/mass"),
+    "child inside origin": _append(f"{SHELL}/origin", "<xyz/>"),
+    "child inside a shape": _append(f"{SHELL}/geometry/cylinder", "<radius/>"),
+    "material without name": _drop_attr(f"{SHELL}/material", "name"),
+    "material never defined": _set(f"{UPPER}/visual[2]/material", "name", "blue"),
+    "material used before its colour": lambda root: root.find(UPPER).insert(
+        1, etree.fromstring("<visual><geometry><sphere radius='1'/></geometry>"
+                            "<material name='orange'/></visual>")),
+    "colour without rgba": _drop_attr(f"{SHELL}/material/color", "rgba"),
+    "rgba above 1": _set(f"{SHELL}/material/color", "rgba", "1.5 0 0 1"),
+    "rgba below 0": _set(f"{SHELL}/material/color", "rgba", "-0.1 0 0 1"),
+    "moving link without inertial": _remove("link[@name='tool']/inertial"),
+    "mass 0 on a moving link": _set(f"{INERTIAL}/mass", "value", "0"),
+    "inertia not positive definite": _set(f"{INERTIAL}/inertia", "ixx", "-1"),
+    "triangle inequality broken": lambda root: root.find(f"{INERTIAL}/inertia").attrib.update(
+        {"ixx": "1", "ixy": "0", "iyy": "1", "izz": "3"}),
+    "inertia on the root": _move_inertial_to_root,
+    "zero box": _set(f"{UPPER}/visual[2]/geometry/box", "size", "0.05 0 0.02"),
+    "negative radius": _set(f"{SHELL}/geometry/cylinder", "radius", "-0.03"),
+    "mesh scale 0": _set(f"{UPPER}/collision/geometry/mesh", "scale", "1 0 1"),
+    "xacro left in a value": _set(f"{SHELL}/geometry/cylinder", "radius", "${r}"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(STRUCTURE))
+def test_a_broken_link_is_reported_alike_either_way(name, monkeypatch):
+    data = _mutated(STRUCTURE[name])
+    quick = _check(data, True, monkeypatch)
+    assert quick, f"{name}: nothing reported; the mutation does not break anything"
+    assert quick == _check(data, False, monkeypatch)
+
+
+SHOULDER = "joint[@name='shoulder']"
+WRIST = "joint[@name='wrist']"
+JOINTS = {
+    "unknown joint type": _set(SHOULDER, "type", "ball"),
+    "no joint type": _drop_attr(SHOULDER, "type"),
+    "parent link undefined": _set(f"{SHOULDER}/parent", "link", "torso"),
+    "child link name empty": _set(f"{WRIST}/child", "link", ""),
+    "child link name empty, as a link's": lambda root: [
+        root.insert(0, etree.fromstring("<link name=''/>")),
+        _set(f"{WRIST}/child", "link", "")(root)],
+    "no parent element": _remove(f"{WRIST}/parent"),
+    "revolute without limit": _remove(f"{SHOULDER}/limit"),
+    "limit without effort": _drop_attr(f"{SHOULDER}/limit", "effort"),
+    "limit lower above upper": _set(f"{SHOULDER}/limit", "lower", "2"),
+    "missing upper read as 0": lambda root: [_set(f"{SHOULDER}/limit", "lower", "0.5")(root),
+                                             _drop_attr(f"{SHOULDER}/limit", "upper")(root)],
+    "continuous limit upside down": _append(
+        WRIST, "<limit lower='1' upper='-1' effort='1' velocity='1'/>"),
+    "limit velocity unreadable": _set(f"{SHOULDER}/limit", "velocity", "fast"),
+    "zero axis": _set(f"{WRIST}/axis", "xyz", "0 0 0"),
+    "axis without xyz": _drop_attr(f"{WRIST}/axis", "xyz"),
+    "axis unreadable": _set(f"{WRIST}/axis", "xyz", "0 0"),
+    "origin unreadable": _set(f"{SHOULDER}/origin", "rpy", "0 0 x"),
+    "empty dynamics": _append(WRIST, "<dynamics/>"),
+    "dynamics unreadable": _append(WRIST, "<dynamics damping='a lot'/>"),
+    "mimic of nothing": _append(WRIST, "<mimic joint='elbow'/>"),
+    "mimics itself": _append(WRIST, "<mimic joint='wrist'/>"),
+    "safety controller without k_velocity": _append(
+        SHOULDER, "<safety_controller soft_lower_limit='-1'/>"),
+    "calibration unreadable": _append(SHOULDER, "<calibration rising='up'/>"),
+    "second origin in a joint": _duplicate(f"{SHOULDER}/origin"),
+    "unknown joint attribute": _set(SHOULDER, "kind", "x"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(JOINTS))
+def test_a_broken_joint_is_reported_alike_either_way(name, monkeypatch):
+    data = _mutated(JOINTS[name])
+    quick = _check(data, True, monkeypatch)
+    assert quick, f"{name}: nothing reported; the mutation does not break anything"
+    assert quick == _check(data, False, monkeypatch)
+
+
+# Written unusually but sound: the full checks decide these, and find nothing.
+UNUSUAL = {
+    "comment inside geometry": lambda root: root.find(f"{SHELL}/geometry").insert(
+        0, etree.Comment("a note")),
+    "comment inside a link": lambda root: root.find(UPPER).insert(0, etree.Comment("n")),
+    "material with a texture too": _append(f"{SHELL}/material", "<texture filename='t.png'/>"),
+    "material defined only by a texture": lambda root: root.find(f"{SHELL}/material").replace(
+        root.find(f"{SHELL}/material/color"), etree.fromstring("<texture filename='t.png'/>")),
+    "colour defined in a later link's visual": lambda root: root.find(
+        "link[@name='camera']/visual").append(etree.fromstring("<material name='orange'/>")),
+    "no origin anywhere": lambda root: [origin.getparent().remove(origin)
+                                        for origin in root.findall("link/*/origin")],
+    "fixed joint with a zero axis": _append("joint[@name='camera_mount']", "<axis xyz='0 0 0'/>"),
+    "fixed joint with an axis without xyz": _append("joint[@name='camera_mount']", "<axis/>"),
+    "a mimic": lambda root: root.find(WRIST).append(
+        etree.fromstring("<mimic joint='shoulder' multiplier='2' offset='0.1'/>")),
+    "a safety controller": _append(SHOULDER, "<safety_controller k_velocity='10'/>"),
+    "continuous joint with a limit": _append(WRIST, "<limit effort='1' velocity='2'/>"),
+    "limit with only effort and velocity on a revolute": lambda root: [
+        root.find(f"{SHOULDER}/limit").attrib.pop(a) for a in ("lower", "upper")],
+}
+
+
+@pytest.mark.parametrize("name", sorted(UNUSUAL))
+def test_an_unusual_sound_link_is_sound_either_way(name, monkeypatch):
+    data = _mutated(UNUSUAL[name])
+    assert _check(data, True, monkeypatch) == _check(data, False, monkeypatch) == []
+
+
+NUMBER_PLACES = {  # where a single number goes, and where a list of three
+    "mass": (f"{INERTIAL}/mass", "value"),
+    "ixx": (f"{INERTIAL}/inertia", "ixx"),
+    "radius": (f"{SHELL}/geometry/cylinder", "radius"),
+    "sphere": ("link[@name='tool']/visual/geometry/sphere", "radius"),
+    "limit": ("joint[@name='shoulder']/limit", "upper"),
+    "lower": ("joint[@name='shoulder']/limit", "lower"),
+    "effort": ("joint[@name='shoulder']/limit", "effort"),
+}
+LIST_PLACES = {
+    "inertial origin": (f"{INERTIAL}/origin", "xyz"),
+    "visual origin": (f"{SHELL}/origin", "rpy"),
+    "box": (f"{UPPER}/visual[2]/geometry/box", "size"),
+    "scale": (f"{UPPER}/collision/geometry/mesh", "scale"),
+    "axis": ("joint[@name='wrist']/axis", "xyz"),
+    "joint origin": ("joint[@name='shoulder']/origin", "xyz"),
+    "joint rpy": ("joint[@name='shoulder']/origin", "rpy"),
+}
+ODD_NUMBERS = ["nan", "inf", "-inf", "1e400", "1e-400", "1_0", " 1", "1 ", "0x1", "1,5", "",
+               "+.5", "1.", ".e1", "1e", "\u0661", "\uff11", "1\t", "\t1", "-0", "1e+2"]
+ODD_LISTS = ["1 2", "1 2 3 4", "1\t2 3", "1  2 3", " 1 2 3", "1 2 3 ", "nan 0 0", "1e400 0 0",
+             "1 2 inf", "1_0 1 1", "1 \u0662 3", "1\u00a02 3", "1 2\n3", "0.1 0.1 -0.1",
+             "1,2,3", "+1 -1 .5"]
+
+
+@pytest.mark.parametrize("place", sorted(NUMBER_PLACES))
+@pytest.mark.parametrize("text", ODD_NUMBERS, ids=repr)
+def test_an_oddly_spelled_number_is_read_as_urdfdom_reads_it(place, text, monkeypatch):
+    data = _mutated(_set(*NUMBER_PLACES[place], text))
+    assert _check(data, True, monkeypatch) == _check(data, False, monkeypatch)
+
+
+@pytest.mark.parametrize("place", sorted(LIST_PLACES))
+@pytest.mark.parametrize("text", ODD_LISTS, ids=repr)
+def test_an_oddly_spelled_list_is_read_as_urdfdom_reads_it(place, text, monkeypatch):
+    data = _mutated(_set(*LIST_PLACES[place], text))
+    assert _check(data, True, monkeypatch) == _check(data, False, monkeypatch)
+
+
+@settings(max_examples=150, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])  # _check undoes its patches
+@given(place=st.sampled_from(sorted(NUMBER_PLACES) + sorted(LIST_PLACES)),
+       text=st.text(alphabet="0123456789.eE+- _\tnaif\u0661,", min_size=0, max_size=9))
+def test_any_spelling_is_read_as_urdfdom_reads_it(place, text, monkeypatch):
+    data = _mutated(_set(*{**NUMBER_PLACES, **LIST_PLACES}[place], text))
+    assert _check(data, True, monkeypatch) == _check(data, False, monkeypatch)
+
+
+@pytest.mark.parametrize("case", sorted(CORPUS.glob("*/*.urdf")),
+                         ids=lambda p: f"{p.parent.name}/{p.name}")
+def test_the_check_corpus_is_reported_alike_either_way(case, monkeypatch):
+    data = case.read_bytes()
+    assert _check(data, True, monkeypatch, case.parent) == \
+        _check(data, False, monkeypatch, case.parent)

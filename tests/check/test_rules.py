@@ -1,0 +1,35 @@
+"""The rule table: documented in the README as it is in the code, and every rule tested."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from mobile_car.check.rules import RULES, markdown_table
+
+TESTS = Path(__file__).resolve().parents[1]
+README = TESTS.parent / "README.md"
+
+
+def test_readme_rule_table_is_the_code_table():
+    text = README.read_text(encoding="utf-8")
+    section = text[text.index("\n## mcar check\n"):]
+    assert markdown_table() in section
+
+
+def test_every_rule_has_a_test_that_expects_it():
+    expected = set()
+    for case in (TESTS / "check_corpus" / "broken").glob("*.urdf"):
+        expected |= set(re.findall(r"<!-- expect: ([EW]\d{3}) ", case.read_text()))
+    # The two rules about building xacro inputs are tested in test_check_cli.py.
+    cli_tests = (TESTS / "check" / "test_check_cli.py").read_text()
+    expected |= {rule for rule in ("E140", "W220") if f"[{rule}]" in cli_tests}
+    assert expected == set(RULES)
+
+
+def test_ids_are_stable_in_form_and_severity():
+    for rule_id, rule in RULES.items():
+        assert re.fullmatch(r"E1\d\d|W2\d\d", rule_id)
+        assert rule.severity == ("error" if rule_id[0] == "E" else "warning")
+        assert re.fullmatch(r"[a-z0-9-]+", rule.name)
+    assert len({rule.name for rule in RULES.values()}) == len(RULES)

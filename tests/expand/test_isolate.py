@@ -1,0 +1,58 @@
+"""xacro runs in a guarded child: runaway expressions end in a located error, in bounded time
+and memory, and the parent process is left as it was."""
+
+from __future__ import annotations
+
+import os
+import threading
+
+import pytest
+
+from mobile_car.expand.isolate import OutOfMemory, Timeout, run_isolated
+
+
+def test_result_and_exceptions_come_back():
+    assert run_isolated(sorted, [3, 1, 2]) == [1, 2, 3]
+    with pytest.raises(ZeroDivisionError):
+        run_isolated(divmod, 1, 0)
+
+
+def test_timeout_kills_the_child(monkeypatch):
+    monkeypatch.setenv("MCAR_XACRO_TIMEOUT", "0.5")
+    with pytest.raises(Timeout) as info:
+        run_isolated(pow, 9, 9**9)
+    assert info.value.seconds == 0.5
+
+
+def test_memory_limit(monkeypatch):
+    monkeypatch.setenv("MCAR_XACRO_MEMORY_MB", "300")
+    with pytest.raises(OutOfMemory) as info:
+        run_isolated(bytearray, 2 * 1024**3)
+    assert info.value.megabytes == 300
+
+
+def test_runs_in_process_when_other_threads_run():
+    gate = threading.Event()
+    worker = threading.Thread(target=gate.wait)
+    worker.start()
+    try:
+        assert run_isolated(os.getpid) == os.getpid()
+    finally:
+        gate.set()
+        worker.join()
+    assert run_isolated(os.getpid) != os.getpid()
+
+
+@pytest.mark.parametrize("expression, env, message", [
+    ("9**9**9", {"MCAR_XACRO_TIMEOUT": "2"}, "error: xacro did not finish within 2 s"),
+    ("[0] * 10**10", {}, "error: out of memory when evaluating expression"),
+])
+def test_runaway_xacro_is_a_build_error(run_mcar, tmp_path, expression, env, message):
+    source = tmp_path / "runaway.xacro"
+    source.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                      f'  <link name="${{{expression}}}"/>\n</robot>\n')
+    for command in ("build", "check"):
+        result = run_mcar(command, source, env=env, timeout=30)
+        assert result.returncode == 1, result.stderr
+        assert message in result.stderr
+        assert result.stderr.startswith(str(source))

@@ -1,0 +1,96 @@
+"""Package search without ROS: order, environment variables, and package:// safety."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from mobile_car.errors import InputError, PackageNotFoundError
+from mobile_car.packages.bundled import description_dir
+from mobile_car.packages.search import PackageSearch
+
+
+def make_package(root: Path, name: str) -> Path:
+    root.mkdir(parents=True, exist_ok=True)
+    (root / "package.xml").write_text(f"<package format='3'>\n  <name>{name}</name>\n</package>")
+    return root
+
+
+def test_bundled_description_is_found_with_an_empty_environment():
+    search = PackageSearch(environ={})
+    assert search.find("mobile_car_description") == description_dir()
+    assert (description_dir() / "urdf").is_dir()
+
+
+def test_order_input_package_then_package_path_then_ros_then_ament(tmp_path):
+    own = make_package(tmp_path / "own", "demo")
+    flag = make_package(tmp_path / "flag" / "demo", "demo")
+    ros = make_package(tmp_path / "ros" / "src" / "nested" / "demo", "demo")
+    ament = make_package(tmp_path / "ament" / "share" / "demo", "demo")
+    env = {"ROS_PACKAGE_PATH": str(tmp_path / "ros"), "AMENT_PREFIX_PATH": str(tmp_path / "ament")}
+    origin = own / "urdf" / "robot.xacro"
+    assert PackageSearch([tmp_path / "flag"], origin, env).find("demo") == own
+    assert PackageSearch([tmp_path / "flag"], None, env).find("demo") == flag
+    assert PackageSearch([], None, env).find("demo") == ros
+    del env["ROS_PACKAGE_PATH"]
+    assert PackageSearch([], None, env).find("demo") == ament
+
+
+def test_a_checkout_of_the_description_beats_the_bundled_copy(tmp_path):
+    checkout = make_package(tmp_path / "mobile_car_description", "mobile_car_description")
+    search = PackageSearch(origin=checkout / "urdf" / "mobile_robot.xacro", environ={})
+    assert search.find("mobile_car_description") == checkout
+
+
+def test_ament_index_marker_is_enough(tmp_path):
+    marker = tmp_path / "share" / "ament_index" / "resource_index" / "packages" / "bare"
+    marker.parent.mkdir(parents=True)
+    marker.write_text("")
+    search = PackageSearch(environ={"AMENT_PREFIX_PATH": str(tmp_path)})
+    assert search.find("bare") == tmp_path / "share" / "bare"
+
+
+def test_catkin_ignore_and_nested_packages_are_not_crawled(tmp_path):
+    make_package(tmp_path / "ignored" / "demo", "demo")
+    (tmp_path / "ignored" / "CATKIN_IGNORE").write_text("")
+    outer = make_package(tmp_path / "outer", "outer")
+    make_package(outer / "inner", "inner")  # inside a package: rospack does not look there
+    search = PackageSearch(environ={"ROS_PACKAGE_PATH": str(tmp_path)})
+    assert search.find("outer") == outer
+    for name in ("demo", "inner"):
+        with pytest.raises(PackageNotFoundError):
+            search.find(name)
+
+
+def test_not_found_names_the_package_and_every_place_looked(tmp_path):
+    env = {"ROS_PACKAGE_PATH": "/opt/ros_ws/src"}
+    with pytest.raises(PackageNotFoundError) as info:
+        PackageSearch([tmp_path], None, env).find("ghost_description")
+    message = str(info.value)
+    assert "package 'ghost_description' not found" in message
+    for place in (f"--package-path {tmp_path}", "ROS_PACKAGE_PATH=/opt/ros_ws/src",
+                  "AMENT_PREFIX_PATH (unset)", "the bundled mobile_car_description"):
+        assert place in message
+    assert info.value.exit_code == 2
+
+
+def test_package_path_must_be_a_directory(tmp_path):
+    with pytest.raises(InputError, match="not a directory"):
+        PackageSearch([tmp_path / "missing"])
+
+
+def test_resolve_uri_forms(tmp_path):
+    package = make_package(tmp_path / "pkg", "pkg")
+    search = PackageSearch(environ={"ROS_PACKAGE_PATH": str(tmp_path)})
+    assert search.resolve_uri("package://pkg/meshes/a.stl") == (package / "meshes/a.stl").resolve()
+    assert search.resolve_uri("file:///abs/b.stl") == Path("/abs/b.stl")
+    assert search.resolve_uri("meshes/c.stl", base=tmp_path) == tmp_path / "meshes/c.stl"
+
+
+def test_package_uri_may_not_leave_its_package(tmp_path):
+    make_package(tmp_path / "pkg", "pkg")
+    (tmp_path / "secret.txt").write_text("x")
+    search = PackageSearch(environ={"ROS_PACKAGE_PATH": str(tmp_path / "pkg")})
+    with pytest.raises(InputError, match="leaves package 'pkg'"):
+        search.resolve_uri("package://pkg/../secret.txt")

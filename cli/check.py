@@ -145,7 +145,7 @@ def overall_exit(results: list[CheckResult], strict: bool) -> int:
 @handle_errors
 def command(words, output_format, strict, quiet, package_paths, sets, config_files):
     # One short run builds hundreds of thousands of objects and no garbage cycles worth
-    # collecting; the cyclic collector's passes over them cost a quarter of the run.
+    # collecting; the cyclic collector's passes over them cost much of the run.
     gc.disable()
     try:
         with load_inputs(words, package_paths, sets, config_files) as (selection, options):
@@ -163,7 +163,7 @@ def command(words, output_format, strict, quiet, package_paths, sets, config_fil
             gc.enable()  # the caller (a test) goes on in this process
     if own_process():
         # Freeing a 20,000-link robot's lxml tree and model at interpreter exit takes a
-        # fifth of the run, for nothing: everything is printed, so leave at once.
+        # good part of the run, for nothing: everything is printed, so leave at once.
         sys.stdout.flush()
         sys.stderr.flush()
         os._exit(exit_code)

@@ -106,8 +106,8 @@ def command(words, output_format, build_dir, render_dir, no_render, renderer, ju
     from mobile_car.ci import pipeline
 
     started = time.perf_counter()
-    with load_inputs(words, package_paths, sets, config_files, through_xacro=True) as (
-            selection, options):
+    # A .urdf is "built" as it is: only xacro files are expanded, as check sees them.
+    with load_inputs(words, package_paths, sets, config_files) as (selection, options):
         items = pipeline.plan(selection, Path(build_dir), None if no_render else Path(render_dir))
         checked = [item for item in items
                    if pipeline.build_and_check(item, options) is not None]

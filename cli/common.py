@@ -104,7 +104,7 @@ def load_inputs(words, package_paths, sets, config_files, through_xacro: bool = 
 
 def stdin_for(selection):
     """The binary stdin stream when an input is ``-``, else None."""
-    return click.get_binary_stream("stdin") if selection.reads_stdin else None
+    return sys.stdin.buffer if selection.reads_stdin else None
 
 
 def use_color() -> bool | None:

@@ -23,7 +23,7 @@ Exit codes (every command):
   0  success
   1  problems found in the input (xacro error, failed check)
   2  usage, I/O or environment error (bad option, missing file, unknown package)
-  130 interrupted (Ctrl-C)
+  130  interrupted (Ctrl-C); 143 terminated
 """
 
 

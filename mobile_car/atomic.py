@@ -26,7 +26,7 @@ def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
         except OSError as exc:
             raise InputError(f"cannot write: {exc.strerror or exc}", file=str(target)) from None
         return target
-    import tempfile  # 3 ms of start-up (shutil, random, bz2, lzma): only when writing a file
+    import tempfile  # shutil, random, bz2, lzma: start-up time, only when writing a file
 
     try:
         target.parent.mkdir(parents=True, exist_ok=True)

@@ -11,7 +11,7 @@ their joined bytes that every one of them is spelled with digits, ``.eE+-`` and 
 spaces only, where Python and urdfdom read exactly alike. A document that fails the proof
 is checked again with urdfdom's grammar (:mod:`mobile_car.check.urdf_model`) throughout, so the
 verdicts are always urdfdom's; the quick way only saves the grammar's regular expression
-on the common spelling (a fifth of checking a robot whose every number differs).
+on the common spelling (much of checking a robot whose every number differs).
 """
 
 from __future__ import annotations

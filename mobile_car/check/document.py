@@ -22,7 +22,7 @@ _RAW_WHITESPACE_RE = re.compile(
     rb"(?:\"[^\"\t\n\r<]*[\t\n\r][^\"]*\"|'[^'\t\n\r<]*[\t\n\r][^']*')")
 _DOCTYPE_SUBSET_RE = re.compile(rb"<!DOCTYPE[^>\[]*\[")
 # A line break followed, on its line, by a quote that ends a value: a value spans lines.
-# Three times faster than _RAW_WHITESPACE_RE, which runs only when this finds something.
+# Faster than _RAW_WHITESPACE_RE, which runs only when this finds something.
 _LINE_BREAK_IN_VALUE_RE = re.compile(rb"\n[^\"'\n<>]*[\"'](?=[\s/>])")
 XACRO_HINT = "build it first: `mcar build FILE.xacro -o FILE.urdf`, or check the .xacro itself"
 

@@ -70,7 +70,7 @@ def load_problem(path: Path) -> str | None:
 def _sound_binary_stl(path: Path) -> bool:
     """True for a binary STL whose size matches its triangle count: no need for trimesh.
 
-    Importing numpy and trimesh costs ~0.4 s, more than checking a whole robot; STL is
+    Importing numpy and trimesh costs more than checking a whole robot; STL is
     the common case, and its binary form says its own length.
     """
     if path.suffix.lower() != ".stl":

@@ -123,8 +123,7 @@ def _item_options(item: CiItem, options: LoadOptions):
         values.update(options.overrides.values)
     with override_mappings(values) as mappings:
         evaluate(spec, mappings, search)
-        yield LoadOptions({**options.mappings, **mappings}, options.package_paths,
-                          through_xacro=True)
+        yield LoadOptions({**options.mappings, **mappings}, options.package_paths)
 
 
 def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> bytes | None:

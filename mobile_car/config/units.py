@@ -1,7 +1,7 @@
 """Read a dimension given by a person ("65mm", "6.5 cm", "90deg", "0.0325") as SI.
 
 A bare number is already SI. A number with a unit is converted with pint, which is
-imported only then (it costs a quarter second), and must have the dimension the config
+imported only then (it is slow to import), and must have the dimension the config
 entry expects: a length for ``m``, a mass for ``kg``, and so on.
 """
 

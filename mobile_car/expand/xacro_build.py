@@ -105,7 +105,7 @@ class _Session:
         return result
 
     def _eval_extension(self, text: str):
-        # xacro imports its substitution_args (and PyYAML with it, 15 ms) at the first
+        # xacro imports its substitution_args (and PyYAML with it) at the first
         # $(...); $(find) is pointed at our package search only then, as plain xacro would.
         if self._subst_saved is None:
             import xacro.substitution_args as subst

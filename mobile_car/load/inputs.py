@@ -40,8 +40,8 @@ def parse_mapping_args(words: list[str]) -> dict[str, str]:
     return mappings
 
 
-# xacro holds a document as a DOM of Python objects, about 45 times the file's size
-# (25 MB took 1.1 GB and 21 s here): refuse what would exhaust a CI runner's memory.
+# xacro holds a document as a DOM of Python objects, tens of times the file's size (the
+# figures: bench/notes.md): refuse what would exhaust a CI runner's memory.
 MAX_INPUT_MB_ENV = "MCAR_MAX_INPUT_MB"
 DEFAULT_MAX_INPUT_MB = 16
 

@@ -17,6 +17,7 @@ from .common import (
     handle_errors,
     load_inputs,
     print_diagnostic,
+    print_warning,
     report,
     robot_options,
 )
@@ -109,11 +110,9 @@ def command(words, output_format, build_dir, render_dir, no_render, renderer, ju
     # A .urdf is "built" as it is: only xacro files are expanded, as check sees them.
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
         items = pipeline.plan(selection, Path(build_dir), None if no_render else Path(render_dir))
-        checked = [item for item in items
-                   if pipeline.build_and_check(item, options) is not None]
+        checked = [item for item in items if pipeline.build_and_check(item, options)]
     if not no_render and checked:
-        roots = [selection.root] if selection.root is not None else []
-        _render(checked, Path(render_dir), renderer, [*package_paths, *roots])
+        _render(checked, Path(render_dir), renderer)
     code = pipeline.exit_code(items)
     if junit_xml:
         from mobile_car.atomic import atomic_write
@@ -124,17 +123,15 @@ def command(words, output_format, build_dir, render_dir, no_render, renderer, ju
     sys.exit(code)
 
 
-def _render(items, render_dir: Path, renderer: str, package_paths) -> None:
+def _render(items, render_dir: Path, renderer: str) -> None:
+    """Draw the robots that passed their check, as they were loaded and checked."""
     from mobile_car.ci import pipeline
-    from mobile_car.load.robot import LoadOptions
     from mobile_car.render.manifest import Manifest
     from mobile_car.render.options import RenderOptions
     from mobile_car.render.session import RenderSession
 
     manifest = Manifest(render_dir)
-    # The built URDFs live outside the package: let their package:// URIs find it.
-    load = LoadOptions(package_paths=[Path(p) for p in package_paths])
-    with RenderSession(RenderOptions(), renderer=renderer, load=load) as session:
+    with RenderSession(RenderOptions(), renderer=renderer) as session:
         try:
             for item in items:
                 pipeline.render_step(item, session, manifest)
@@ -144,7 +141,7 @@ def _render(items, render_dir: Path, renderer: str, package_paths) -> None:
             session.write_contact_sheet(manifest)
             manifest.save()
         for note in session.notes:
-            click.echo(f"mcar: warning: {note}", err=True)
+            print_warning("mcar", note)
 
 
 def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: bool) -> None:

@@ -239,7 +239,7 @@ def _run(session, jobs, manifest, quiet: bool) -> _Outcome:
             if bar is not None:
                 bar.update(1, result.job.caption)
             for note in session.notes:
-                click.echo(f"mcar: warning: {note}", err=True)
+                print_warning("mcar", note)
             session.notes.clear()
             for warning in result.warnings:
                 if isinstance(warning, str):

@@ -46,6 +46,7 @@ class CiItem:
     steps: list[Step] = field(default_factory=list)
     links: int | None = None
     joints: int | None = None
+    checked: object = None  # the CheckResult of a passed check step, which render draws
 
     @property
     def source(self) -> Path:
@@ -126,8 +127,8 @@ def _item_options(item: CiItem, options: LoadOptions):
         yield LoadOptions({**options.mappings, **mappings}, options.package_paths)
 
 
-def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> bytes | None:
-    """The build and check steps of one item; returns the built URDF, or None."""
+def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> bool:
+    """The build and check steps of one item; True if both passed."""
     import time
 
     from ..check.checker import check_loaded
@@ -140,7 +141,7 @@ def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> 
         atomic_write(item.urdf, loaded.urdf)
     except McarError as error:
         _fail(item, "build", str(error), exit_code=error.exit_code, error=error)
-        return None
+        return False
     item.steps.append(Step("build", message=f"wrote {display_path(item.urdf)}",
                            seconds=time.perf_counter() - started))
     started = time.perf_counter()
@@ -149,10 +150,11 @@ def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> 
         item.links, item.joints = len(result.robot.links), len(result.robot.joints)
     if result.errors or (strict and result.warnings):
         _fail(item, "check", result.diagnostics[0].text(), result.diagnostics)
-        return None
+        return False
     item.steps.append(Step("check", diagnostics=result.diagnostics,
                            seconds=time.perf_counter() - started))
-    return loaded.urdf
+    item.checked = result
+    return True
 
 
 def render_step(item: CiItem, session, manifest) -> None:
@@ -161,7 +163,8 @@ def render_step(item: CiItem, session, manifest) -> None:
 
     if item.png is None:
         return
-    result = session.render_one(RenderJob(RobotInput(item.urdf), item.png, item.label), manifest)
+    job = RenderJob(item.input, item.png, item.label, checked=item.checked)
+    result = session.render_one(job, manifest)
     if result.error is not None:
         _fail(item, "render", str(result.error), getattr(result.error, "diagnostics", ()),
               exit_code=result.error.exit_code, error=result.error)

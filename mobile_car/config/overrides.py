@@ -18,9 +18,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import BuildError, UsageError
+from ..load.robot import CONFIG_ARG
 from ..packages.search import PackageSearch
 from .spec import (
-    CONFIG_ARG,
     XACRO_NS,
     ConfigSpec,
     Dimension,

@@ -21,7 +21,6 @@ from ..packages.bundled import PACKAGE_NAME
 from ..packages.search import PackageSearch
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"
-CONFIG_ARG = "config"
 # "m (>=0); listing: hub boss length" -> unit, optional flag, source, meaning.
 COMMENT_RE = re.compile(
     r"^ (?P<unit>m|kg|kg/m\^3|rad/s|rad|N\*m|Hz|1)(?: \((?P<flag>>=0|any sign|mesh)\))?; "

@@ -17,6 +17,7 @@ with ``through_xacro`` (``mcar build``) it goes through xacro like a ``.xacro`` 
 
 from __future__ import annotations
 
+import functools
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -29,8 +30,8 @@ from .inputs import RobotInput, check_input_size, check_size, display_path
 if TYPE_CHECKING:  # checking a plain URDF imports neither xacro nor the config code
     from ..config.overrides import Overrides
 
-# The xacro argument config.xacro reads overrides from (mobile_car.config.spec.CONFIG_ARG,
-# not imported from there for the reason above).
+# The xacro argument config.xacro reads overrides from (defined here, not in mobile_car.config,
+# so that loading a robot without overrides imports none of the config code).
 CONFIG_ARG = "config"
 
 
@@ -64,12 +65,21 @@ class LoadedRobot:
     search: PackageSearch
     deps: list[Path] = field(default_factory=list)  # the files read, the input first
     warnings: list[str] = field(default_factory=list)  # xacro's warnings
-    locate: object = None  # a SourceLocator for a .xacro: built element -> source line
     from_xacro: bool = False
 
     @property
     def label(self) -> str:
         return self.input.label
+
+    @functools.cached_property
+    def locate(self):
+        """For an expanded file: a SourceLocator (built element -> xacro source line),
+        made only when a check asks (mcar build never needs one); else None."""
+        if not self.from_xacro or self.input.path is None:
+            return None
+        from ..expand.source_map import SourceLocator
+
+        return SourceLocator(self.input.path, self.deps)
 
     @property
     def base(self) -> Path:
@@ -102,7 +112,6 @@ def load_robot(inp: RobotInput, options: LoadOptions, stdin=None) -> LoadedRobot
 
 def _expand(inp: RobotInput, options: LoadOptions, search: PackageSearch,
             text: bytes | None = None) -> LoadedRobot:
-    from ..expand.source_map import SourceLocator
     from ..expand.xacro_build import build_file
 
     mappings = dict(options.mappings)
@@ -114,9 +123,8 @@ def _expand(inp: RobotInput, options: LoadOptions, search: PackageSearch,
     if options.overrides is not None and inp.base is None and CONFIG_ARG not in built.known_args:
         raise UsageError("--set/--config change config.xacro, which this file does not "
                          "include", file=inp.label)
-    locate = SourceLocator(inp.path, built.deps) if inp.path is not None else None
     return LoadedRobot(inp, built.xml.encode("utf-8"), search, deps=built.deps,
-                       warnings=built.warnings, locate=locate, from_xacro=True)
+                       warnings=built.warnings, from_xacro=True)
 
 
 def refuse_unused_arguments(inputs: list[RobotInput], options: LoadOptions,

@@ -16,16 +16,33 @@ _NOT_SOURCES = {"build", "install", "log", "renders", "node_modules", "__pycache
 
 def root_element(path: Path) -> tuple[str, str | None] | None:
     """The root element's local name and ``name`` attribute; None when unreadable or
-    not well-formed (a broken file is reported by whoever loads it)."""
-    from lxml import etree  # only folder inputs and .xacro files need it: keep URDF checks light
+    not well-formed before it (a broken file is reported by whoever loads it).
 
+    Read with the standard library's expat, which stops at the first element: lxml would
+    cost a one-file ``mcar build`` its import time for one tag.
+    """
+    import xml.parsers.expat
+
+    found: list[tuple[str, str | None]] = []
+
+    def start(tag, attributes):
+        found.append((tag.rpartition(":")[2], attributes.get("name")))
+        raise StopIteration  # the root is all we want
+
+    parser = xml.parsers.expat.ParserCreate()
+    parser.StartElementHandler = start
     try:
-        for _event, element in etree.iterparse(str(path), events=("start",),
-                                               resolve_entities=False, no_network=True):
-            return etree.QName(element).localname, element.get("name")
-    except (etree.XMLSyntaxError, OSError):
+        with open(path, "rb") as handle:
+            while not found:
+                chunk = handle.read(65536)
+                parser.Parse(chunk, not chunk)
+                if not chunk:
+                    break
+    except StopIteration:
+        pass
+    except (xml.parsers.expat.ExpatError, OSError):
         return None
-    return None
+    return found[0] if found else None
 
 
 def is_robot_file(path: Path) -> bool:

@@ -46,6 +46,7 @@ class RenderJob:
     input: RobotInput
     target: Path | None
     caption: str
+    checked: CheckResult | None = None  # already loaded and checked (mcar ci): draw that
 
 
 @dataclass
@@ -192,7 +193,7 @@ class RenderSession:
         """
         started = time.perf_counter()
         try:
-            result = check_input(job.input, self.load, stdin=self.stdin)
+            result = job.checked or check_input(job.input, self.load, stdin=self.stdin)
             blocking = blocking_diagnostics(result, self.options.collision)
             if blocking:
                 raise CheckFailed(job.input.label, blocking)

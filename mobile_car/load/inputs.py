@@ -30,14 +30,22 @@ def display_path(path: str | os.PathLike) -> str:
 
 
 def parse_mapping_args(words: list[str]) -> dict[str, str]:
-    """``NAME:=VALUE`` words as a dict; anything else is a usage error."""
-    mappings: dict[str, str] = {}
+    """``NAME:=VALUE`` words as the ``xacro`` command reads them (its own
+    ``load_mappings``): whitespace around name and value is dropped, an empty value
+    drops the mapping (the argument keeps its default, as ROS 2 launch files expect of
+    ``tf_prefix:=``), a private ``_name`` is ignored, the last of repeated names wins.
+    Where xacro would fail or silently drop a word mcar cannot read as one argument (no
+    name, two ``:=``, a name xacro cannot declare), that is a usage error."""
     for word in words:
         name, sep, value = word.partition(":=")
-        if not sep or not name or not re.fullmatch(r"[A-Za-z_][\w.-]*", name):
+        name = name.strip()
+        if not sep or ":=" in value or not re.fullmatch(r"[A-Za-z_][\w.-]*", name):
             raise UsageError(f"argument '{word}' is not of the form NAME:=VALUE")
-        mappings[name] = value
-    return mappings
+    if not words:
+        return {}
+    from xacro.cli import load_mappings  # the xacro command's own rules
+
+    return load_mappings(words)
 
 
 # xacro holds a document as a DOM of Python objects, tens of times the file's size (the

@@ -1,0 +1,57 @@
+"""Macro calls without the ``xacro:`` prefix, which xacro 2 copies into the URDF as they are.
+
+ROS 1 tutorials (the seed's complete robot among them) call macros as ``<chassis .../>``;
+xacro 2 expands only ``<xacro:chassis .../>`` and leaves the rest in place without a word,
+so the robot silently loses its body and wheels. An element named like a macro defined
+while expanding, and not like a URDF element (a macro called ``inertial`` may share its
+name with one), is such a call. Outside extension elements (``<gazebo>``, ...), whose
+contents no URDF rule describes, in the expanded document; in the source text when xacro
+stopped before the end (often on the call's own attributes).
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from ..check.urdf_vocabulary import EXTENSIONS, SPECS
+from ..errors import BuildError
+from ..load.inputs import display_path
+
+_COMMENT_RE = re.compile(r"<!--.*?-->", re.S)
+
+
+def unprefixed_call(macros: set[str], files: list[Path], doc=None) -> BuildError | None:
+    """The first call of one of ``macros`` without the prefix, as a located BuildError."""
+    names = {name for name in macros if name not in SPECS and name not in EXTENSIONS}
+    if not names:
+        return None
+    if doc is not None:
+        names = {name for name in names if _used_in(doc.documentElement, name)}
+        if not names:
+            return None
+    pattern = re.compile(r"<(" + "|".join(map(re.escape, sorted(names))) + r")[\s/>]")
+    for path in files:
+        try:
+            text = path.read_text(encoding="utf-8", errors="replace")
+        except OSError:
+            continue
+        # Blank comments out, keeping their newlines, so line numbers stay right.
+        text = _COMMENT_RE.sub(lambda m: "\n" * m.group(0).count("\n"), text)
+        match = pattern.search(text)
+        if match:
+            name = match.group(1)
+            return BuildError(f"<{name}> calls macro '{name}' without the xacro: prefix; "
+                              "xacro 2 copies it into the URDF unexpanded: write "
+                              f"<xacro:{name} ...>", file=display_path(path),
+                              line=text.count("\n", 0, match.start()) + 1)
+    return None
+
+
+def _used_in(element, name: str) -> bool:
+    for child in element.childNodes:
+        if child.nodeType != child.ELEMENT_NODE or child.tagName in EXTENSIONS:
+            continue
+        if child.tagName == name or _used_in(child, name):
+            return True
+    return False

@@ -29,8 +29,8 @@ def measure(package: Path, runs: int) -> dict:
     import trimesh  # noqa: F401
     import yourdfpy  # noqa: F401
 
-    from mobile_car.load.inputs import select
     from mobile_car.load.robot import LoadOptions, load_robot
+    from mobile_car.load.selection import select
     from mobile_car.packages.search import PackageSearch
     from mobile_car.render.compose import png_bytes
     from mobile_car.render.options import RenderOptions
@@ -42,7 +42,7 @@ def measure(package: Path, runs: int) -> dict:
         return model_source(load_robot(inp, LoadOptions())), []
 
     def package_jobs(root, outdir):
-        return selection_jobs(select([str(root)], lambda: root), outdir)
+        return selection_jobs(select([str(root)], None), outdir)
     imported = time.perf_counter() - started
 
     from mobile_car.render.backend import open_renderer

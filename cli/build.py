@@ -117,7 +117,8 @@ def _build_many(inputs, options, outdir: Path, deps_only: bool, quiet: bool) -> 
 @click.argument("words", nargs=-1, metavar="[INPUT]... [NAME:=VALUE]...")
 @click.option("-o", "--output", metavar="OUT",
               help="Output file (one file INPUT; default: stdout) or folder "
-                   "(a folder, parts, several files or no INPUT; default: build/).")
+                   "(a folder, parts, several files or no INPUT; default: build/ under the "
+                   "package's root, or here for files outside a package).")
 @click.option("--deps", "deps_only", is_flag=True,
               help="Print the files the expansion reads, one per line (for Make); build nothing.")
 @click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
@@ -135,5 +136,5 @@ def command(words, output, deps_only, quiet, package_paths, sets, config_files):
             raise UsageError("-o - (stdout) works with one file INPUT only")
         if output and output.endswith((".urdf", ".xml")):
             raise UsageError(f"-o names a folder when building several files, not {output}")
-        outdir = Path(output) if output else Path("build")
+        outdir = Path(output) if output else selection.output_root / "build"
         sys.exit(_build_many(selection.inputs, options, outdir, deps_only, quiet))

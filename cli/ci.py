@@ -90,11 +90,15 @@ def _problems(item) -> list:
               default="text", show_default=True,
               help="text: the summary table on stdout, problems on stderr; junit: JUnit XML "
                    "on stdout; github: workflow annotations, then the table.")
-@click.option("--build-dir", default="build", show_default=True, type=click.Path(),
-              help="Where the URDFs are written.")
-@click.option("--render-dir", default="renders", show_default=True, type=click.Path(),
-              help="Where the PNGs and the contact sheet index.png are written.")
+@click.option("--build-dir", type=click.Path(),
+              help="Where the URDFs are written (default: build/ under the package's root).")
+@click.option("--render-dir", type=click.Path(),
+              help="Where the PNGs and the contact sheet index.png are written (default: "
+                   "renders/ under the package's root).")
 @click.option("--no-render", is_flag=True, help="Build and check only; draw nothing.")
+@click.option("--strict/--no-strict", default=True, show_default=True,
+              help="A warning fails its file too, as `mcar check --strict`; --no-strict: "
+                   "only errors do.")
 @click.option("--renderer", type=click.Choice(["auto", "gl", "raycast"]), default="auto",
               show_default=True, help="As for mcar render.")
 @click.option("--junit-xml", metavar="FILE", type=click.Path(dir_okay=False),
@@ -102,17 +106,19 @@ def _problems(item) -> list:
 @click.option("-q", "--quiet", is_flag=True, help="text format: print only problems.")
 @robot_options
 @handle_errors
-def command(words, output_format, build_dir, render_dir, no_render, renderer, junit_xml,
-            quiet, sets, config_files, package_paths):
+def command(words, output_format, build_dir, render_dir, no_render, strict, renderer,
+            junit_xml, quiet, sets, config_files, package_paths):
     from mobile_car.ci import pipeline
 
     started = time.perf_counter()
     # A .urdf is "built" as it is: only xacro files are expanded, as check sees them.
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
-        items = pipeline.plan(selection, Path(build_dir), None if no_render else Path(render_dir))
-        checked = [item for item in items if pipeline.build_and_check(item, options)]
+        build_dir = Path(build_dir) if build_dir else selection.output_root / "build"
+        render_dir = Path(render_dir) if render_dir else selection.output_root / "renders"
+        items = pipeline.plan(selection, build_dir, None if no_render else render_dir)
+        checked = [item for item in items if pipeline.build_and_check(item, options, strict)]
     if not no_render and checked:
-        _render(checked, Path(render_dir), renderer)
+        _render(checked, render_dir, renderer)
     code = pipeline.exit_code(items)
     if junit_xml:
         from mobile_car.atomic import atomic_write

@@ -62,15 +62,6 @@ def robot_options(func):
     return package_path_option(config_options(func))
 
 
-def default_package(package_paths) -> Path:
-    """The mobile_car_description a command without INPUT works on: the checkout the user
-    stands in wins over ROS paths and the copy bundled with mcar."""
-    from mobile_car.packages.bundled import PACKAGE_NAME
-    from mobile_car.packages.search import PackageSearch
-
-    return PackageSearch(package_paths=list(package_paths), origin=Path.cwd()).find(PACKAGE_NAME)
-
-
 @contextlib.contextmanager
 def load_inputs(words, package_paths, sets, config_files, through_xacro: bool = False):
     """What the user named, ready to load: yields (Selection, LoadOptions).
@@ -78,16 +69,19 @@ def load_inputs(words, package_paths, sets, config_files, through_xacro: bool = 
     Arguments the inputs cannot take are refused here, before anything is loaded; the
     overrides are validated and written once, for every input, and removed afterwards.
     """
-    from mobile_car.load.inputs import select, split_words
+    from mobile_car.load.inputs import split_words
+    from mobile_car.load.package import working_set
     from mobile_car.load.robot import CONFIG_ARG, LoadOptions, refuse_unused_arguments
+    from mobile_car.load.selection import select
 
     names, mappings = split_words(words)
     if CONFIG_ARG in mappings and (sets or config_files):
         raise UsageError(f"{CONFIG_ARG}:= and --set/--config both give overrides; use one")
-    selection = select(names, lambda: default_package(package_paths))
+    selection = select(names, lambda: working_set(Path.cwd(), package_paths))
     refuse_unused_arguments(selection.inputs, LoadOptions(
         mappings, through_xacro=through_xacro), overriding=bool(sets or config_files))
     if not sets and not config_files:
+        _say_which_package(selection)
         yield selection, LoadOptions(mappings, [Path(p) for p in package_paths],
                                      through_xacro=through_xacro)
         return
@@ -98,8 +92,16 @@ def load_inputs(words, package_paths, sets, config_files, through_xacro: bool = 
     origin = xacros[0] if xacros else (selection.root or Path.cwd())
     search = PackageSearch(package_paths=list(package_paths), origin=origin)
     with prepared_overrides(search, sets, config_files) as overrides:
+        _say_which_package(selection)
         yield selection, LoadOptions(mappings, [Path(p) for p in package_paths], overrides,
                                      through_xacro)
+
+
+def _say_which_package(selection) -> None:
+    """One line on stderr naming the package a command without INPUT works on: a green
+    run must never be a run over the wrong robot without saying so."""
+    if selection.working is not None:
+        click.echo(f"mcar: {selection.working.describe()}", err=True)
 
 
 def stdin_for(selection):

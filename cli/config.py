@@ -41,8 +41,10 @@ Exit codes:
 def _text(table: dict) -> str:
     rows = []
     for section, title in (("dimensions", "Dimensions"), ("derived", "Derived")):
-        rows.append(f"{title}:")
         entries = table[section]
+        if not entries:  # a package may derive nothing
+            continue
+        rows.append(f"{title}:")
         width = max(len(name) for name in entries) + 2
         for name, item in entries.items():
             mark = "*" if item.get("overridden") else " "

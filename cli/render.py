@@ -206,7 +206,7 @@ def _plan(selection, output: str | None):
         if len(inputs) == 1 and output and (output == "-" or not Path(output).is_dir()):
             target = None if output == "-" else Path(output)
             return [file_job(inputs[0], target)], None if target is None else target.parent, False
-        outdir = Path(output) if output else Path("renders")
+        outdir = Path(output) if output else selection.output_root / "renders"
         jobs = selection_jobs(selection, outdir)
         names = [job.target.name for job in jobs]
         clashes = sorted({name for name in names if names.count(name) > 1})
@@ -216,7 +216,7 @@ def _plan(selection, output: str | None):
         return jobs, outdir, False
     if output == "-":
         raise UsageError("-o - (stdout) works with one INPUT only")
-    outdir = Path(output) if output else Path("renders")
+    outdir = Path(output) if output else selection.output_root / "renders"
     return selection_jobs(selection, outdir), outdir, True
 
 

@@ -16,8 +16,9 @@ from pathlib import Path
 from ..atomic import atomic_write
 from ..check.diagnostics import Diagnostic
 from ..errors import McarError, combine_exit_codes
-from ..load.inputs import RobotInput, Selection, display_path
+from ..load.inputs import RobotInput, display_path
 from ..load.robot import LoadOptions
+from ..load.selection import Selection
 from ..packages.discover import output_name, source_base
 
 STEPS = ("build", "check", "render")

@@ -66,6 +66,14 @@ class ConfigSpec:
 
 
 def config_file(search: PackageSearch) -> Path:
+    """The config.xacro that holds the dimensions: that of the package being worked on
+    (the one holding the search's origin) when it has ``urdf/config.xacro``, else the
+    mobile car's."""
+    from ..packages.search import enclosing_package
+
+    own = enclosing_package(search.origin) if search.origin is not None else None
+    if own is not None and (own[1] / "urdf" / "config.xacro").is_file():
+        return own[1] / "urdf" / "config.xacro"
     return search.find(PACKAGE_NAME) / "urdf" / "config.xacro"
 
 

@@ -1,17 +1,14 @@
-"""What the user names, as robot inputs: files, the robot files of a folder, ``-``, part names.
-
-Every command takes the same words: a ``.urdf`` or ``.xacro`` file, a folder (its ``.urdf``
-files and robot ``.xacro`` files, below its ``urdf/`` when it has one), ``-`` for standard
-input, or the name of a part folder of the package the command works on (``wheel``); no
-word at all means that package. ``NAME:=VALUE`` words are xacro arguments. Kept free of
-xacro and lxml imports so that checking a plain URDF stays light.
+"""One robot input (a file, or ``-`` for standard input), and the words around it: how
+inputs are named in messages, ``NAME:=VALUE`` arguments, the size limit. Kept free of
+xacro and lxml imports so that checking a plain URDF stays light; which inputs the words
+name is :mod:`mobile_car.load.selection`'s business.
 """
 
 from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError, UsageError
@@ -102,84 +99,3 @@ class RobotInput:
         if self.path is None:
             return Path("stdin.urdf")
         return self.path.relative_to(self.base) if self.base is not None else Path(self.path.name)
-
-
-@dataclass
-class Selection:
-    """The inputs a command's words name, and how they were named."""
-
-    kind: str  # "files" (files and "-"), "folder", "parts" or "package"
-    inputs: list[RobotInput] = field(default_factory=list)
-    root: Path | None = None  # the folder or package, for those kinds
-
-    @property
-    def reads_stdin(self) -> bool:
-        return any(inp.path is None for inp in self.inputs)
-
-
-def robot_inputs(root: Path) -> list[RobotInput]:
-    """The robot files of a folder (see :func:`~mobile_car.packages.discover.robot_files`),
-    each with the folder holding them as base."""
-    from ..packages.discover import robot_files, source_base
-
-    base = source_base(root)
-    return [RobotInput(path, base) for path in robot_files(root)]
-
-
-def require_robot_inputs(root: Path) -> list[RobotInput]:
-    """robot_inputs(root), or a UsageError naming the folder when there is none."""
-    from ..packages.discover import source_base
-
-    inputs = robot_inputs(root)
-    if not inputs:
-        raise UsageError("no .urdf or robot .xacro files in this folder",
-                         file=display_path(source_base(root)))
-    return inputs
-
-
-def package_parts(root: Path) -> list[str]:
-    """The part folders of a package (``wheel``, ...) that hold robot files."""
-    return sorted({inp.relative.parts[0] for inp in robot_inputs(root)
-                   if len(inp.relative.parts) > 1})
-
-
-def _looks_like_file(name: str) -> bool:
-    return "/" in name or name.endswith((".urdf", ".xacro"))
-
-
-def select(names: list[str], package_root) -> Selection:
-    """The inputs the words name. ``package_root()`` gives the package a command without
-    INPUT (or with part names) works on; it is called only then."""
-    if not names:
-        root = package_root()
-        return Selection("package", require_robot_inputs(root), root)
-    if names.count(STDIN) > 1:
-        raise UsageError("- (stdin) can be given only once")
-    paths = [None if name == STDIN else Path(name) for name in names]
-    missing = [name for name, path in zip(names, paths, strict=True)
-               if path is not None and not path.exists()]
-    # A missing name that looks like a file is a file (loading it says "no such file");
-    # one that does not may be a part name.
-    if all(_looks_like_file(name) for name in missing):
-        folders = [path for path in paths if path is not None and path.is_dir()]
-        if len(names) == 1 and folders:
-            return Selection("folder", require_robot_inputs(folders[0]), folders[0])
-        inputs: list[RobotInput] = []
-        for path in paths:
-            if path is not None and path.is_dir():
-                inputs += require_robot_inputs(path)
-            else:
-                inputs.append(RobotInput(path))
-        return Selection("files", inputs)
-    if len(missing) < len(names):
-        raise UsageError(f"no such file: {missing[0]} (give files, or part names, not both)")
-    from ..packages.discover import source_base
-
-    root = package_root()
-    known = package_parts(root)
-    unknown = [name for name in names if name not in known]
-    if unknown:
-        raise UsageError(f"no file or part named {', '.join(map(repr, unknown))}; parts of "
-                         f"{display_path(source_base(root))}: {', '.join(known) or 'none'}")
-    return Selection("parts", [inp for inp in robot_inputs(root)
-                               if inp.relative.parts[0] in names], root)

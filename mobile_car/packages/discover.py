@@ -8,6 +8,7 @@ lets another team's package work with no configuration.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 # Folders of a package that hold outputs or tools, never robot files to take as inputs.
@@ -58,25 +59,71 @@ def is_robot_file(path: Path) -> bool:
     return "<robot" in head and "name=" in head.split("<robot", 1)[1].split(">", 1)[0]
 
 
+# Where description packages keep robot files, by ROS convention; a folder with none of
+# these is searched itself.
+ROBOT_FOLDERS = ("urdf", "robots", "xacro", "description")
+_INCLUDE_RE = re.compile(r"<xacro:include\b[^>]*?\bfilename\s*=\s*[\"']([^\"']+)[\"']", re.S)
+_FIND_RE = re.compile(r"^\$\(find\s+([^)\s]+)\)/?")
+
+
+def _source_folders(root: Path) -> list[Path]:
+    folders = [root / name for name in ROBOT_FOLDERS if (root / name).is_dir()]
+    return folders or [root]
+
+
 def source_base(root: Path) -> Path:
-    """The folder holding a package's robot files: its ``urdf/``, or the folder itself."""
-    return root / "urdf" if (root / "urdf").is_dir() else root
+    """The folder a package's robot files are named from (and outputs mirror): its one
+    robot folder (``urdf/``), or the package itself when it has several or none."""
+    folders = _source_folders(root)
+    return folders[0] if len(folders) == 1 else root
 
 
 def robot_files(root: Path) -> list[Path]:
-    """Every ``.urdf`` file and robot ``.xacro`` below ``root`` (its ``urdf/`` if it has
-    one), sorted; hidden folders and output folders (build/, renders/, ...) are skipped."""
-    base = source_base(root)
+    """The robot files of a folder, sorted: every ``.urdf`` file and every ``.xacro``
+    whose root is a named ``<robot>``, below its robot folders (``urdf/``, ``robots/``,
+    ``xacro/``, ``description/``) or, with none, below the folder itself. Hidden and
+    output folders (build/, renders/, ...) are skipped, and so is a named xacro that
+    another robot file includes (a macro file that names its ``<robot>`` anyway)."""
     found = []
-    for path in base.rglob("*"):
-        if any(part.startswith(".") or part in _NOT_SOURCES
-               for part in path.relative_to(base).parts[:-1]):
+    for folder in _source_folders(root):
+        for path in folder.rglob("*"):
+            if any(part.startswith(".") or part in _NOT_SOURCES
+                   for part in path.relative_to(folder).parts[:-1]):
+                continue
+            if path.name.endswith(".urdf") and path.is_file():
+                found.append(path)
+            elif path.name.endswith(".xacro") and path.is_file() and is_robot_file(path):
+                found.append(path)
+    included = _included_files(found, root)
+    return sorted(path for path in found if path.resolve() not in included)
+
+
+def _included_files(files: list[Path], root: Path) -> set[Path]:
+    """The files that ``files`` include, as far as can be told without expanding them:
+    relative names, and ``$(find PKG)/...`` of the package holding ``root``."""
+    from .search import enclosing_package
+
+    own = enclosing_package(root)
+    included: set[Path] = set()
+    for path in files:
+        if not path.name.endswith(".xacro"):
             continue
-        if path.name.endswith(".urdf") and path.is_file():
-            found.append(path)
-        elif path.name.endswith(".xacro") and path.is_file() and is_robot_file(path):
-            found.append(path)
-    return sorted(found)
+        try:
+            text = path.read_text(encoding="utf-8", errors="replace")
+        except OSError:
+            continue
+        for name in _INCLUDE_RE.findall(text):
+            found = _FIND_RE.match(name)
+            if found:
+                if own is None or found.group(1) != own[0]:
+                    continue
+                target = own[1] / name[found.end():]
+            elif "$" in name:
+                continue
+            else:
+                target = path.parent / name
+            included.add(target.resolve())
+    return included
 
 
 def output_name(source: Path, base: Path) -> Path:

@@ -22,8 +22,9 @@ from PIL import Image
 from ..atomic import atomic_write
 from ..check.checker import CheckResult, check_input
 from ..errors import CheckFailed, McarError, RendererUnavailableError
-from ..load.inputs import RobotInput, Selection
+from ..load.inputs import RobotInput
 from ..load.robot import LoadedRobot, LoadOptions
+from ..load.selection import Selection
 from ..packages.discover import output_name
 from .backend import GLProbe, open_renderer
 from .compose import png_bytes

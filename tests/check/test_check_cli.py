@@ -188,8 +188,9 @@ def test_missing_file_and_folder_without_robots_exit_2(cli, tmp_path):
     assert result.stderr.splitlines()[0] == f"{_shown(tmp_path / 'nope.urdf')}: error: no such file"
     empty = cli("check", tmp_path)
     assert empty.exit_code == 2
-    assert empty.stderr == \
-        f"{_shown(tmp_path)}: error: no .urdf or robot .xacro files in this folder\n"
+    assert empty.stderr == (
+        f"{_shown(tmp_path)}: error: no .urdf or robot .xacro files in this folder (looked in "
+        "urdf/, robots/, xacro/, description/ or the folder itself)\n")
     # No INPUT means the package, as for every command: the bundled robot files.
     whole = cli("check", "-q")
     assert whole.exit_code == 0, whole.stderr

@@ -30,7 +30,8 @@ def test_pre_commit_manifest_is_valid_and_its_entries_run(tmp_path):
                           text=True, timeout=120)
     assert (done.returncode, done.stderr) == (0, "")
     assert hooks["mcar-ci"]["pass_filenames"] is False
-    entry = hooks["mcar-ci"]["entry"].split()
+    assert hooks["mcar-ci"]["args"] == ["."]  # the package is named, not left to chance
+    entry = [*hooks["mcar-ci"]["entry"].split(), *hooks["mcar-ci"]["args"]]
     copy = tmp_path / "repo"
     subprocess.run(["git", "clone", "-q", str(REPO), str(copy)], check=True)
     done = subprocess.run([str(MCAR), *entry[1:]], cwd=copy, capture_output=True, text=True,

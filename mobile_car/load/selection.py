@@ -1,0 +1,139 @@
+"""Which robot inputs a command's words name: files, ``-``, folders, part names, or none.
+
+Every command takes the same words: a ``.urdf`` or ``.xacro`` file, ``-`` for standard
+input, a folder (its robot files, see :func:`~mobile_car.packages.discover.robot_files`),
+or the name of a part folder of the package being worked on (``wheel``); no word at all
+means that package (:mod:`mobile_car.load.package`). A folder inside a package is named
+from the package, so its outputs mirror the same way however it was named
+(``urdf/wheel/test_wheel.urdf.xacro`` -> ``build/wheel/test_wheel.urdf``), under the
+package's root.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import UsageError
+from .inputs import STDIN, RobotInput, display_path
+
+
+@dataclass
+class Selection:
+    """The inputs a command's words name, and how they were named."""
+
+    kind: str  # "files" (files and "-"), "folder", "parts" or "package"
+    inputs: list[RobotInput] = field(default_factory=list)
+    root: Path | None = None  # the folder or package, for those kinds
+    # Where build/ and renders/ go: the root of the package you stand in when no INPUT
+    # named it, else the working directory.
+    output_root: Path = field(default_factory=Path)
+    working: object = None  # the WorkingSet, when the package was chosen for the user
+
+    @property
+    def reads_stdin(self) -> bool:
+        return any(inp.path is None for inp in self.inputs)
+
+
+def robot_inputs(root: Path, base: Path | None = None) -> list[RobotInput]:
+    """The robot files of a folder, each named from ``base`` (default: the folder's own
+    source folder, see :func:`~mobile_car.packages.discover.source_base`)."""
+    from ..packages.discover import robot_files, source_base
+
+    files = robot_files(root)
+    base = base or source_base(root)
+    if any(not path.is_relative_to(base) for path in files):
+        base = root
+    return [RobotInput(path, base) for path in files]
+
+
+def require_robot_inputs(root: Path, base: Path | None = None) -> list[RobotInput]:
+    """robot_inputs(), or a UsageError naming the folder when there is none."""
+    from ..packages.discover import ROBOT_FOLDERS
+
+    inputs = robot_inputs(root, base)
+    if not inputs:
+        raise UsageError("no .urdf or robot .xacro files in this folder (looked in "
+                         f"{', '.join(name + '/' for name in ROBOT_FOLDERS)} or the folder "
+                         "itself)", file=display_path(root))
+    return inputs
+
+
+def package_parts(root: Path) -> list[str]:
+    """The part folders of a package (``wheel``, ...) that hold robot files."""
+    return sorted({inp.relative.parts[0] for inp in robot_inputs(root)
+                   if len(inp.relative.parts) > 1})
+
+
+def _looks_like_file(name: str) -> bool:
+    return "/" in name or name.endswith((".urdf", ".xacro"))
+
+
+def _folder(folder: Path) -> list[RobotInput]:
+    """A folder's inputs, named from its package when it lies in one, so that outputs
+    mirror the same way however the package or a subfolder was named."""
+    from ..packages.discover import source_base
+    from ..packages.search import enclosing_package
+
+    own = enclosing_package(folder)
+    if own is None:
+        return require_robot_inputs(folder)
+    # Absolute, as the package's root is: messages show paths relative to the cwd anyway.
+    return require_robot_inputs(folder.resolve(), source_base(own[1]))
+
+
+def select(names: list[str], working) -> Selection:
+    """The inputs the words name. ``working()`` gives the WorkingSet a command without
+    INPUT (or with part names) works on; it is called only then."""
+    if not names:
+        return _package(working())
+    if names.count(STDIN) > 1:
+        raise UsageError("- (stdin) can be given only once")
+    paths = [None if name == STDIN else Path(name) for name in names]
+    missing = [name for name, path in zip(names, paths, strict=True)
+               if path is not None and not path.exists()]
+    # A missing name that looks like a file is a file (loading it says "no such file");
+    # one that does not may be a part name.
+    if all(_looks_like_file(name) for name in missing):
+        folders = [path for path in paths if path is not None and path.is_dir()]
+        if len(names) == 1 and folders:
+            return Selection("folder", _folder(folders[0]), folders[0], Path.cwd())
+        inputs: list[RobotInput] = []
+        for path in paths:
+            if path is not None and path.is_dir():
+                inputs += _folder(path)
+            else:
+                inputs.append(RobotInput(path))
+        return Selection("files", inputs, output_root=Path.cwd())
+    if len(missing) < len(names):
+        raise UsageError(f"no such file: {missing[0]} (give files, or part names, not both)")
+    return _parts(names, working())
+
+
+def _package(working) -> Selection:
+    if working.kind == "workspace":  # named from the workspace: packages cannot collide
+        inputs = [inp for package in working.packages
+                  for inp in robot_inputs(package.root, working.folder)]
+        if not inputs:
+            raise UsageError("no robot files in any package of this workspace",
+                             file=display_path(working.folder))
+        return Selection("package", inputs, working.folder, working.output_root, working)
+    root = working.packages[0].root
+    return Selection("package", require_robot_inputs(root), root, working.output_root, working)
+
+
+def _parts(names: list[str], working) -> Selection:
+    from ..packages.discover import source_base
+
+    if working.kind == "workspace":
+        raise UsageError(f"no such file: {names[0]} (part names need one package; in a "
+                         "workspace, give the part's folder)")
+    root = working.packages[0].root
+    known = package_parts(root)
+    unknown = [name for name in names if name not in known]
+    if unknown:
+        raise UsageError(f"no file or part named {', '.join(map(repr, unknown))}; parts of "
+                         f"{display_path(source_base(root))}: {', '.join(known) or 'none'}")
+    return Selection("parts", [inp for inp in robot_inputs(root)
+                               if inp.relative.parts[0] in names], root,
+                     working.output_root, working)

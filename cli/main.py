@@ -16,6 +16,8 @@ COMMANDS = {
     "check": ("check", "Check URDF/xacro files: check_urdf's tree, stricter, located."),
     "ci": ("ci", "Build, check --strict and render a whole package: the CI job."),
     "tree": ("tree", "Print the kinematic tree with joint types, origins and axes."),
+    "init": ("init", "Create a robot description package, ready for mcar ci."),
+    "new": ("new", "Add a part to the package you stand in."),
 }
 
 EXIT_CODES_HELP = """\b

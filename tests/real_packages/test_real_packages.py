@@ -1,0 +1,69 @@
+"""Real description packages: `mcar build` writes what the `xacro` command writes, byte
+for byte but the banner, whichever way the package is found; `mcar check` finds no error.
+The packages and where they come from: README.md beside this file."""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+HERE = Path(__file__).resolve().parent
+UR = HERE / "ur_description"
+XACRO = Path(sys.executable).parent / "xacro"
+BANNER = re.compile(r"<!-- =+ -->\n(?:<!-- \|.*\| -->\n)+<!-- =+ -->\n")
+UR_TYPES = ["ur3", "ur5e", "ur10e", "ur20", "ur30"]
+
+
+@pytest.fixture(scope="module")
+def ament_prefix(tmp_path_factory) -> Path:
+    """An install prefix as colcon makes it: share/PKG and the package index marker."""
+    prefix = tmp_path_factory.mktemp("prefix")
+    index = prefix / "share" / "ament_index" / "resource_index" / "packages"
+    index.mkdir(parents=True)
+    (index / "ur_description").touch()
+    (prefix / "share" / "ur_description").symlink_to(UR)
+    return prefix
+
+
+def peer_build(robot: Path, args: list[str], prefix: Path) -> str:
+    env = {**os.environ, "AMENT_PREFIX_PATH": str(prefix),
+           "PYTHONPATH": str(HERE / "peer")}
+    done = subprocess.run([str(XACRO), str(robot), *args], capture_output=True, text=True,
+                          env=env, timeout=120)
+    assert done.returncode == 0, done.stderr
+    return BANNER.sub("", done.stdout)
+
+
+@pytest.mark.parametrize("ur_type", UR_TYPES)
+def test_ur_builds_as_the_xacro_command_builds_it(ur_type, run_mcar, ament_prefix, tmp_path):
+    args = [f"ur_type:={ur_type}", "name:=ur"]
+    expected = peer_build(UR / "urdf" / "ur.urdf.xacro", args, ament_prefix)
+    ours = run_mcar("build", UR / "urdf" / "ur.urdf.xacro", *args, "-o", tmp_path / "ur.urdf")
+    assert ours.returncode == 0, ours.stderr
+    assert BANNER.sub("", (tmp_path / "ur.urdf").read_text()) == expected
+    checked = run_mcar("check", "-q", tmp_path / "ur.urdf", "--package-path", HERE)
+    assert checked.returncode == 0, checked.stderr  # the meshes are left out: W207 only
+    assert " error: " not in checked.stderr
+
+
+@pytest.mark.parametrize("how", ["--package-path", "ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH"])
+def test_the_package_is_found_from_outside_it_every_way(how, run_mcar, ament_prefix, tmp_path):
+    robot = tmp_path / "ur.urdf.xacro"  # outside the package: $(find) must search for it
+    robot.write_text((UR / "urdf" / "ur.urdf.xacro").read_text())
+    args = ["ur_type:=ur5e", "name:=ur"]
+    expected = peer_build(robot, args, ament_prefix)
+    options, env = [], {}
+    if how == "--package-path":
+        options = ["--package-path", str(HERE)]
+    elif how == "ROS_PACKAGE_PATH":
+        env = {"ROS_PACKAGE_PATH": str(HERE)}
+    else:
+        env = {"AMENT_PREFIX_PATH": str(ament_prefix)}
+    ours = run_mcar("build", robot, *args, *options, env=env, cwd=tmp_path)
+    assert ours.returncode == 0, ours.stderr
+    assert BANNER.sub("", ours.stdout) == expected

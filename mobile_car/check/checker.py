@@ -15,6 +15,7 @@ from pathlib import Path
 from ..errors import EXIT_OK, EXIT_PROBLEMS, BuildError, McarError
 from ..load.inputs import RobotInput
 from ..load.robot import LoadedRobot, LoadOptions, load_robot
+from ..packages.discover import package_macros
 from ..packages.search import PackageSearch
 from . import document
 from .context import Reporter
@@ -105,7 +106,7 @@ def _check_document(root, data: bytes, file: str, base: Path, search: PackageSea
         return _finish(result, report)
     document.check_raw_whitespace(root, data, report)
     check_joints(robot, report)
-    check_schema(robot, report)
+    check_schema(robot, report, lambda: package_macros(base))
     materials = material_colours(robot, report)
     top_level = {element.get("name") for element, _ in robot.materials}
     moving, root_link = moving_links(tree), tree.root if len(tree.roots) == 1 else None

@@ -23,12 +23,23 @@ def _suggest(name: str, known) -> str:
     return f"; did you mean '{close[0]}'?" if close else ""
 
 
-def check_schema(robot: Robot, report: Reporter) -> None:
-    """W201 unknown element, W202 unknown attribute, W209 repeated element."""
+def check_schema(robot: Robot, report: Reporter, macros=frozenset) -> None:
+    """W201 unknown element, W202 unknown attribute, W209 repeated element.
+
+    ``macros()`` gives the names of the xacro macros of the package the file lies in
+    (asked only when an element is unknown): a top-level element named like one is a
+    macro call xacro 2 left unexpanded, and the message says so."""
     top_level = set(ROBOT.children) | EXTENSIONS
     for element in robot.others:
-        if element.tag not in EXTENSIONS:
-            _unknown(element, robot.element, top_level, report)
+        if element.tag in EXTENSIONS:
+            continue
+        if element.tag in macros():
+            report.add("W201", element, f"unknown element <{element.tag}> in <robot>: the "
+                                        f"macro '{element.tag}' of this package, called "
+                                        "without the xacro: prefix? xacro 2 copies such "
+                                        f"calls unexpanded: write <xacro:{element.tag} ...>")
+            continue
+        _unknown(element, robot.element, top_level, report)
     report_anomalies(robot.anomalies, report)
 
 

@@ -8,6 +8,7 @@ lets another team's package work with no configuration.
 
 from __future__ import annotations
 
+import functools
 import re
 from pathlib import Path
 
@@ -124,6 +125,30 @@ def _included_files(files: list[Path], root: Path) -> set[Path]:
                 target = path.parent / name
             included.add(target.resolve())
     return included
+
+
+_MACRO_RE = re.compile(r"<xacro:macro\b[^>]*?\bname\s*=\s*[\"'](?:xacro:)?([^\"']+)[\"']", re.S)
+
+
+@functools.lru_cache(maxsize=16)
+def package_macros(folder: Path) -> frozenset[str]:
+    """The names of the xacro macros defined in the package holding ``folder`` (none
+    outside a package): what an unexpanded macro call in a URDF would be named."""
+    from .search import enclosing_package
+
+    own = enclosing_package(folder)
+    if own is None:
+        return frozenset()
+    names: set[str] = set()
+    for path in own[1].rglob("*.xacro"):
+        if any(part.startswith(".") or part in _NOT_SOURCES
+               for part in path.relative_to(own[1]).parts[:-1]):
+            continue
+        try:
+            names.update(_MACRO_RE.findall(path.read_text(encoding="utf-8", errors="replace")))
+        except OSError:
+            continue
+    return frozenset(names)
 
 
 def output_name(source: Path, base: Path) -> Path:

@@ -40,3 +40,25 @@ def test_macros_named_like_urdf_or_inside_extensions_are_not_calls(run_mcar, tmp
     result = run_mcar("build", robot, cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert "<camera/>" in result.stdout and "<inertial>" in result.stdout
+
+
+def test_check_names_the_macro_in_a_urdf_that_kept_an_unprefixed_call(cli, tmp_path):
+    (tmp_path / "package.xml").write_text(
+        '<package format="3"><name>demo</name><version>0.1.0</version><description>d'
+        '</description><maintainer email="a@b.c">a</maintainer><license>MIT</license>'
+        "</package>")
+    (tmp_path / "urdf").mkdir()
+    (tmp_path / "urdf" / "parts.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro name="chassis" '
+        'params="name"><link name="${name}"/></xacro:macro></robot>')
+    built = tmp_path / "urdf" / "robot.urdf"  # what xacro 2 wrote for <chassis name="body"/>
+    built.write_text('<robot name="r">\n<link name="base"/>\n<chassis name="body"/>\n'
+                     "<wheel/>\n</robot>\n")
+    result = cli("check", "-q", built)
+    assert result.exit_code == 0  # W201 is a warning: --strict makes it fail
+    lines = result.stderr.splitlines()
+    assert lines[0].endswith(
+        "robot.urdf:3: warning: unknown element <chassis> in <robot>: the macro 'chassis' of "
+        "this package, called without the xacro: prefix? xacro 2 copies such calls "
+        "unexpanded: write <xacro:chassis ...> [W201]")
+    assert lines[1].endswith("robot.urdf:4: warning: unknown element <wheel> in <robot> [W201]")

@@ -84,8 +84,8 @@ def robot_files(root: Path) -> list[Path]:
     whose root is a named ``<robot>``, below its robot folders (``urdf/``, ``robots/``,
     ``xacro/``, ``description/``) or, with none, below the folder itself. Hidden and
     output folders (build/, renders/, ...) are skipped, and so is a named xacro that
-    another robot file includes (a macro file that names its ``<robot>`` anyway)."""
-    found = []
+    another xacro file includes (a macro file that names its ``<robot>`` anyway)."""
+    found, xacros = [], []
     for folder in _source_folders(root):
         for path in folder.rglob("*"):
             if any(part.startswith(".") or part in _NOT_SOURCES
@@ -93,15 +93,18 @@ def robot_files(root: Path) -> list[Path]:
                 continue
             if path.name.endswith(".urdf") and path.is_file():
                 found.append(path)
-            elif path.name.endswith(".xacro") and path.is_file() and is_robot_file(path):
-                found.append(path)
-    included = _included_files(found, root)
+            elif path.name.endswith(".xacro") and path.is_file():
+                xacros.append(path)
+                if is_robot_file(path):
+                    found.append(path)
+    included = _included_files(xacros, root)
     return sorted(path for path in found if path.resolve() not in included)
 
 
 def _included_files(files: list[Path], root: Path) -> set[Path]:
-    """The files that ``files`` include, as far as can be told without expanding them:
-    relative names, and ``$(find PKG)/...`` of the package holding ``root``."""
+    """The files that the xacro ``files`` include, as far as can be told without
+    expanding them: relative names, and ``$(find PKG)/...`` of the package holding
+    ``root``."""
     from .search import enclosing_package
 
     own = enclosing_package(root)

@@ -14,9 +14,15 @@ import pytest
 
 HERE = Path(__file__).resolve().parent
 UR = HERE / "ur_description"
+FRANKA = HERE / "franka_description"
 XACRO = Path(sys.executable).parent / "xacro"
 BANNER = re.compile(r"<!-- =+ -->\n(?:<!-- \|.*\| -->\n)+<!-- =+ -->\n")
-UR_TYPES = ["ur3", "ur5e", "ur10e", "ur20", "ur30"]
+# (robot file, xacro arguments): each is built by both and compared.
+ROBOTS = [*[(UR / "urdf" / "ur.urdf.xacro", [f"ur_type:={kind}", "name:=ur"])
+            for kind in ("ur3", "ur5e", "ur10e", "ur20", "ur30")],
+          *[(FRANKA / "robots" / kind / f"{kind}.urdf.xacro", [])
+            for kind in ("fer", "fr3", "fp3", "multi_arm")],
+          (FRANKA / "robots" / "fr3" / "fr3.urdf.xacro", ["hand:=true", "ros2_control:=true"])]
 
 
 @pytest.fixture(scope="module")
@@ -25,8 +31,9 @@ def ament_prefix(tmp_path_factory) -> Path:
     prefix = tmp_path_factory.mktemp("prefix")
     index = prefix / "share" / "ament_index" / "resource_index" / "packages"
     index.mkdir(parents=True)
-    (index / "ur_description").touch()
-    (prefix / "share" / "ur_description").symlink_to(UR)
+    for package in (UR, FRANKA):
+        (index / package.name).touch()
+        (prefix / "share" / package.name).symlink_to(package)
     return prefix
 
 
@@ -39,16 +46,26 @@ def peer_build(robot: Path, args: list[str], prefix: Path) -> str:
     return BANNER.sub("", done.stdout)
 
 
-@pytest.mark.parametrize("ur_type", UR_TYPES)
-def test_ur_builds_as_the_xacro_command_builds_it(ur_type, run_mcar, ament_prefix, tmp_path):
-    args = [f"ur_type:={ur_type}", "name:=ur"]
-    expected = peer_build(UR / "urdf" / "ur.urdf.xacro", args, ament_prefix)
-    ours = run_mcar("build", UR / "urdf" / "ur.urdf.xacro", *args, "-o", tmp_path / "ur.urdf")
+@pytest.mark.parametrize("robot, args", ROBOTS,
+                         ids=[f"{r.stem}{'-' + '-'.join(a) if a else ''}" for r, a in ROBOTS])
+def test_builds_as_the_xacro_command_builds_it(robot, args, run_mcar, ament_prefix, tmp_path):
+    expected = peer_build(robot, args, ament_prefix)
+    ours = run_mcar("build", robot, *args, "-o", tmp_path / "robot.urdf")
     assert ours.returncode == 0, ours.stderr
-    assert BANNER.sub("", (tmp_path / "ur.urdf").read_text()) == expected
-    checked = run_mcar("check", "-q", tmp_path / "ur.urdf", "--package-path", HERE)
+    assert BANNER.sub("", (tmp_path / "robot.urdf").read_text()) == expected
+    checked = run_mcar("check", "-q", robot, *args)
     assert checked.returncode == 0, checked.stderr  # the meshes are left out: W207 only
     assert " error: " not in checked.stderr
+
+
+def test_the_robots_of_a_package_are_found_where_it_keeps_them(run_mcar, tmp_path):
+    """franka keeps its robots in robots/; robots/common/franka_arm.xacro names its <robot>
+    but is a macro file that franka_robot.xacro includes: not a robot to build."""
+    result = run_mcar("build", FRANKA, "-o", tmp_path / "out", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert sorted(p.relative_to(tmp_path / "out").as_posix()
+                  for p in (tmp_path / "out").rglob("*.urdf")) == \
+        ["fer/fer.urdf", "fp3/fp3.urdf", "fr3/fr3.urdf", "multi_arm/multi_arm.urdf"]
 
 
 @pytest.mark.parametrize("how", ["--package-path", "ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH"])

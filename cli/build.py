@@ -30,8 +30,8 @@ HELP = f"""Expand xacro into URDF.
   mcar build - < FILE.xacro                    xacro text from stdin
   mcar build DIR [-o OUTDIR]                   every robot file of a package
   mcar build wheel chassis                     the robot files of those parts
-  mcar build                                   the mobile car: every robot file of
-                                               mobile_car_description into build/
+  mcar build                                   every robot file of the package you
+                                               stand in, into its build/
 
 A robot file is a .xacro whose root is <robot name="...">; macro files (a <robot>
 with no name) are only included. Built files mirror the urdf/ tree:

@@ -25,8 +25,8 @@ from .common import (
 HELP = f"""Build, check (strict) and render every robot file of a description package.
 
 \b
-  mcar ci                               {PACKAGE_NAME} (the checkout you stand
-                                        in, else the bundled copy)
+  mcar ci                               the package you stand in (else the
+                                        bundled {PACKAGE_NAME})
   mcar ci path/to/other_description     another team's package
   mcar ci --format junit > report.xml   JUnit XML for the CI server
   mcar ci --format github               annotations on the pull request's lines

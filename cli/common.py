@@ -38,10 +38,11 @@ def config_options(func):
 
 INPUT_HELP = """\b
 INPUT is what every command takes: a .urdf or .xacro file, a folder (its .urdf files
-and robot .xacro files, below its urdf/ when it has one), - for stdin, or the name
-of a part folder of the package (wheel, chassis); none means the whole
-mobile_car_description (the checkout you stand in, else the bundled copy).
-NAME:=VALUE words set xacro arguments."""
+and robot .xacro files, in urdf/, robots/, xacro/, description/ or itself), - for
+stdin, or the name of a part folder of the package (wheel, chassis). None means the
+package you stand in (the nearest package.xml above), else every package of the
+workspace you stand in (here or in src/), else the bundled mobile car; stderr says
+which. NAME:=VALUE words set xacro arguments."""
 
 _color: bool | None = None  # --color/--no-color of this run; None: the NO_COLOR/TTY rule
 

@@ -21,10 +21,9 @@ HELP = f"""Show the robot's dimensions: value, unit, source, meaning, FILE:LINE.
 
 The dimensions live once, in urdf/config.xacro (one <xacro:property> each, with a
 "UNIT; SOURCE: meaning" comment); derived ones are xacro expressions of the others,
-evaluated here by xacro itself. The config is that of the mobile_car_description
-package found from INPUT (a robot .xacro, a folder or part of the package), else from
-the current folder (a checkout you stand in, else the bundled one). A URDF has no
-dimensions to show.
+evaluated here by xacro itself. The config is urdf/config.xacro of the package found
+from INPUT (a robot .xacro, a folder or part of the package), else of the package you
+stand in, else the bundled mobile car's. A URDF has no dimensions to show.
 
 {INPUT_HELP}
 

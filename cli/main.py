@@ -10,7 +10,7 @@ from mobile_car import __version__
 
 # name -> (module under mobile_car.cli, one-line help shown by `mcar --help`)
 COMMANDS = {
-    "build": ("build", "Expand xacro into URDF (the bundled robot when no INPUT)."),
+    "build": ("build", "Expand xacro into URDF (the package you stand in when no INPUT)."),
     "config": ("config", "Show the robot's dimensions, with overrides applied."),
     "render": ("render", "Draw robot descriptions as PNG pictures, headless."),
     "check": ("check", "Check URDF/xacro files: check_urdf's tree, stricter, located."),

@@ -38,8 +38,9 @@ from .common import (
 HELP = f"""Draw robot descriptions as PNG pictures, with no display and no GPU.
 
 \b
-  mcar render                        every robot file of {PACKAGE_NAME}
-                                     into renders/, plus the contact sheet
+  mcar render                        every robot file of the package you
+                                     stand in (else the bundled {PACKAGE_NAME})
+                                     into its renders/, plus the contact sheet
                                      renders/index.png
   mcar render wheel chassis          only the files of those part folders
   mcar render DIR [-o OUTDIR]        every robot file of a folder

@@ -81,15 +81,23 @@ def _build_one(inp, options, stdin, output: str | None, deps_only: bool) -> None
         sys.stdout.buffer.write(loaded.urdf)
         sys.stdout.flush()
     else:
+        from mobile_car.load.outputs import refuse_overwriting
+
+        refuse_overwriting(output, [inp.path, *loaded.deps])
         atomic_write(output, loaded.urdf)
 
 
 def _build_many(inputs, options, outdir: Path, deps_only: bool, quiet: bool) -> int:
     """Build every input into outdir, mirrored below its folder; go on past failures."""
+    from mobile_car.load.outputs import refuse_clashes, refuse_overwriting
     from mobile_car.load.robot import load_robot
 
+    targets = [outdir / output_name(inp.path, inp.base or inp.path.parent) for inp in inputs]
+    refuse_clashes(zip(targets, (inp.path for inp in inputs), strict=True))
+    for target in targets:
+        refuse_overwriting(target, [inp.path for inp in inputs])
     codes = []
-    for inp in inputs:
+    for inp, target in zip(inputs, targets, strict=True):
         try:
             loaded = load_robot(inp, options)
         except UsageError:
@@ -103,7 +111,7 @@ def _build_many(inputs, options, outdir: Path, deps_only: bool, quiet: bool) -> 
         if deps_only:
             _print_deps(loaded.deps)
             continue
-        target = outdir / output_name(inp.path, inp.base or inp.path.parent)
+        refuse_overwriting(target, loaded.deps)
         atomic_write(target, loaded.urdf)
         if not quiet:
             click.echo(f"built {display_path(target)}", err=True)

@@ -115,6 +115,10 @@ def command(words, output_format, build_dir, render_dir, no_render, strict, rend
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
         build_dir = Path(build_dir) if build_dir else selection.output_root / "build"
         render_dir = Path(render_dir) if render_dir else selection.output_root / "renders"
+        if junit_xml:  # the inputs now, the files they include once they are read
+            from mobile_car.load.outputs import refuse_overwriting
+
+            refuse_overwriting(junit_xml, [inp.path for inp in selection.inputs])
         items = pipeline.plan(selection, build_dir, None if no_render else render_dir)
         checked = [item for item in items if pipeline.build_and_check(item, options, strict)]
     if not no_render and checked:
@@ -123,6 +127,11 @@ def command(words, output_format, build_dir, render_dir, no_render, strict, rend
     if junit_xml:
         from mobile_car.atomic import atomic_write
         from mobile_car.ci.junit import junit_report
+        from mobile_car.load.outputs import refuse_overwriting
+
+        read = [item.source for item in items] + [
+            dep for item in items if item.checked is not None for dep in item.checked.loaded.deps]
+        refuse_overwriting(junit_xml, read)
 
         atomic_write(junit_xml, junit_report(items))
     _emit(items, output_format, quiet, time.perf_counter() - started, no_render)

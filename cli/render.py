@@ -195,7 +195,19 @@ def command(words, output, view, size, collision, background, grid, axes, render
 
 
 def _plan(selection, output: str | None):
-    """The jobs, the output folder (None for stdout) and whether to make a contact sheet."""
+    """The jobs, the output folder (None for stdout) and whether to make a contact sheet;
+    no picture may be written over an input, nor two inputs to one picture."""
+    jobs, outdir, sheet = _jobs(selection, output)
+    from mobile_car.load.outputs import refuse_clashes, refuse_overwriting
+
+    pictures = [(job.target, job.input.path) for job in jobs if job.target is not None]
+    refuse_clashes(pictures)
+    for target, _source in pictures:
+        refuse_overwriting(target, [inp.path for inp in selection.inputs])
+    return jobs, outdir, sheet
+
+
+def _jobs(selection, output: str | None):
     from mobile_car.render.session import file_job, selection_jobs
 
     inputs = selection.inputs

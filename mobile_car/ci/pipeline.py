@@ -97,7 +97,19 @@ def plan(selection: Selection, build_dir: Path, render_dir: Path | None) -> list
                      and inp.is_xacro]
         for variant in variant_files(selection.root):
             items += [item(inp, variant) for inp in top_level]
+    _refuse_destroying(items, [inp.path for inp in selection.inputs])
     return items
+
+
+def _refuse_destroying(items: list[CiItem], inputs: list[Path]) -> None:
+    """No two items written to one file, no output over an input (see load.outputs)."""
+    from ..load.outputs import refuse_clashes, refuse_overwriting
+
+    outputs = [(item.urdf, item) for item in items] + \
+        [(item.png, item) for item in items if item.png is not None]
+    refuse_clashes((path, item.source) for path, item in outputs)
+    for path, _item in outputs:
+        refuse_overwriting(path, inputs)
 
 
 def _fail(item: CiItem, name: str, message: str, diagnostics=(), exit_code: int = 1,
@@ -133,12 +145,14 @@ def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> 
     import time
 
     from ..check.checker import check_loaded
+    from ..load.outputs import refuse_overwriting
     from ..load.robot import load_robot
 
     started = time.perf_counter()
     try:
         with _item_options(item, options) as item_options:
             loaded = load_robot(item.input, item_options)
+        refuse_overwriting(item.urdf, loaded.deps)
         atomic_write(item.urdf, loaded.urdf)
     except McarError as error:
         _fail(item, "build", str(error), exit_code=error.exit_code, error=error)

@@ -23,6 +23,7 @@ from ..atomic import atomic_write
 from ..check.checker import CheckResult, check_input
 from ..errors import CheckFailed, McarError, RendererUnavailableError
 from ..load.inputs import RobotInput
+from ..load.outputs import refuse_overwriting
 from ..load.robot import LoadedRobot, LoadOptions
 from ..load.selection import Selection
 from ..packages.discover import output_name
@@ -202,6 +203,8 @@ class RenderSession:
             kind = "collision" if self.options.collision else "visual"
             meshes = [mesh.path for mesh in result.mesh_files if mesh.kind == kind]
             source = model_source(result.loaded)
+            if job.target is not None:
+                refuse_overwriting(job.target, [*result.loaded.deps, *meshes])
             fingerprint = input_fingerprint(source.xml, meshes, self.settings())
             if (manifest is not None and job.target is not None and not self.force
                     and manifest.is_current(job.target, fingerprint, self.renderer_choice)):

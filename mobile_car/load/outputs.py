@@ -1,0 +1,48 @@
+"""Outputs never destroy inputs: no output may be a file the run reads, and no two inputs
+may be written to one output.
+
+``mcar build self.xacro -o self.xacro`` replaced the source with its URDF, ``-o
+incd/props.xacro`` an include, ``--junit-xml tut/04_xacro.xacro`` a source; ``a.xacro``
+and ``a.urdf.xacro`` were both built to ``a.urdf``, one robot lost. Every command checks
+its outputs here before it writes them (exit 2, naming both files).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable
+from pathlib import Path
+
+from ..errors import UsageError
+from .inputs import display_path
+
+
+def _key(path: Path) -> str:
+    return os.path.realpath(path)
+
+
+def refuse_overwriting(output: Path | str, protected: Iterable[Path | None],
+                       what: str = "a file this run reads") -> None:
+    """UsageError if ``output`` is (a link to) one of the ``protected`` files."""
+    target = _key(Path(output))
+    for path in protected:
+        if path is not None and _key(Path(path)) == target:
+            raise UsageError(f"would overwrite {display_path(path)}, {what}; "
+                             "write the output somewhere else", file=display_path(output))
+
+
+def refuse_clashes(targets: Iterable[tuple[Path, Path | None]]) -> None:
+    """UsageError if two sources map to one output: ``targets`` is (output, source) pairs."""
+    seen: dict[str, Path | None] = {}
+    for output, source in targets:
+        key = _key(output)
+        if key in seen and seen[key] != source:
+            first, second = seen[key], source
+            raise UsageError(f"{_shown(first)} and {_shown(second)} would both be written to "
+                             "this file; build or draw them one at a time with -o",
+                             file=display_path(output))
+        seen[key] = source
+
+
+def _shown(path: Path | None) -> str:
+    return "<stdin>" if path is None else display_path(path)

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import click
 
-from mobile_car.errors import EXIT_USAGE, McarError, UsageError
+from mobile_car.errors import EXIT_USAGE, McarError, Terminated, UsageError
 
 package_path_option = click.option(
     "--package-path", "package_paths", multiple=True, metavar="DIR",
@@ -153,7 +153,10 @@ def handle_errors(func):
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
+        from . import signals
+
         try:
+            signals.arm()
             return func(*args, **kwargs)
         except McarError as error:
             report(error)
@@ -161,6 +164,9 @@ def handle_errors(func):
         except KeyboardInterrupt:
             click.echo("mcar: interrupted", err=True)
             sys.exit(130)
+        except Terminated as signal:
+            click.echo("mcar: terminated", err=True)
+            sys.exit(signal.exit_code)
         except BrokenPipeError:
             # The reader (head, a closed pipe) went away: not our failure to report.
             sys.stderr.close()

@@ -4,9 +4,13 @@ from __future__ import annotations
 
 import importlib
 
-import click
+from . import signals
 
-from mobile_car import __version__
+signals.install()  # before the slow imports: a SIGTERM during them ends mcar at once
+
+import click  # noqa: E402
+
+from mobile_car import __version__  # noqa: E402
 
 # name -> (module under mobile_car.cli, one-line help shown by `mcar --help`)
 COMMANDS = {

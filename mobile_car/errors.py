@@ -77,3 +77,13 @@ class CheckFailed(McarError):
 def combine_exit_codes(codes) -> int:
     """The exit code of a run over many inputs: the worst of theirs (2 > 1 > 0)."""
     return max(codes, default=EXIT_OK)
+
+
+class Terminated(BaseException):
+    """SIGTERM or SIGHUP arrived: unwound like Ctrl-C (a BaseException, so no ``except
+    Exception`` stops it) so that temporary files are removed and children ended; the
+    command then exits 128 + the signal's number (143, 129)."""
+
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.exit_code = 128 + signum

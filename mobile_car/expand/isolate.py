@@ -39,11 +39,6 @@ class OutOfMemory(Exception):
         self.megabytes = megabytes
 
 
-def _limit(env: str, default: float) -> float:
-    try:
-        return max(0.1, float(os.environ.get(env, default)))
-    except ValueError:
-        return default
 
 
 def can_fork() -> bool:
@@ -54,8 +49,10 @@ def run_isolated(func, *args):
     """func(*args) in a guarded child; raises what func raised, Timeout or OutOfMemory."""
     if not can_fork():
         return func(*args)
-    timeout = _limit(TIMEOUT_ENV, DEFAULT_TIMEOUT)
-    memory_mb = int(_limit(MEMORY_ENV, DEFAULT_MEMORY_MB))
+    from ..settings import env_number
+
+    timeout = env_number(TIMEOUT_ENV, DEFAULT_TIMEOUT, 0.1, 86400, "seconds")
+    memory_mb = int(env_number(MEMORY_ENV, DEFAULT_MEMORY_MB, 64, 1e7, "MB"))
     read_fd, write_fd = os.pipe()
     pid = os.fork()
     if pid == 0:  # the child: do the work, send (ok, value), leave without cleanup

@@ -58,10 +58,9 @@ def check_input_size(path: Path) -> None:
 
 def check_size(size: int, shown: str) -> None:
     """InputError if ``size`` bytes are more than the limit (see check_input_size)."""
-    try:
-        limit_mb = float(os.environ.get(MAX_INPUT_MB_ENV, DEFAULT_MAX_INPUT_MB))
-    except ValueError:
-        limit_mb = DEFAULT_MAX_INPUT_MB
+    from ..settings import env_number
+
+    limit_mb = env_number(MAX_INPUT_MB_ENV, DEFAULT_MAX_INPUT_MB, 0.001, 1e6, "MB")
     if size > limit_mb * 1024 * 1024:
         raise InputError(f"{size / 1024 / 1024:.0f} MB is more than the {limit_mb:g} MB this "
                          f"command reads (xacro and the renderer hold ~45x the file in memory); "

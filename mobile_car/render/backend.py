@@ -38,10 +38,9 @@ def _last_line(text: str) -> str:
 
 def probe_timeout() -> float:
     """Seconds to wait for an EGL context: MCAR_GL_TIMEOUT, else PROBE_TIMEOUT."""
-    try:
-        return max(0.1, float(os.environ.get(PROBE_TIMEOUT_ENV, PROBE_TIMEOUT)))
-    except ValueError:
-        return PROBE_TIMEOUT
+    from ..settings import env_number
+
+    return env_number(PROBE_TIMEOUT_ENV, PROBE_TIMEOUT, 0.1, 600, "seconds")
 
 
 # The one OpenGL renderer of this process: a context is made once and reused by every

@@ -148,6 +148,11 @@ def report(error: McarError) -> None:
         click.echo(f"  {line}", err=True)
 
 
+def _exit_terminated(signum: int) -> None:
+    click.echo("mcar: terminated", err=True)
+    sys.exit(128 + signum)
+
+
 def handle_errors(func):
     """Run a command body; McarError becomes its message and exit code, Ctrl-C exits 130."""
 
@@ -157,25 +162,37 @@ def handle_errors(func):
 
         try:
             signals.arm()
-            return func(*args, **kwargs)
+            result = func(*args, **kwargs)
+        except SystemExit:
+            if signals.received():  # a library swallowed Terminated; the run ended anyway
+                _exit_terminated(signals.received())
+            raise
         except McarError as error:
+            if signals.received():  # a library swallowed Terminated, then failed
+                _exit_terminated(signals.received())
             report(error)
             sys.exit(error.exit_code)
         except KeyboardInterrupt:
             click.echo("mcar: interrupted", err=True)
             sys.exit(130)
         except Terminated as signal:
-            click.echo("mcar: terminated", err=True)
-            sys.exit(signal.exit_code)
+            _exit_terminated(signal.exit_code - 128)
         except BrokenPipeError:
             # The reader (head, a closed pipe) went away: not our failure to report.
             sys.stderr.close()
             sys.exit(0)
         except Exception as error:  # a bug in mcar: say so in one line, no traceback
+            if signals.received():  # the same: not a bug of mcar's
+                _exit_terminated(signals.received())
             if os.environ.get("MCAR_DEBUG"):
                 raise
             click.echo(f"mcar: internal error: {type(error).__name__}: {error} "
                        "(set MCAR_DEBUG=1 for a traceback, and please report it)", err=True)
             sys.exit(EXIT_USAGE)
+        finally:
+            signals.disarm()
+        if signals.received():
+            _exit_terminated(signals.received())
+        return result
 
     return wrapper

@@ -121,6 +121,12 @@ def _ctrl_c_survives_imports():
         signal.signal(signal.SIGINT, previous)
     if pressed:
         raise KeyboardInterrupt
+    from . import signals
+
+    if signals.received():  # SIGTERM/SIGHUP during the imports: trimesh swallows them too
+        from mobile_car.errors import Terminated
+
+        raise Terminated(signals.received())
 
 
 def _progress(jobs, quiet: bool):
@@ -247,7 +253,13 @@ def _run(session, jobs, manifest, quiet: bool) -> _Outcome:
     if bar is not None:
         bar.__enter__()
     try:
+        from . import signals
+
         for result in session.run(jobs, manifest):
+            if signals.received():  # swallowed by a library's import guard: stop here
+                from mobile_car.errors import Terminated
+
+                raise Terminated(signals.received())
             outcome.counts[result.status] += 1
             if bar is not None:
                 bar.update(1, result.job.caption)

@@ -9,6 +9,7 @@ over it would replace the device or pipe with a file (as root, ``/dev/null`` its
 from __future__ import annotations
 
 import os
+import signal
 import stat
 from pathlib import Path
 
@@ -28,16 +29,22 @@ def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
         return target
     import tempfile  # shutil, random, bz2, lzma: start-up time, only when writing a file
 
+    # A signal between creating the temporary file and the try below would leave it
+    # behind: hold signals until the cleanup is in place, then let them in.
+    held = _hold_signals()
     try:
         target.parent.mkdir(parents=True, exist_ok=True)
         if target.is_dir():
             raise InputError("is a directory, cannot write a file there", file=str(target))
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
     except InputError:
+        _release_signals(held)
         raise
     except OSError as exc:
+        _release_signals(held)
         raise InputError(f"cannot write: {exc.strerror or exc}", file=str(target)) from None
     try:
+        _release_signals(held)
         with os.fdopen(fd, "wb") as handle:
             handle.write(payload)
             handle.flush()
@@ -56,6 +63,22 @@ def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
             raise InputError(f"cannot write: {exc.strerror or exc}", file=str(target)) from None
         raise
     return target
+
+
+_HELD = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+
+
+def _hold_signals():
+    """Block Ctrl-C, SIGTERM and SIGHUP in this thread; returns what to restore."""
+    try:
+        return signal.pthread_sigmask(signal.SIG_BLOCK, _HELD)
+    except (AttributeError, OSError, ValueError):  # no pthread_sigmask on this platform
+        return None
+
+
+def _release_signals(held) -> None:
+    if held is not None:
+        signal.pthread_sigmask(signal.SIG_SETMASK, held)
 
 
 def _is_special(target: Path) -> bool:

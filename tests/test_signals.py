@@ -27,7 +27,7 @@ def _run_and_signal(args, cwd, delay, signum):
 
 def test_a_signal_at_any_moment_leaves_no_temporary_file(tmp_path):
     rng = random.Random(11)
-    ended = {143: 0, 129: 0, 0: 0}
+    ended = {143: 0, 129: 0, 0: 0, -15: 0, -1: 0}
     for run in range(RUNS):
         out = tmp_path / f"run{run}"
         out.mkdir()
@@ -38,7 +38,10 @@ def test_a_signal_at_any_moment_leaves_no_temporary_file(tmp_path):
         signum = signal.SIGHUP if run % 7 == 6 else signal.SIGTERM
         code, err = _run_and_signal(args, out, rng.uniform(0.05, 2.5 if render else 1.2),
                                     signum)
-        assert code in (0, 128 + signum), (run, code, err)
+        # -signum: the signal came as the interpreter was shutting down, after every output
+        # was written, when Python has given the default handlers back (a shell shows
+        # 128 + signum for it as well).
+        assert code in (0, 128 + signum, -signum), (run, code, err)
         assert "Traceback" not in err and "internal error" not in err, err
         ended[code] += 1
         leftovers = [p.name for p in out.rglob("*") if p.name.endswith(".tmp")]

@@ -125,9 +125,8 @@ def severity_label(severity: str) -> str:
 
 def print_diagnostic(diagnostic) -> None:
     """One ``FILE:LINE: error: message [E104]`` line on stderr, the severity coloured."""
-    plain = f"{diagnostic.severity}:"
-    text = diagnostic.text().replace(f" {plain} ", f" {severity_label(diagnostic.severity)} ", 1)
-    click.echo(text, err=True, color=use_color())
+    click.echo(f"{diagnostic.location()}: {severity_label(diagnostic.severity)} "
+               f"{diagnostic.message} [{diagnostic.rule}]", err=True, color=use_color())
 
 
 def print_warning(where: str, message: str) -> None:

@@ -4,14 +4,14 @@
 # Debian packages installed here when missing: liburdfdom-tools (check_urdf, the peer
 # the tests compare against); libegl1 libegl-mesa0 libgl1-mesa-dri libgl1 (headless
 # OpenGL through EGL and Mesa's llvmpipe, for mcar render); graphviz (dot, which draws
-# `mcar tree --graphviz x.svg`); for `make bench` also time (GNU time, which measures the
-# peak memory of each command).
+# `mcar tree --graphviz x.svg`); libseccomp2 (the seccomp filter of the xacro sandbox);
+# for `make bench` also time (GNU time, which measures the peak memory of each command).
 
 PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 SUDO   := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
-APT_PACKAGES := liburdfdom-tools graphviz libegl1 libegl-mesa0 libgl1-mesa-dri libgl1
+APT_PACKAGES := liburdfdom-tools graphviz libegl1 libegl-mesa0 libgl1-mesa-dri libgl1 libseccomp2
 
 .PHONY: demo test install system-deps build bench ci clean
 

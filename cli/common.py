@@ -53,13 +53,25 @@ def _set_color(ctx, param, value):
     return value
 
 
+def _no_sandbox(ctx, param, value):
+    if value:
+        from mobile_car.expand.sandbox import trust_inputs
+
+        trust_inputs()
+    return value
+
+
 def robot_options(func):
     """The options every command that loads a robot takes: --set, --config,
-    --package-path, --color/--no-color."""
+    --package-path, --no-sandbox, --color/--no-color."""
     func = click.option("--color/--no-color", "color", default=None, expose_value=False,
                         callback=_set_color, is_eager=True,
                         help="Colour the severity of problems (default: on a terminal, "
                              "unless NO_COLOR is set).")(func)
+    func = click.option("--no-sandbox", is_flag=True, expose_value=False,
+                        callback=_no_sandbox,
+                        help="Expand xacro without the sandbox (no seccomp, no Landlock): "
+                             "only for trees you trust; a .xacro is code.")(func)
     return package_path_option(config_options(func))
 
 
@@ -147,6 +159,14 @@ def report(error: McarError) -> None:
         click.echo(f"  {line}", err=True)
 
 
+def _say_if_unconfined() -> None:
+    """Once per run, if xacro was expanded without the kernel's confinement."""
+    sandbox = sys.modules.get("mobile_car.expand.sandbox")  # not imported: nothing expanded
+    notice = sandbox.unconfined_notice() if sandbox is not None else None
+    if notice is not None:
+        print_warning("mcar", notice)
+
+
 def _exit_terminated(signum: int) -> None:
     click.echo("mcar: terminated", err=True)
     sys.exit(128 + signum)
@@ -190,6 +210,7 @@ def handle_errors(func):
             sys.exit(EXIT_USAGE)
         finally:
             signals.disarm()
+            _say_if_unconfined()
         if signals.received():
             _exit_terminated(signals.received())
         return result

@@ -49,11 +49,26 @@ class LazyGroup(click.Group):
             formatter.write_dl(rows)
 
 
-@click.group(cls=LazyGroup, epilog=EXIT_CODES_HELP,
+@click.group(cls=LazyGroup, epilog=EXIT_CODES_HELP, invoke_without_command=True,
              context_settings={"help_option_names": ["-h", "--help"]})
-@click.version_option(__version__, "-V", "--version", prog_name="mcar")
-def main():
+@click.option("-V", "--version", "show_version", is_flag=True,
+              help="Show the version and exit.")
+@click.option("--verbose", is_flag=True,
+              help="With --version: also what the xacro sandbox can use on this machine.")
+@click.pass_context
+def main(ctx, show_version, verbose):
     """mcar: build, check and render the mobile car's URDF/xacro description, without ROS.
 
     Run `mcar COMMAND --help` for the options of one command.
     """
+    if show_version:
+        click.echo(f"mcar, version {__version__}")
+        if verbose:
+            from mobile_car.expand.sandbox import support
+
+            for line in support().describe():
+                click.echo(line)
+        ctx.exit(0)
+    if ctx.invoked_subcommand is None:  # bare `mcar`: the help, as a usage error
+        click.echo(ctx.get_help(), err=True)
+        ctx.exit(2)

@@ -192,8 +192,14 @@ def build_file(path: str | os.PathLike | None, mappings: dict[str, str] | None =
         search.origin = source
     from .isolate import OutOfMemory, Timeout, run_isolated
 
+    # What the user named may be read: the input's folder (the working folder for stdin,
+    # where relative includes start), the packages, and files given as arguments.
+    roots = [Path.cwd() if text is not None else source.resolve().parent]
+    roots += search.read_roots() + [Path(value) for value in mappings.values()
+                                    if os.path.isabs(value) and os.path.exists(value)]
     try:
-        return run_isolated(_expand, source, mappings, search, optional_args, text)
+        return run_isolated(_expand, source, mappings, search, optional_args, text,
+                            read_roots=roots)
     except Timeout as limit:
         raise BuildError(f"xacro did not finish within {limit.seconds:g} s (a runaway "
                          "expression such as ${9**9**9}?); MCAR_XACRO_TIMEOUT raises the limit",

@@ -116,6 +116,16 @@ class PackageSearch:
             self._crawled = found
         return self._crawled
 
+    def read_roots(self) -> list[Path]:
+        """Every folder a package may be found in: what a sandboxed xacro may read."""
+        own = None if self.origin is None else enclosing_package(self.origin)
+        roots = [] if own is None else [own[1]]
+        roots += self.package_paths + _split_path_list(self._env.get("ROS_PACKAGE_PATH"))
+        roots += [prefix / "share" for prefix in
+                  _split_path_list(self._env.get("AMENT_PREFIX_PATH"))]
+        roots += list(self._cache.values()) + [description_dir()]
+        return [root for root in dict.fromkeys(roots) if root.exists()]
+
     def find(self, name: str) -> Path:
         """The directory of package ``name``; PackageNotFoundError names where it looked."""
         if name in self._cache:

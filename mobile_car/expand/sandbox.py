@@ -1,0 +1,253 @@
+"""Confine the child process that evaluates xacro: a xacro is code.
+
+xacro evaluates ``${...}`` and ``$(eval ...)`` with Python's ``eval``; its guard against
+``__`` names is easy to get round (a comprehension reaches ``os.system``), and ``$(eval)``
+has every builtin. So the forked child that expands a file is confined before it reads the
+first byte, in three layers:
+
+* **seccomp** (libseccomp through ``pyseccomp``), the kernel's guarantee: no program runs
+  (execve, fork, clone), no socket opens, no file opens for writing, nothing in the file
+  system is created, renamed, removed or changed, no other process is signalled or traced.
+  Each such call fails with EPERM.
+* **Landlock** (through ``landlock``), where the kernel offers it: files are read only below
+  the roots the build needs (the packages it may use, the input's folder, Python's own
+  library); reading ``/etc/passwd`` or ``~/.ssh`` fails.
+* **an audit hook**, for the message only: Python reports ``os.system``, ``open(...,
+  'w')``, ``socket`` and ``ctypes`` before they reach the kernel, and the hook refuses
+  them with a :class:`SandboxViolation` that xacro reports at the expression's line.
+  Audit hooks are no security boundary (the kernel layers are); they make the refusal
+  readable.
+
+The child also dies with its parent (``PR_SET_PDEATHSIG``), and has only the result pipe
+and ``/dev/null`` as open files. ``trust_inputs()`` (``--no-sandbox``) turns it all off.
+"""
+
+from __future__ import annotations
+
+import errno
+import os
+import signal
+import sys
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+_trusted = False
+_unconfined_runs: list[str] = []  # why a run went unconfined, for one notice per process
+
+
+class SandboxViolation(PermissionError):
+    """The xacro tried something the sandbox forbids. A PermissionError, so that code
+    which copes with a refused write (Python's own bytecode cache) copes with this."""
+
+
+@dataclass(frozen=True)
+class Support:
+    """What this machine's kernel offers the sandbox."""
+
+    seccomp: str | None  # None when available, else why not
+    landlock_abi: int  # 0 when Landlock is unavailable
+    landlock_reason: str | None = None
+
+    def describe(self) -> list[str]:
+        if _trusted:
+            return ["sandbox: off (--no-sandbox)"]
+        return [
+            "sandbox seccomp: " + ("on (no programs, sockets or file writes)"
+                                   if self.seccomp is None else f"unavailable: {self.seccomp}"),
+            "sandbox landlock: " + (f"on, ABI {self.landlock_abi} (reads below the package "
+                                    "roots and the input's folder only)" if self.landlock_abi
+                                    else f"unavailable: {self.landlock_reason}"),
+        ]
+
+
+def trust_inputs() -> None:
+    """``--no-sandbox``: expand xacro without confinement (for trees you trust)."""
+    global _trusted
+    _trusted = True
+
+
+def is_trusted() -> bool:
+    return _trusted
+
+
+@lru_cache(1)
+def support() -> Support:
+    """Probe (once) whether seccomp and Landlock can be used here."""
+    seccomp_reason = None
+    if not sys.platform.startswith("linux"):
+        seccomp_reason = "not Linux"
+    else:
+        try:
+            import pyseccomp
+
+            pyseccomp.SyscallFilter(pyseccomp.ALLOW)  # loads libseccomp.so.2
+        except (ImportError, OSError, RuntimeError) as error:
+            seccomp_reason = f"libseccomp could not be loaded ({error})"
+    abi, landlock_reason = 0, None
+    try:
+        import landlock
+
+        abi = landlock.landlock_abi_version()
+    except ImportError as error:
+        landlock_reason = f"the landlock package is missing ({error})"
+    except (OSError, AttributeError) as error:  # ENOSYS, EOPNOTSUPP: the kernel has none
+        landlock_reason = f"the kernel offers no Landlock ({error.__class__.__name__})"
+    return Support(seccomp_reason, abi, landlock_reason)
+
+
+def note_unconfined(reason: str) -> None:
+    _unconfined_runs.append(reason)
+
+
+def unconfined_notice() -> str | None:
+    """One line to tell the user that xacro ran without the kernel's confinement, if it
+    did in this process (once)."""
+    if not _unconfined_runs:
+        return None
+    reason = _unconfined_runs[0]
+    _unconfined_runs.clear()
+    return (f"xacro ran without a sandbox ({reason}): an untrusted .xacro could run programs "
+            "and write files; see `mcar --version --verbose`")
+
+
+def prepare(read_roots: list[Path]) -> list[Path] | None:
+    """In the parent, before fork: the folders and files the child may read, or None when
+    the run is not to be confined (``--no-sandbox``). Imports what xacro loads lazily, so
+    the confined child need not open Python files (nor write their bytecode)."""
+    if _trusted:
+        return None
+    info = support()
+    if info.seccomp is not None:
+        note_unconfined(f"seccomp {info.seccomp}")
+    import xacro.substitution_args  # noqa: F401 - $(arg), $(find), $(eval), yaml
+    import yaml  # noqa: F401 - xacro.load_yaml
+
+    roots = [Path(p) for p in sys.path if p and os.path.isdir(p)]
+    roots += [Path(sys.prefix), Path(sys.base_prefix), *read_roots]
+    return list(dict.fromkeys(p for p in roots if p.exists()))
+
+
+def confine(read_roots: list[Path], keep_fd: int) -> None:
+    """In the forked child: confine this process for good. Raises nothing it can avoid:
+    a layer the kernel refuses is left out (``support()`` already said so)."""
+    _die_with_parent()
+    _only_fds(keep_fd)
+    info = support()
+    if info.landlock_abi:
+        _restrict_reads(read_roots)
+    if info.seccomp is None:
+        _deny_syscalls()
+    sys.addaudithook(_refuse_audited)
+
+
+def _die_with_parent() -> None:
+    parent = os.getppid()
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass
+    if os.getppid() != parent:  # the parent died before prctl took effect
+        os._exit(1)
+
+
+def _only_fds(keep_fd: int) -> None:
+    """stdin, stdout and stderr on /dev/null (a xacro must not write into mcar's output),
+    every other inherited file closed but the result pipe."""
+    null = os.open(os.devnull, os.O_RDWR)
+    for fd in (0, 1, 2):
+        os.dup2(null, fd)
+    os.close(null)
+    os.closerange(3, keep_fd)
+    os.closerange(keep_fd + 1, 65536)
+
+
+def _restrict_reads(read_roots: list[Path]) -> None:
+    import landlock
+
+    ruleset = landlock.Ruleset()
+    readable = landlock.FSAccess.READ_FILE | landlock.FSAccess.READ_DIR
+    for root in read_roots:
+        try:
+            ruleset.allow(root, rules=readable if root.is_dir()
+                          else landlock.FSAccess.READ_FILE)
+        except OSError:
+            continue  # vanished, or not a kind of file Landlock takes: stays unreadable
+    ruleset.apply()
+
+
+# System calls the child never needs and an attacker wants, refused with EPERM.
+_DENIED = (
+    # programs and processes
+    "execve", "execveat", "fork", "vfork", "clone", "ptrace", "process_vm_readv",
+    "process_vm_writev", "pidfd_open", "pidfd_getfd", "pidfd_send_signal",
+    # network
+    "socket", "socketpair", "connect", "bind", "listen", "accept", "accept4",
+    # changing the file system
+    "creat", "rename", "renameat", "renameat2", "unlink", "unlinkat", "rmdir", "mkdir",
+    "mkdirat", "link", "linkat", "symlink", "symlinkat", "chmod", "fchmod", "fchmodat",
+    "chown", "fchown", "lchown", "fchownat", "truncate", "ftruncate", "mknod", "mknodat",
+    "utime", "utimes", "utimensat", "futimesat", "setxattr", "lsetxattr", "fsetxattr",
+    "removexattr", "lremovexattr", "fremovexattr", "fallocate",
+    # ways around the filter or into the kernel
+    "io_uring_setup", "userfaultfd", "bpf", "perf_event_open", "mount", "umount2",
+    "pivot_root", "chroot", "unshare", "setns", "init_module", "finit_module",
+    "delete_module", "kexec_load", "reboot", "swapon", "swapoff", "keyctl", "add_key",
+    "request_key", "memfd_create", "name_to_handle_at", "open_by_handle_at",
+)
+# clone3 and openat2 take their flags in a struct seccomp cannot read: ENOSYS makes libc
+# fall back to clone and openat, whose flags it can.
+_UNSUPPORTED = ("clone3", "openat2")
+_WRITE_FLAGS = (os.O_WRONLY, os.O_RDWR, os.O_CREAT, os.O_TRUNC, os.O_APPEND)
+
+
+def _deny_syscalls() -> None:
+    import pyseccomp as sc
+
+    rules = sc.SyscallFilter(sc.ALLOW)
+    refuse = sc.ERRNO(errno.EPERM)
+    for name in _DENIED:
+        _add(rules, refuse, name)
+    for name in _UNSUPPORTED:
+        _add(rules, sc.ERRNO(errno.ENOSYS), name)
+    for name, flags_arg in (("open", 1), ("openat", 2)):
+        for flag in _WRITE_FLAGS:
+            _add(rules, refuse, name, sc.Arg(flags_arg, sc.MASKED_EQ, flag, flag))
+    own = os.getpid()
+    for name in ("kill", "tkill", "tgkill"):  # signals to itself only
+        _add(rules, refuse, name, sc.Arg(0, sc.NE, own))
+    rules.load()
+
+
+def _add(rules, action, name: str, *args) -> None:
+    try:
+        rules.add_rule(action, name, *args)
+    except (ValueError, RuntimeError, OSError):
+        pass  # a call this architecture does not have (x86-only names on arm64)
+
+
+_RUNS_PROGRAMS = ("os.system", "os.exec", "os.posix_spawn", "os.spawn", "os.fork",
+                  "os.forkpty", "subprocess.Popen", "pty.spawn", "os.startfile")
+_CHANGES_FILES = ("os.remove", "os.rename", "os.rmdir", "os.mkdir", "os.chmod", "os.chown",
+                  "os.truncate", "os.link", "os.symlink", "os.utime", "shutil.")
+_WRITE_MODE = frozenset("wax+")
+
+
+def _refuse_audited(event: str, args: tuple) -> None:
+    if event == "open":
+        path, mode, flags = (tuple(args) + (None, None, None))[:3]
+        writes = (isinstance(mode, str) and _WRITE_MODE & set(mode)) or (
+            isinstance(flags, int) and flags & (os.O_WRONLY | os.O_RDWR | os.O_CREAT))
+        if writes:
+            raise SandboxViolation(f"the xacro sandbox forbids writing files ({path})")
+    elif event.startswith(_RUNS_PROGRAMS):
+        raise SandboxViolation(f"the xacro sandbox forbids running programs ({event})")
+    elif event.startswith("socket."):
+        raise SandboxViolation(f"the xacro sandbox forbids network access ({event})")
+    elif event.startswith("ctypes."):
+        raise SandboxViolation(f"the xacro sandbox forbids native code ({event})")
+    elif event.startswith(_CHANGES_FILES) or event in ("os.kill", "os.killpg"):
+        raise SandboxViolation(f"the xacro sandbox forbids {event}")

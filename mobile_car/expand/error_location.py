@@ -32,7 +32,7 @@ def error_from(exc: BaseException, parsing: list, source: Path) -> McarError:
         return error
     if isinstance(inner, OSError) and inner.filename:
         exc = BuildError(f"cannot read {display_path(inner.filename)}: "
-                         f"{inner.strerror or inner}")
+                         f"{inner.strerror or inner}{_sandbox_hint(inner)}")
         needles = [os.path.basename(str(inner.filename))]
     else:
         needles = _needles(str(exc))
@@ -145,3 +145,15 @@ def _collapse_repeats(lines: list[str]) -> list[str]:
         hidden = len(out) - _MAX_STACK_LINES + 1
         out = out[: _MAX_STACK_LINES - 1] + [f"... and {hidden} more (a loop?)"]
     return out
+
+
+def _sandbox_hint(error: OSError) -> str:
+    """A read the sandbox refused looks like any EACCES: say where reading is allowed."""
+    import errno
+
+    from . import sandbox
+
+    if error.errno != errno.EACCES or sandbox.is_trusted() or not sandbox.support().landlock_abi:
+        return ""
+    return (" (the xacro sandbox reads only below the package roots and the input's "
+            "folder; --no-sandbox for a tree you trust)")

@@ -70,6 +70,13 @@ def _crawl(root: Path, found: dict[str, Path]) -> None:
                 stack.append((Path(entry.path), depth + 1))
 
 
+def _symlinked_dirs(folder: Path) -> list[Path]:
+    try:
+        return [Path(entry.path) for entry in os.scandir(folder) if entry.is_symlink()]
+    except OSError:
+        return []
+
+
 def _split_path_list(value: str | None) -> list[Path]:
     return [Path(p) for p in (value or "").split(os.pathsep) if p]
 
@@ -121,10 +128,13 @@ class PackageSearch:
         own = None if self.origin is None else enclosing_package(self.origin)
         roots = [] if own is None else [own[1]]
         roots += self.package_paths + _split_path_list(self._env.get("ROS_PACKAGE_PATH"))
-        roots += [prefix / "share" for prefix in
-                  _split_path_list(self._env.get("AMENT_PREFIX_PATH"))]
+        for prefix in _split_path_list(self._env.get("AMENT_PREFIX_PATH")):
+            roots.append(prefix / "share")
+            roots += _symlinked_dirs(prefix / "share")  # an install links to the sources
         roots += list(self._cache.values()) + [description_dir()]
-        return [root for root in dict.fromkeys(roots) if root.exists()]
+        # Landlock judges a file by its real path: a root given through a link is allowed
+        # where it leads.
+        return [root for root in dict.fromkeys(r.resolve() for r in roots) if root.exists()]
 
     def find(self, name: str) -> Path:
         """The directory of package ``name``; PackageNotFoundError names where it looked."""

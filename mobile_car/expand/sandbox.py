@@ -113,16 +113,14 @@ def unconfined_notice() -> str | None:
 
 def prepare(read_roots: list[Path]) -> list[Path] | None:
     """In the parent, before fork: the folders and files the child may read, or None when
-    the run is not to be confined (``--no-sandbox``). Imports what xacro loads lazily, so
-    the confined child need not open Python files (nor write their bytecode)."""
+    the run is not to be confined (``--no-sandbox``). Python's library is among them:
+    xacro imports its substitution_args and PyYAML at the first ``$(...)`` (the bytecode
+    cache it cannot write is skipped, as Python does on a read-only disk)."""
     if _trusted:
         return None
     info = support()
     if info.seccomp is not None:
         note_unconfined(f"seccomp {info.seccomp}")
-    import xacro.substitution_args  # noqa: F401 - $(arg), $(find), $(eval), yaml
-    import yaml  # noqa: F401 - xacro.load_yaml
-
     roots = [Path(p) for p in sys.path if p and os.path.isdir(p)]
     roots += [Path(sys.prefix), Path(sys.base_prefix), *read_roots]
     return list(dict.fromkeys(p for p in roots if p.exists()))

@@ -49,9 +49,10 @@ def _shape(rng: random.Random, kind: int) -> tuple[str, tuple[float, float, floa
     return f'<sphere radius="{_g(r)}"/>', (2 * r * r / 5,) * 3
 
 
-def _link_body(rng: random.Random, kind: int) -> str:
-    """The content of a link: inertial, visual and collision, all numbers drawn from rng."""
-    geometry, factors = _shape(rng, kind % 3)
+def _link_body(rng: random.Random, kind: int, shapes: int = 3) -> str:
+    """The content of a link: inertial, visual and collision, all numbers drawn from rng;
+    ``shapes`` 3: boxes, cylinders and spheres, 2: boxes and cylinders only."""
+    geometry, factors = _shape(rng, kind % shapes)
     mass = rng.uniform(0.05, 5.0)
     ixx, iyy, izz = (mass * f for f in factors)
     return (f'    <inertial>\n'
@@ -91,14 +92,16 @@ MATERIALS = ('  <material name="grey"><color rgba="0.6 0.6 0.6 1"/></material>\n
              '  <material name="orange"><color rgba="1 0.42 0.04 1"/></material>\n')
 
 
-def robot(n: int, shape: str = "tree", parts: str = "distinct", seed: int = 7) -> str:
-    """A valid URDF of ``n`` links; see the module docstring for ``shape`` and ``parts``."""
+def robot(n: int, shape: str = "tree", parts: str = "distinct", seed: int = 7,
+          shapes: int = 3) -> str:
+    """A valid URDF of ``n`` links; see the module docstring for ``shape`` and ``parts``;
+    ``shapes=2`` leaves out spheres (1,280 triangles each: the render bench's robots)."""
     if shape not in SHAPES or parts not in PARTS:
         raise ValueError(f"shape {shape!r} / parts {parts!r}")
     rng = random.Random(seed)
     # Repeated parts: four link models and four joint models, each used again and again.
     models = random.Random(seed + 1)
-    link_models = [_link_body(models, k) for k in range(4)]
+    link_models = [_link_body(models, k, shapes) for k in range(4)]
     joint_models = [_joint_body(models, JOINT_TYPES[k]) for k in range(4)]
     out = [f'<?xml version="1.0"?>\n<robot name="{shape}_{parts}_{n}">\n', MATERIALS,
            '  <link name="base_link"/>\n']
@@ -108,7 +111,8 @@ def robot(n: int, shape: str = "tree", parts: str = "distinct", seed: int = 7) -
         parent_name = "base_link" if parent == 0 else f"link_{parent}"
         joint_type = JOINT_TYPES[kind]
         if parts == "distinct":
-            link_body, joint_body = _link_body(rng, kind), _joint_body(rng, joint_type)
+            link_body, joint_body = (_link_body(rng, kind, shapes),
+                                      _joint_body(rng, joint_type))
         else:
             link_body, joint_body = link_models[kind], joint_models[kind]
         out.append(f'  <link name="link_{i}">\n{link_body}  </link>\n'

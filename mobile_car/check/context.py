@@ -35,6 +35,28 @@ _SINGLE_BYTES = b"0123456789.eE+-,"
 _LIST_BYTES = _SINGLE_BYTES + b" "
 
 
+# Bounds of rule E117: numbers urdfdom reads but that no robot has, and that overflow
+# when drawn or simulated (1e300 squared is inf). Lengths and coordinates in metres (a
+# robot a thousand kilometres across is a typo); angles in radians alike; a mesh scale so
+# that 1e6 m of mesh times the scale still fits float32 (3.4e38) with room; inertia
+# moments up to the largest mass at the largest distance.
+MAX_LENGTH = 1e6
+MAX_ANGLE = 1e6
+MAX_SCALE = 1e6
+MAX_MASS = 1e6
+MAX_INERTIA = MAX_MASS * MAX_LENGTH ** 2
+
+
+def within(values, bound: float) -> bool:
+    """True if every value's magnitude is at most ``bound``."""
+    return all(-bound <= value <= bound for value in values)
+
+
+def _power(bound: float) -> str:
+    """1e+06 -> 1e6, as the rule text writes the bounds."""
+    return f"{bound:.0e}".replace("e+0", "e").replace("e+", "e")
+
+
 def has_xacro_expression(text: str) -> bool:
     return "${" in text or "$(" in text
 
@@ -165,6 +187,18 @@ class Reporter:
             self.once_clean(("origin", origin.get("xyz"), origin.get("rpy")),
                             self._origin, origin, owner)
 
+    def bounded(self, element, attr: str, values, bound: float, unit: str,
+                owner: str) -> bool:
+        """Report E117 if a number read from ``attr`` is beyond ``bound``; True if not."""
+        if values is None or within(values, bound):
+            return True
+        self.add("E117", element, f"{owner}: <{tag_name(element)} {attr}="
+                                  f"\"{shorten(element.get(attr))}\"> is beyond "
+                                  f"{_power(bound)}{unit}, more than any robot has")
+        return False
+
     def _origin(self, origin, owner: str) -> None:
-        self.numbers(origin, "xyz", 3, owner)
-        self.numbers(origin, "rpy", 3, owner)
+        self.bounded(origin, "xyz", self.numbers(origin, "xyz", 3, owner), MAX_LENGTH, " m",
+                     owner)
+        self.bounded(origin, "rpy", self.numbers(origin, "rpy", 3, owner), MAX_ANGLE, " rad",
+                     owner)

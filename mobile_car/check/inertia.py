@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from .context import Reporter
+from .context import MAX_INERTIA, MAX_MASS, Reporter, within
 from .urdf_reader import Link
 
 INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
@@ -49,7 +49,9 @@ def _check_mass_inertia(inertial, parts: dict, owner: str, moving: bool,
                    f"{owner}: <inertial> has no <mass value=.../>")
     else:
         mass = report.number(mass_element, "value", owner)
-        if mass is not None and mass <= 0 and moving:
+        sane = report.bounded(mass_element, "value", None if mass is None else (mass,),
+                              MAX_MASS, " kg", owner)
+        if sane and mass is not None and mass <= 0 and moving:
             report.add("W203", mass_element, f"{owner} moves but its mass is {mass:g}")
     inertia = parts.get("inertia")
     if inertia is None:
@@ -62,6 +64,10 @@ def _check_mass_inertia(inertial, parts: dict, owner: str, moving: bool,
         return
     values = [report.number(inertia, name, owner) for name in INERTIA]
     if None in values:
+        return
+    if not within(values, MAX_INERTIA):  # (the eigenvalues would overflow, too)
+        for name, value in zip(INERTIA, values, strict=True):
+            report.bounded(inertia, name, (value,), MAX_INERTIA, " kg m²", owner)
         return
     problem = tensor_problem(*values)
     if problem is not None:

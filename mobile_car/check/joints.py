@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from .context import Reporter
+from .context import MAX_ANGLE, MAX_LENGTH, Reporter, within
 from .urdf_reader import Joint, Robot
 
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
@@ -59,8 +59,9 @@ def _plainly_sound(joint: Joint, link_names: set, report: Reporter) -> bool:
     origin = parts.get("origin")
     if origin is not None:
         xyz, rpy = origin.get("xyz"), origin.get("rpy")
-        if (xyz is not None and values(xyz, 3) is None) or \
-                (rpy is not None and values(rpy, 3) is None):
+        if xyz is not None and not within(values(xyz, 3) or (math.inf,), MAX_LENGTH):
+            return False
+        if rpy is not None and not within(values(rpy, 3) or (math.inf,), MAX_ANGLE):
             return False
     axis = parts.get("axis")
     if axis is not None:
@@ -70,7 +71,8 @@ def _plainly_sound(joint: Joint, link_names: set, report: Reporter) -> bool:
                 return False
         else:
             xyz = values(text, 3)
-            if xyz is None or (kind in _AXIS_TYPES and math.hypot(*xyz) < 1e-12):
+            if xyz is None or not within(xyz, MAX_LENGTH) or \
+                    (kind in _AXIS_TYPES and math.hypot(*xyz) < 1e-12):
                 return False
     limit = parts.get("limit")
     if limit is None:
@@ -133,6 +135,8 @@ def _check_axis(joint: Joint, axis, owner: str, report: Reporter) -> None:
                        "to 0 0 0; write e.g. xyz=\"0 0 1\"")
         return
     xyz = report.numbers(axis, "xyz", 3, owner)
+    if not report.bounded(axis, "xyz", xyz, MAX_LENGTH, "", owner):
+        return
     if xyz is not None and joint.type in _AXIS_TYPES and math.hypot(*xyz) < 1e-12:
         report.add("E125", axis, f"{owner}: axis xyz=\"{axis.get('xyz')}\" has "
                    "length 0")

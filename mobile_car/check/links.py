@@ -6,7 +6,7 @@ still exits 0): a robot silently missing a wheel in rviz. Here they are errors.
 
 from __future__ import annotations
 
-from .context import Reporter, has_xacro_expression
+from .context import MAX_LENGTH, MAX_SCALE, Reporter, has_xacro_expression
 from .urdf_model import tag_name
 from .urdf_reader import Body, Link, Robot
 
@@ -94,16 +94,21 @@ def _check_shape(shape, where: str, owner: str, report: Reporter) -> None:
         report.add("E112", shape, f"{where}: <{kind}> has no "
                    f"{' and no '.join(missing)}")
     if kind == "box":
-        _positive(report.numbers(shape, "size", 3, owner), shape, "size", where, report)
+        size = report.numbers(shape, "size", 3, owner)
+        _positive(size, shape, "size", where, report)
+        report.bounded(shape, "size", size, MAX_LENGTH, " m", where)
     elif kind == "mesh":
         scale = report.numbers(shape, "scale", 3, owner)
         if scale is not None and 0 in scale:
             report.add("E113", shape, f"{where}: mesh scale=\"{shape.get('scale')}\" "
                        "has a 0, which flattens the mesh")
+        report.bounded(shape, "scale", scale, MAX_SCALE, "", where)
     else:
         for attr in ("radius", "length") if kind == "cylinder" else ("radius",):
             value = report.number(shape, attr, owner)
-            _positive(None if value is None else (value,), shape, attr, where, report)
+            values = None if value is None else (value,)
+            _positive(values, shape, attr, where, report)
+            report.bounded(shape, attr, values, MAX_LENGTH, " m", where)
 
 
 def _positive(values, shape, attr: str, where: str, report: Reporter) -> None:

@@ -17,7 +17,9 @@ corpus and on mutated robots.
 
 from __future__ import annotations
 
-from .context import Reporter
+from math import inf
+
+from .context import MAX_ANGLE, MAX_INERTIA, MAX_LENGTH, MAX_MASS, MAX_SCALE, Reporter, within
 from .inertia import INERTIA, tensor_problem
 from .urdf_vocabulary import COLLISION, GEOMETRY, INERTIAL, LINK, VISUAL
 
@@ -74,8 +76,8 @@ def _origin(origin, report: Reporter) -> bool:
     if origin is None:
         return True
     xyz, rpy = origin.get("xyz"), origin.get("rpy")
-    return ((xyz is None or report.values(xyz, 3) is not None)
-            and (rpy is None or report.values(rpy, 3) is not None))
+    return ((xyz is None or within(report.values(xyz, 3) or (inf,), MAX_LENGTH))
+            and (rpy is None or within(report.values(rpy, 3) or (inf,), MAX_ANGLE)))
 
 
 def _inertial(inertial, report: Reporter, moving: bool) -> bool:
@@ -86,11 +88,12 @@ def _inertial(inertial, report: Reporter, moving: bool) -> bool:
     if mass is None or inertia is None:
         return False
     value = report.value(mass.get("value"))
-    if value is None or (moving and value <= 0):
+    if value is None or (moving and value <= 0) or not within((value,), MAX_MASS):
         return False
     get, number = inertia.get, report.value
     moments = [number(get(name)) for name in INERTIA]
-    return None not in moments and tensor_problem(*moments) is None
+    return (None not in moments and within(moments, MAX_INERTIA)
+            and tensor_problem(*moments) is None)
 
 
 def _body(body, is_visual: bool, report: Reporter, materials: set[str], top_level: set,
@@ -113,13 +116,14 @@ def _shape(shape, report: Reporter) -> bool:
     get = shape.get
     if tag == "box":
         size = report.values(get("size"), 3)
-        return size is not None and min(size) > 0
+        return size is not None and min(size) > 0 and max(size) <= MAX_LENGTH
     if tag == "cylinder":
         radius, length = report.value(get("radius")), report.value(get("length"))
-        return radius is not None and length is not None and radius > 0 and length > 0
+        return (radius is not None and length is not None and 0 < radius <= MAX_LENGTH
+                and 0 < length <= MAX_LENGTH)
     if tag == "sphere":
         radius = report.value(get("radius"))
-        return radius is not None and radius > 0
+        return radius is not None and 0 < radius <= MAX_LENGTH
     # A mesh: whether its file exists and loads is check_meshes' business.
     scale = get("scale")
     if get("filename") is None:
@@ -127,7 +131,7 @@ def _shape(shape, report: Reporter) -> bool:
     if scale is None:
         return True
     values = report.values(scale, 3)
-    return values is not None and 0 not in values
+    return values is not None and 0 not in values and within(values, MAX_SCALE)
 
 
 def _material(material, report: Reporter, materials: set[str], top_level: set,

@@ -67,6 +67,11 @@ _TABLE = [
          "or an inertia missing one of ixx ixy ixz iyy iyz izz", "ignores"),
     Rule("E116", "material-undefined", "a material used by name but never defined with a "
          "`<color>` or `<texture>`", "ignores (warns)"),
+    Rule("E117", "number-out-of-range", "a number urdfdom reads but no robot has, which "
+         "overflows when drawn or simulated: a coordinate (origin xyz), size, radius or length "
+         "beyond 1e6 m, an angle (rpy) beyond 1e6 rad, an axis component beyond 1e6, a mesh "
+         "scale beyond 1e6 (1e6 m of mesh times it still fits float32), a mass beyond 1e6 kg, "
+         "an inertia moment beyond 1e18 kg m² (nan, inf, 1e999: E114)", "accepts"),
     # Joints
     Rule("E120", "joint-type", "a joint without a type, or of an unknown type", "rejects"),
     Rule("E121", "joint-link-missing", "a joint without `<parent link>` or `<child link>`",

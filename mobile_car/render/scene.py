@@ -1,8 +1,9 @@
 """A URDF as world-space coloured triangles, ready for either renderer to draw.
 
-yourdfpy poses every link (all joints at zero) and loads the geometry with trimesh; this
-module flattens that scene into three parallel arrays, one row per triangle corner:
-position (metres, world frame), smooth-shading normal, and RGBA colour in 0..1.
+yourdfpy reads the URDF, :mod:`~mobile_car.render.assembly` poses every link (all joints
+at zero) and trimesh loads the geometry; this module flattens it into three parallel
+arrays, one row per triangle corner: position (metres, world frame), smooth-shading
+normal, and RGBA colour in 0..1.
 
 Colours follow rviz: a URDF ``<material>`` (named, defined once at the top, or inline)
 colours primitives and meshes that carry no colour of their own (yourdfpy writes it into
@@ -20,6 +21,7 @@ import hashlib
 import io
 import logging
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -31,6 +33,7 @@ from lxml import etree
 from ..errors import McarError, RenderError
 from ..expand.xacro_build import display_path
 from ..packages.search import PackageSearch
+from .assembly import Piece, pieces, unit_primitive
 
 # Faces meeting at less than this angle are shaded as one smooth surface (cylinder
 # sides, spheres); sharper edges (box corners, cylinder rims) stay crisp.
@@ -40,6 +43,8 @@ NO_MATERIAL_RGBA = (0.6, 0.6, 0.62, 1.0)
 # Smoothed meshes kept for reuse within a process (see _smooth_corners).
 _SMOOTHED: dict[str, tuple] = {}
 _SMOOTHED_LIMIT = 64
+# Smoothed unit box, cylinder and sphere: positions and normals (see assembly.py).
+_UNIT_CORNERS: dict[str, tuple] = {}
 
 
 @dataclass
@@ -135,19 +140,26 @@ def load_scene(source: ModelSource, search: PackageSearch, collision: bool = Fal
     logging.getLogger("yourdfpy").addHandler(logging.NullHandler())
     logging.getLogger("yourdfpy").propagate = False
     try:
+        # Only the parsing: yourdfpy's scene graph costs O(links²) (see assembly.py).
         model = yourdfpy.URDF.load(
-            io.BytesIO(source.xml), filename_handler=resolve,
-            build_scene_graph=not collision, load_meshes=not collision,
-            build_collision_scene_graph=collision, load_collision_meshes=collision,
-            force_collision_mesh=False)
+            io.BytesIO(source.xml), filename_handler=resolve, build_scene_graph=False,
+            load_meshes=False, build_collision_scene_graph=False,
+            load_collision_meshes=False)
+        link_colors = _link_colors(model) if collision else {}
+        with np.errstate(all="ignore"):  # an overflow is reported below, not as a warning
+            scene = _flatten(pieces(model.robot, resolve, collision), link_colors)
     except McarError:
         raise
     except Exception as exc:  # yourdfpy and trimesh raise anything from KeyError to ValueError
         raise RenderError(f"cannot build the model: {type(exc).__name__}: {exc}",
                           file=display_path(source.path)) from None
-    graph_scene = model.collision_scene if collision else model.scene
-    link_colors = _link_colors(model) if collision else {}
-    return _flatten(graph_scene, link_colors)
+    if not (np.isfinite(scene.positions).all() and np.isfinite(scene.normals).all()):
+        # mcar check bounds the URDF's numbers; a mesh file's own vertices can still be
+        # beyond what float32 holds (3.4e38), or not numbers at all.
+        raise RenderError("the geometry does not fit in float32 coordinates (a mesh file "
+                          "with vertices that are not finite numbers, or too large "
+                          "for its scale)", file=display_path(source.path))
+    return scene
 
 
 def _material_rgba(material, materials: dict) -> tuple | None:
@@ -213,33 +225,75 @@ def _smooth_corners(mesh: trimesh.Trimesh) -> tuple[np.ndarray, np.ndarray, np.n
     return cached
 
 
-def _flatten(graph_scene: trimesh.Scene, link_colors: dict[str, tuple]) -> Scene:
-    positions, normals, colors = [], [], []
-    parents = graph_scene.graph.transforms.parents
-    for node in sorted(graph_scene.graph.nodes_geometry):
-        transform, geometry_name = graph_scene.graph[node]
-        mesh = graph_scene.geometry.get(geometry_name)
-        if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
-            continue
-        mesh = mesh.copy()
-        if not isinstance(mesh.visual, trimesh.visual.ColorVisuals):
-            mesh.visual = _material_colors(mesh)
-        if link_colors:
-            rgba = link_colors.get(parents.get(node), NO_MATERIAL_RGBA)
-            # int(255 * c), as yourdfpy converts visual colours, so both agree exactly
-            mesh.visual.face_colors = (np.array(rgba) * 255).astype(np.uint8)
-        elif not mesh.visual.defined:
-            mesh.visual.face_colors = np.round(np.array(NO_MATERIAL_RGBA) * 255).astype(np.uint8)
-        local_positions, local_normals, corner_colors = _smooth_corners(mesh)
+def _face_colors(piece: Piece, link_colors: dict[str, tuple]) -> np.ndarray | None:
+    """The colour a piece is drawn in when its own is not kept: its link's first visual
+    colour for collision geometry, else None (keep the mesh's or the URDF's colour)."""
+    if link_colors:
+        # int(255 * c), as yourdfpy converts visual colours, so both agree exactly
+        return (np.array(link_colors.get(piece.link, NO_MATERIAL_RGBA)) * 255).astype(np.uint8)
+    return None
+
+
+def _primitive_corners(piece: Piece, link_colors: dict[str, tuple]) -> tuple:
+    """The smoothed corners of a unit primitive, in the piece's colour. The shape is
+    smoothed once per process: a primitive has one colour, which smoothing keeps."""
+    colour = _face_colors(piece, link_colors)
+    if colour is None:
+        colour = piece.rgba if piece.rgba is not None else \
+            np.round(np.array(NO_MATERIAL_RGBA) * 255).astype(np.uint8)
+    shape = _UNIT_CORNERS.get(piece.primitive)
+    if shape is None:
+        positions, normals, _ = _smooth_corners(unit_primitive(piece.primitive))
+        shape = _UNIT_CORNERS[piece.primitive] = (positions, normals)
+    positions, normals = shape
+    rgba = np.asarray(colour, dtype=np.uint8)[:4] / 255.0
+    return positions, normals, np.broadcast_to(rgba, (len(positions), 4))
+
+
+def _mesh_corners(piece: Piece, link_colors: dict[str, tuple]) -> tuple | None:
+    mesh = piece.mesh
+    if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
+        return None
+    mesh = mesh.copy()
+    if not isinstance(mesh.visual, trimesh.visual.ColorVisuals):
+        mesh.visual = _material_colors(mesh)
+    colour = _face_colors(piece, link_colors)
+    if colour is not None:
+        mesh.visual.face_colors = colour
+    elif not mesh.visual.defined:
+        mesh.visual.face_colors = np.round(np.array(NO_MATERIAL_RGBA) * 255).astype(np.uint8)
+    return _smooth_corners(mesh)
+
+
+def _flatten(placed: Iterator[Piece], link_colors: dict[str, tuple]) -> Scene:
+    placed = list(placed)
+    shaped = []
+    # Where two faces lie in one plane, the one drawn first shows. Pictures keep the order
+    # they had when yourdfpy's scene named the pieces geometry_0, geometry_1, ... and they
+    # were drawn sorted by name (geometry_10 before geometry_2).
+    for index in sorted(range(len(placed)), key=str):
+        piece = placed[index]
+        if piece.primitive is not None:
+            corners = _primitive_corners(piece, link_colors)
+        else:
+            corners = _mesh_corners(piece, link_colors)
+        if corners is not None:
+            shaped.append((piece.transform, corners))
+    # Written straight into the float32 arrays the renderer takes: a robot of 10,000
+    # links has millions of corners, and lists of float64 parts would triple the memory.
+    count = sum(len(corners[0]) for _, corners in shaped)
+    positions = np.empty((count, 3), np.float32)
+    normals = np.empty((count, 3), np.float32)
+    colors = np.empty((count, 4), np.float32)
+    start = 0
+    for transform, (local_positions, local_normals, corner_colors) in shaped:
+        end = start + len(local_positions)
         linear, offset = transform[:3, :3], transform[:3, 3]
-        positions.append(local_positions @ linear.T + offset)
+        positions[start:end] = local_positions @ linear.T + offset
         # Normals go with the inverse transpose, which also covers scaled meshes.
         turned = local_normals @ np.linalg.inv(linear)
-        normals.append(turned / np.maximum(np.linalg.norm(turned, axis=1, keepdims=True), 1e-12))
-        colors.append(corner_colors)
-    if not positions:
-        empty = np.zeros((0, 3), np.float32)
-        return Scene(empty, empty.copy(), np.zeros((0, 4), np.float32))
-    return Scene(np.concatenate(positions).astype(np.float32),
-                 np.concatenate(normals).astype(np.float32),
-                 np.concatenate(colors).astype(np.float32))
+        normals[start:end] = turned / np.maximum(
+            np.linalg.norm(turned, axis=1, keepdims=True), 1e-12)
+        colors[start:end] = corner_colors
+        start = end
+    return Scene(positions, normals, colors)

@@ -21,7 +21,7 @@ from PIL import Image
 
 from ..atomic import atomic_write
 from ..check.checker import CheckResult, check_input
-from ..errors import CheckFailed, McarError, RendererUnavailableError
+from ..errors import CheckFailed, McarError, RenderError, RendererUnavailableError
 from ..load.inputs import RobotInput
 from ..load.outputs import refuse_overwriting
 from ..load.robot import LoadedRobot, LoadOptions
@@ -90,6 +90,13 @@ def _sheet_copy(image: Image.Image) -> Image.Image:
     copy = image.copy()
     copy.thumbnail((2 * THUMBNAIL_WIDTH, 2 * THUMBNAIL_WIDTH))
     return copy
+
+
+def _drawing_error(job: RenderJob, exc: Exception) -> RenderError:
+    """An unforeseen failure while drawing one robot, as that robot's located error: the
+    other robots of the run are still drawn, and the run ends with exit 1."""
+    return RenderError(f"cannot draw this robot: {type(exc).__name__}: {exc}",
+                       file=job.input.label)
 
 
 def picture_name(path: Path | None) -> str:
@@ -219,6 +226,9 @@ class RenderSession:
             raise  # nothing else can be rendered either: the whole run stops
         except McarError as error:
             return JobResult(job, "failed", error=error, seconds=time.perf_counter() - started)
+        except Exception as exc:  # trimesh, numpy or GL on input nothing checked for
+            return JobResult(job, "failed", error=_drawing_error(job, exc),
+                             seconds=time.perf_counter() - started)
         return _Drawn(job, views, scene.bounds, fingerprint, renderer.name, warnings, started)
 
     def _finish(self, drawn: _Drawn, manifest: Manifest | None) -> JobResult:
@@ -235,6 +245,9 @@ class RenderSession:
                     self.thumbnails[manifest.key(job.target)] = _sheet_copy(image)
         except McarError as error:
             return JobResult(job, "failed", error=error,
+                             seconds=time.perf_counter() - drawn.started)
+        except Exception as exc:  # e.g. numpy on a picture of non-finite bounds
+            return JobResult(job, "failed", error=_drawing_error(job, exc),
                              seconds=time.perf_counter() - drawn.started)
         return JobResult(job, "rendered", warnings=drawn.warnings, png=png,
                          seconds=time.perf_counter() - drawn.started)

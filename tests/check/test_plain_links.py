@@ -195,6 +195,15 @@ STRUCTURE = {
     "negative radius": _set(f"{SHELL}/geometry/cylinder", "radius", "-0.03"),
     "mesh scale 0": _set(f"{UPPER}/collision/geometry/mesh", "scale", "1 0 1"),
     "xacro left in a value": _set(f"{SHELL}/geometry/cylinder", "radius", "${r}"),
+    "origin beyond 1e6 m": _set(f"{SHELL}/origin", "xyz", "1e300 0 0"),
+    "rpy beyond 1e6 rad": _set(f"{SHELL}/origin", "rpy", "0 -2e6 0"),
+    "inertial origin beyond 1e6 m": _set(f"{INERTIAL}/origin", "xyz", "0 0 1.5e6"),
+    "box beyond 1e6 m": _set(f"{UPPER}/visual[2]/geometry/box", "size", "1 1e7 1"),
+    "cylinder beyond 1e6 m": _set(f"{SHELL}/geometry/cylinder", "length", "1e300"),
+    "sphere beyond 1e6 m": _set("link[@name='tool']/visual/geometry/sphere", "radius", "2e6"),
+    "mesh scale beyond 1e6": _set(f"{UPPER}/collision/geometry/mesh", "scale", "1 1 1e308"),
+    "mass beyond 1e6 kg": _set(f"{INERTIAL}/mass", "value", "1e7"),
+    "inertia beyond 1e18": _set(f"{INERTIAL}/inertia", "ixy", "-1e300"),
 }
 
 
@@ -237,6 +246,11 @@ JOINTS = {
         SHOULDER, "<safety_controller soft_lower_limit='-1'/>"),
     "calibration unreadable": _append(SHOULDER, "<calibration rising='up'/>"),
     "second origin in a joint": _duplicate(f"{SHOULDER}/origin"),
+    "joint origin beyond 1e6 m": _set(f"{SHOULDER}/origin", "xyz", "1e300 0 0"),
+    "joint rpy beyond 1e6 rad": _set(f"{SHOULDER}/origin", "rpy", "1e7 0 0"),
+    "axis beyond 1e6": _set(f"{WRIST}/axis", "xyz", "0 0 1e300"),
+    "fixed joint axis beyond 1e6": _append("joint[@name='camera_mount']",
+                                           "<axis xyz='1e300 0 0'/>"),
     "unknown joint attribute": _set(SHOULDER, "kind", "x"),
 }
 

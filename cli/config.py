@@ -49,8 +49,8 @@ def _text(table: dict) -> str:
             mark = "*" if item.get("overridden") else " "
             value = f"{item['value']:.6g}"
             note = item["meaning"]
-            if item.get("overridden"):
-                note += f" (default {item['default']:.6g})"
+            if item.get("overridden"):  # the meaning describes the default, not this value
+                note += f" [stale: said of the default {item['default']:.6g}]"
             if "expression" in item:
                 note += f"  = {item['expression']}"
             path, _, line = item["defined"].rpartition(":")
@@ -58,7 +58,9 @@ def _text(table: dict) -> str:
             rows.append(f"{mark}{name:<{width}}{value:>10} {item['unit']:<7} "
                         f"{item['source']:<10}{where:<18}{note}")
         rows.append("")
-    rows.append(f"* overridden. Defined in {display_path(table['config'])}")
+    if any(item.get("overridden") for item in table["dimensions"].values()):
+        rows.append("* overridden: its meaning was written for the default value")
+    rows.append(f"Defined in {display_path(table['config'])}")
     return "\n".join(rows)
 
 

@@ -10,9 +10,9 @@ import click
 from mobile_car.errors import UsageError
 from mobile_car.load.inputs import display_path
 
-from .common import INPUT_HELP, handle_errors, load_inputs, robot_options
+from .common import handle_errors, load_inputs, robot_options
 
-HELP = f"""Show the robot's dimensions: value, unit, source, meaning, FILE:LINE.
+HELP = """Show the robot's dimensions: value, unit, source, meaning, FILE:LINE.
 
 \b
   mcar config                               the table, then the derived values
@@ -25,7 +25,10 @@ evaluated here by xacro itself. The config is urdf/config.xacro of the package f
 from INPUT (a robot .xacro, a folder or part of the package), else of the package you
 stand in, else the bundled mobile car's. A URDF has no dimensions to show.
 
-{INPUT_HELP}
+\b
+INPUT (optional) names the package whose config.xacro to show: a robot .xacro file,
+a folder, or a part name of the package. Not stdin, not a URDF, and no NAME:=VALUE
+words: dimensions change with --set and --config.
 
 \b
 Exit codes:

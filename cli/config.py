@@ -10,9 +10,9 @@ import click
 from mobile_car.errors import UsageError
 from mobile_car.load.inputs import display_path
 
-from .common import INPUT_HELP, handle_errors, load_inputs, robot_options
+from .common import handle_errors, load_inputs, robot_options
 
-HELP = f"""Show the robot's dimensions: value, unit, source, meaning, FILE:LINE.
+HELP = """Show the robot's dimensions: value, unit, source, meaning, FILE:LINE.
 
 \b
   mcar config                               the table, then the derived values
@@ -25,7 +25,10 @@ evaluated here by xacro itself. The config is urdf/config.xacro of the package f
 from INPUT (a robot .xacro, a folder or part of the package), else of the package you
 stand in, else the bundled mobile car's. A URDF has no dimensions to show.
 
-{INPUT_HELP}
+\b
+INPUT (optional) names the package whose config.xacro to show: a robot .xacro file,
+a folder, or a part name of the package. Not stdin, not a URDF, and no NAME:=VALUE
+words: dimensions change with --set and --config.
 
 \b
 Exit codes:
@@ -49,8 +52,8 @@ def _text(table: dict) -> str:
             mark = "*" if item.get("overridden") else " "
             value = f"{item['value']:.6g}"
             note = item["meaning"]
-            if item.get("overridden"):
-                note += f" (default {item['default']:.6g})"
+            if item.get("overridden"):  # the meaning describes the default, not this value
+                note += f" [stale: said of the default {item['default']:.6g}]"
             if "expression" in item:
                 note += f"  = {item['expression']}"
             path, _, line = item["defined"].rpartition(":")
@@ -58,7 +61,9 @@ def _text(table: dict) -> str:
             rows.append(f"{mark}{name:<{width}}{value:>10} {item['unit']:<7} "
                         f"{item['source']:<10}{where:<18}{note}")
         rows.append("")
-    rows.append(f"* overridden. Defined in {display_path(table['config'])}")
+    if any(item.get("overridden") for item in table["dimensions"].values()):
+        rows.append("* overridden: its meaning was written for the default value")
+    rows.append(f"Defined in {display_path(table['config'])}")
     return "\n".join(rows)
 
 

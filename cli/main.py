@@ -43,6 +43,15 @@ class LazyGroup(click.Group):
         module = importlib.import_module(f"mobile_car.cli.{COMMANDS[name][0]}")
         return module.command
 
+    def resolve_command(self, ctx, args):
+        if args and not args[0].startswith("-") and args[0] not in COMMANDS:
+            import difflib  # only on this error path
+
+            close = difflib.get_close_matches(args[0], sorted(COMMANDS), n=1, cutoff=0.6)
+            hint = f" Did you mean '{close[0]}'?" if close else ""
+            ctx.fail(f"No such command '{args[0]}'.{hint} Commands: {', '.join(sorted(COMMANDS))}.")
+        return super().resolve_command(ctx, args)
+
     def format_commands(self, ctx, formatter):
         rows = [(name, COMMANDS[name][1]) for name in self.list_commands(ctx)]
         with formatter.section("Commands"):

@@ -41,6 +41,12 @@ def parse_xml(data: bytes) -> etree._Element:
     try:
         root = etree.fromstring(data, parser)
     except etree.XMLSyntaxError as exc:
+        if "encoding" in (exc.msg or "") or "UTF-8" in (exc.msg or ""):
+            from ..load.encoding import first_bad_offset, not_utf8
+
+            start = first_bad_offset(data)
+            if start is not None:
+                raise XmlError(*not_utf8(data, start)) from None
         message = exc.msg or "not well-formed"
         # libxml2 appends ", line N, column M" to some messages; the line goes in front.
         message = re.sub(r", line \d+, column \d+$", "", message)

@@ -36,6 +36,13 @@ def error_from(exc: BaseException, parsing: list, source: Path) -> McarError:
         needles = [os.path.basename(str(inner.filename))]
     else:
         needles = _needles(str(exc))
+    decode = exc if isinstance(exc, UnicodeDecodeError) else inner
+    if isinstance(decode, UnicodeDecodeError) and isinstance(decode.object, bytes):
+        from ..load.encoding import not_utf8
+
+        bad = parsing[-1] if parsing and parsing[-1] else str(source)
+        message, line = not_utf8(decode.object, decode.start)
+        return BuildError(message, file=display_path(bad), line=line, details=_stack_details())
     if isinstance(exc, xml.parsers.expat.ExpatError):
         bad = parsing[-1] if parsing and parsing[-1] else str(source)
         message = xml.parsers.expat.ErrorString(exc.code) if exc.code else str(exc)

@@ -50,11 +50,22 @@ def test_config_text_table_marks_overrides(run_mcar):
     assert result.returncode == 0, result.stderr
     rows = {line.split()[0]: line for line in result.stdout.splitlines() if line.strip()}
     assert rows["*wheel_radius"].split()[1:3] == ["0.04", "m"]
-    assert "(default 0.0325)" in rows["*wheel_radius"]
+    # The meaning was written for the default: "65 mm diameter wheel" is marked stale.
+    assert rows["*wheel_radius"].endswith(
+        "65 mm diameter wheel [stale: said of the default 0.0325]")
     assert "config.xacro:" in rows["*wheel_radius"]
     assert rows["axle_height"].split()[1] == "0.04"  # derived follows the override
     assert [line for line in result.stdout.splitlines() if line.startswith("*")] == \
-        [rows["*wheel_radius"], "* overridden. Defined in urdf/config.xacro"]
+        [rows["*wheel_radius"], "* overridden: its meaning was written for the default value"]
+    assert result.stdout.rstrip().endswith("Defined in urdf/config.xacro")
+
+
+def test_config_text_table_without_overrides_has_no_legend(run_mcar):
+    result = run_mcar("config")
+    assert result.returncode == 0, result.stderr
+    assert not [line for line in result.stdout.splitlines() if line.startswith("*")]
+    assert "stale" not in result.stdout
+    assert result.stdout.rstrip().splitlines()[-1] == "Defined in urdf/config.xacro"
 
 
 def test_json_output_round_trips_into_config(run_mcar, tmp_path):

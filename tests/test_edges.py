@@ -1,0 +1,36 @@
+"""The edges a new user hits (issue 14), one row each in edges/cases.txt: the exit code and
+the exact first line of stderr."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+from conftest import REPO
+
+HERE = Path(__file__).parent / "edges"
+
+
+def _cases():
+    for raw in (HERE / "cases.txt").read_text().splitlines():
+        if raw.strip() and not raw.startswith("#"):
+            name, words, code, first = (part.strip() for part in raw.split("|", 3))
+            yield pytest.param(words.replace("{REPO}", str(REPO)).split(), int(code), first,
+                               id=name)
+
+
+@pytest.mark.parametrize("words, code, first", list(_cases()))
+def test_edge(run_mcar, tmp_path, words, code, first):
+    shutil.copytree(HERE / "files", tmp_path, dirs_exist_ok=True)
+    result = run_mcar(*words, cwd=tmp_path)
+    lines = [line for line in result.stderr.splitlines() if not line.startswith("mcar: package")]
+    assert (result.returncode, lines[0] if lines else "") == (code, first), result.stderr
+
+
+def test_command_typo_suggests_the_command(run_mcar):
+    result = run_mcar("chek")
+    assert result.returncode == 2
+    assert result.stderr.splitlines()[-1] == (
+        "Error: No such command 'chek'. Did you mean 'check'? "
+        "Commands: build, check, ci, config, init, new, render, tree.")

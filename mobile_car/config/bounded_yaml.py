@@ -13,6 +13,7 @@ import reprlib
 
 import yaml
 from yaml.composer import ComposerError
+from yaml.constructor import ConstructorError
 from yaml.events import AliasEvent
 
 MAX_NODES = 100_000  # with aliases expanded; a config file has a few hundred
@@ -29,6 +30,10 @@ def short_repr(value) -> str:
     return _short.repr(value)
 
 
+class TooLarge(ComposerError):
+    """The document passes MAX_NODES or MAX_DEPTH: valid YAML, refused all the same."""
+
+
 class BoundedLoader(yaml.SafeLoader):
     """SafeLoader that refuses documents over MAX_NODES (aliases expanded) or MAX_DEPTH."""
 
@@ -39,7 +44,7 @@ class BoundedLoader(yaml.SafeLoader):
         self._depth = 0
 
     def _refuse(self, problem: str, mark) -> None:
-        raise ComposerError(None, None, problem, mark)
+        raise TooLarge(None, None, problem, mark)
 
     def compose_node(self, parent, index):
         event = self.peek_event()
@@ -73,6 +78,12 @@ def compose_and_load(text: str):
     loader = BoundedLoader(text)
     try:
         node = loader.get_single_node()
-        return node, (loader.construct_document(node) if node is not None else None)
+        if node is None:
+            return None, None
+        try:
+            return node, loader.construct_document(node)
+        except ValueError as exc:  # int() of more than 4300 digits, in PyYAML's constructor
+            raise ConstructorError(None, None, " ".join(str(exc).split())[:100],
+                                   node.start_mark) from None
     finally:
         loader.dispose()

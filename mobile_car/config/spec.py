@@ -151,7 +151,7 @@ def read_config_file(spec: ConfigSpec, path: Path) -> dict[str, float]:
     import yaml
 
     from ..load.bounded import read_input
-    from .bounded_yaml import compose_and_load, short_repr
+    from .bounded_yaml import TooLarge, compose_and_load, short_repr
 
     shown = str(path)
     try:
@@ -165,7 +165,9 @@ def read_config_file(spec: ConfigSpec, path: Path) -> dict[str, float]:
     except yaml.YAMLError as error:
         mark = getattr(error, "problem_mark", None)
         problem = getattr(error, "problem", None) or "not valid YAML"
-        raise UsageError(f"not valid YAML: {problem}", file=shown,
+        if not isinstance(error, TooLarge):
+            problem = f"not valid YAML: {problem}"
+        raise UsageError(problem, file=shown,
                          line=mark.line + 1 if mark else None) from None
     if data is None:
         return {}

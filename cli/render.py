@@ -20,6 +20,7 @@ from mobile_car.render.options import (
     RENDERERS,
     VIEW_CHOICES,
     RenderOptions,
+    check_pixels,
     parse_color,
     parse_size,
 )
@@ -166,6 +167,7 @@ def command(words, output, view, size, collision, background, grid, axes, render
     started = time.perf_counter()
     options = RenderOptions(view=view, width=size[0], height=size[1], collision=collision,
                             background=background, grid=grid, axes=axes)
+    check_pixels(*size, renderer)
     with load_inputs(words, package_paths, sets, config_files) as (selection, load):
         load = dataclasses.replace(load, size_limited=True)
         jobs, outdir, sheet = _plan(selection, output)

@@ -4,16 +4,19 @@
 ``mcar build``; ``file://`` and relative paths against the folder of the checked file.
 A mesh is loaded with trimesh (imported only when a mesh file exists), once per process
 however many links use it. Formats trimesh cannot read on this machine are only checked
-for existence, not reported as broken.
+for existence, not reported as broken. Compressed meshes are decompressed by mcar within
+``MCAR_MAX_MESH_MB`` (:mod:`mobile_car.load.compressed`), then handed to trimesh.
 """
 
 from __future__ import annotations
 
+import io
 import os
 from pathlib import Path
 from typing import NamedTuple
 
-from ..errors import McarError
+from ..errors import InputError, McarError
+from ..load.compressed import broken_errors, compressed_kind, decompressed_members, suffix_of
 from ..packages.search import PackageSearch
 from .context import Reporter, has_xacro_expression
 
@@ -94,13 +97,42 @@ def _try_load(path: Path) -> str | None:
         return None
     import trimesh  # heavy (numpy): only for meshes the cheap test above cannot vouch for
 
+    if compressed_kind(path) is not None:
+        return _compressed_problem(path, trimesh)
     suffix = path.suffix.lower().lstrip(".")
     if suffix not in trimesh.available_formats():
         return None
+    return _geometry_problem(trimesh, str(path))
+
+
+def _geometry_problem(trimesh, source, **kwargs) -> str | None:
     try:
-        loaded = trimesh.load(str(path), force="mesh")
+        loaded = trimesh.load(source, force="mesh", **kwargs)
     except Exception as exc:  # trimesh raises anything from ValueError to struct.error
-        return " ".join(str(exc).split())[:200] or type(exc).__name__
+        return _short(exc)
     if getattr(loaded, "vertices", None) is None or len(loaded.vertices) == 0:
         return "it holds no geometry"
     return None
+
+
+def _compressed_problem(path: Path, trimesh) -> str | None:
+    """Decompressed by mcar within MCAR_MAX_MESH_MB (trimesh would decompress a bomb
+    whole); sound when a member of a format trimesh reads holds geometry."""
+    try:
+        members = decompressed_members(path)
+    except InputError as error:
+        return error.message
+    except broken_errors() as exc:
+        return _short(exc)
+    readable = [(name, data) for name, data in members
+                if suffix_of(name) in trimesh.available_formats()]
+    problem = None
+    for name, data in readable:
+        problem = _geometry_problem(trimesh, io.BytesIO(data), file_type=suffix_of(name))
+        if problem is None:
+            return None
+    return problem
+
+
+def _short(exc: BaseException) -> str:
+    return " ".join(str(exc).split())[:200] or type(exc).__name__

@@ -114,13 +114,15 @@ def _check_bound(dimension: Dimension, value: float, origin: str) -> None:
 
 
 def _override(spec: ConfigSpec, name: str, raw, origin: str) -> float:
+    from .bounded_yaml import short_repr
     from .units import parse_quantity
 
     dimension = spec.dimensions.get(name)
     if dimension is None:
-        close = difflib.get_close_matches(name, list(spec.dimensions), n=1)
+        close = difflib.get_close_matches(name, list(spec.dimensions), n=1) \
+            if len(name) <= 100 else []
         hint = f" (did you mean '{close[0]}'?)" if close else ""
-        raise UsageError(f"{origin}: unknown dimension '{name}'{hint}; "
+        raise UsageError(f"{origin}: unknown dimension {short_repr(name)}{hint}; "
                          "`mcar config` lists them")
     if dimension.derived:
         raise UsageError(f"{origin}: {name} is derived ({dimension.expression.strip('${}')}), "
@@ -148,11 +150,12 @@ def read_config_file(spec: ConfigSpec, path: Path) -> dict[str, float]:
     """A partial config file: ``name: value`` pairs, or the JSON/YAML `mcar config` writes."""
     import yaml
 
+    from ..load.bounded import read_input
+    from .bounded_yaml import TooLarge, compose_and_load, short_repr
+
     shown = str(path)
     try:
-        text = Path(path).read_text(encoding="utf-8")
-        node = yaml.compose(text, Loader=yaml.SafeLoader)
-        data = yaml.safe_load(text)
+        node, data = compose_and_load(read_input(path, shown).decode("utf-8"))
     except FileNotFoundError:
         raise InputError("no such file", file=shown) from None
     except IsADirectoryError:
@@ -162,7 +165,9 @@ def read_config_file(spec: ConfigSpec, path: Path) -> dict[str, float]:
     except yaml.YAMLError as error:
         mark = getattr(error, "problem_mark", None)
         problem = getattr(error, "problem", None) or "not valid YAML"
-        raise UsageError(f"not valid YAML: {problem}", file=shown,
+        if not isinstance(error, TooLarge):
+            problem = f"not valid YAML: {problem}"
+        raise UsageError(problem, file=shown,
                          line=mark.line + 1 if mark else None) from None
     if data is None:
         return {}
@@ -178,6 +183,6 @@ def read_config_file(spec: ConfigSpec, path: Path) -> dict[str, float]:
     for name, raw in data.items():
         origin = f"{shown}:{lines[name]}" if name in lines else shown
         if not isinstance(raw, (int, float, str)) or isinstance(raw, bool):
-            raise UsageError(f"{origin}: {name}: expected a number, got {raw!r}")
+            raise UsageError(f"{origin}: {name}: expected a number, got {short_repr(raw)}")
         overrides[str(name)] = _override(spec, str(name), raw, origin)
     return overrides

@@ -13,6 +13,15 @@ import re
 
 from ..errors import UsageError
 
+# Longer is no quantity a person writes, and pint's parser need not see it.
+_MAX_TEXT = 100
+
+
+def _shown(text) -> str:
+    from .bounded_yaml import short_repr
+
+    return short_repr(text)
+
 _BARE_NUMBER = re.compile(r"[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?")
 # The config's unit spellings, as pint understands them.
 _PINT_UNITS = {"m": "m", "kg": "kg", "kg/m^3": "kg/m**3", "rad/s": "rad/s", "N*m": "N*m",
@@ -31,15 +40,20 @@ def parse_quantity(text: str | float | int, unit: str, name: str) -> float:
     if isinstance(text, bool):
         raise UsageError(f"{name}: expected a number in {unit}, got {text!r}")
     if isinstance(text, (int, float)):
-        value = float(text)
+        try:
+            value = float(text)
+        except OverflowError:  # an int of hundreds of digits
+            value = math.inf
     else:
         raw = str(text).strip()
+        if len(raw) > _MAX_TEXT:
+            raise UsageError(f"{name}: {_shown(raw)} is too long for a number with a unit")
         if _BARE_NUMBER.fullmatch(raw):
             value = float(raw)
         else:
             value = _convert(raw, unit, name)
     if not math.isfinite(value):
-        raise UsageError(f"{name}: {text!r} is not a finite number")
+        raise UsageError(f"{name}: {_shown(text)} is not a finite number")
     return value
 
 

@@ -15,6 +15,7 @@ from pathlib import Path
 import xacro
 
 from ..errors import BuildError, McarError
+from ..load.bounded import read_text_quietly
 from ..load.inputs import display_path
 
 _QUOTED_RE = re.compile(r"'([^']+)'")
@@ -108,9 +109,8 @@ def _needles(message: str) -> list[str]:
 def _find_line(path: str | None, needles: list[str]) -> int | None:
     if not path or not needles:
         return None
-    try:
-        text = Path(path).read_text(encoding="utf-8", errors="replace")
-    except OSError:
+    text = read_text_quietly(path)
+    if text is None:
         return None
     # A comment that mentions the name is not where the error is: blank comments out,
     # keeping their newlines so line numbers stay right.

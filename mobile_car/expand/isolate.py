@@ -63,6 +63,11 @@ def run_isolated(func, *args, read_roots: list[Path] = ()):
         status = 0
         try:
             limit = memory_mb * 1024 * 1024
+            # Under a lower hard limit (prlimit, a CI runner's ulimit) keep that one:
+            # raising it is refused, and the child would die without a word.
+            hard = resource.getrlimit(resource.RLIMIT_AS)[1]
+            if hard != resource.RLIM_INFINITY:
+                limit = min(limit, hard)
             resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
             try:
                 if confined_roots is not None:

@@ -16,6 +16,7 @@ from pathlib import Path
 
 from ..check.urdf_vocabulary import EXTENSIONS, SPECS
 from ..errors import BuildError
+from ..load.bounded import read_text_quietly
 from ..load.inputs import display_path
 
 _COMMENT_RE = re.compile(r"<!--.*?-->", re.S)
@@ -32,9 +33,8 @@ def unprefixed_call(macros: set[str], files: list[Path], doc=None) -> BuildError
             return None
     pattern = re.compile(r"<(" + "|".join(map(re.escape, sorted(names))) + r")[\s/>]")
     for path in files:
-        try:
-            text = path.read_text(encoding="utf-8", errors="replace")
-        except OSError:
+        text = read_text_quietly(path)
+        if text is None:
             continue
         # Blank comments out, keeping their newlines, so line numbers stay right.
         text = _COMMENT_RE.sub(lambda m: "\n" * m.group(0).count("\n"), text)

@@ -19,6 +19,7 @@ import re
 from pathlib import Path
 
 from ..check.urdf_model import tag_name
+from ..load.bounded import read_text_quietly
 from ..load.inputs import display_path
 
 
@@ -31,10 +32,7 @@ class SourceLocator:
 
     def _read(self, path: Path) -> list[str]:
         if path not in self._lines:
-            try:
-                self._lines[path] = path.read_text(encoding="utf-8", errors="replace").splitlines()
-            except OSError:
-                self._lines[path] = []
+            self._lines[path] = (read_text_quietly(path) or "").splitlines()
         return self._lines[path]
 
     def _search(self, tag: str, name: str) -> tuple[str, int] | None:

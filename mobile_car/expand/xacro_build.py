@@ -23,6 +23,7 @@ from pathlib import Path
 import xacro
 
 from ..errors import BuildError, InputError, UsageError
+from ..load.bounded import read_input, read_text_quietly
 from ..load.inputs import STDIN_LABEL, check_input_size, check_size, display_path
 from ..packages.search import PackageSearch, enclosing_package
 from .error_location import error_from
@@ -57,11 +58,9 @@ def known_args(files: list[Path]) -> set[str]:
     """Names of xacro arguments the files declare (``<xacro:arg>``) or read (``$(arg X)``)."""
     names: set[str] = set()
     for path in files:
-        try:
-            text = path.read_text(encoding="utf-8", errors="replace")
-        except OSError:
-            continue
-        names |= _args_in(text)
+        text = read_text_quietly(path)
+        if text is not None:
+            names |= _args_in(text)
     return names
 
 
@@ -102,6 +101,11 @@ class _Session:
 
     def _parse(self, inp, filename=None):
         self.parsing.append(filename)
+        if inp is None and filename:  # xacro would read the whole file, even /dev/zero
+            try:
+                inp = io.BytesIO(read_input(os.path.join(xacro.root_dir, filename)))
+            except OSError:
+                pass  # xacro opens it again and reports the error its own way
         result = self._original_parse(inp, filename)
         self.parsing.pop()
         return result

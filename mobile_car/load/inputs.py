@@ -56,15 +56,21 @@ def check_input_size(path: Path) -> None:
     check_size(path.stat().st_size, display_path(path))
 
 
-def check_size(size: int, shown: str) -> None:
-    """InputError if ``size`` bytes are more than the limit (see check_input_size)."""
+def input_limit_mb() -> float:
+    """MCAR_MAX_INPUT_MB, validated."""
     from ..settings import env_number
 
-    limit_mb = env_number(MAX_INPUT_MB_ENV, DEFAULT_MAX_INPUT_MB, 0.001, 1e6, "MB")
+    return env_number(MAX_INPUT_MB_ENV, DEFAULT_MAX_INPUT_MB, 0.001, 1e6, "MB")
+
+
+def check_size(size: int, shown: str) -> None:
+    """InputError if ``size`` bytes are more than the limit (see check_input_size)."""
+    limit_mb = input_limit_mb()
     if size > limit_mb * 1024 * 1024:
         raise InputError(f"{size / 1024 / 1024:.0f} MB is more than the {limit_mb:g} MB this "
                          f"command reads (xacro and the renderer hold ~45x the file in memory); "
-                         f"set {MAX_INPUT_MB_ENV} to raise the limit (`mcar check` has none)",
+                         f"set {MAX_INPUT_MB_ENV} to raise the limit (`mcar check` has none "
+                         "for regular files)",
                          file=shown)
 
 

@@ -11,7 +11,8 @@ the same things with the same words and exit codes:
   its file, line and macro/include stack;
 * xacro arguments or overrides the input cannot take: :class:`~mobile_car.errors.UsageError` (2).
 
-A plain URDF is read as it is (``mcar check`` has no size limit and never imports xacro);
+A plain URDF is read as it is (``mcar check`` has no size limit on regular files and never
+imports xacro; a device, pipe or stdin is read within ``MCAR_MAX_INPUT_MB`` by every command);
 with ``through_xacro`` (``mcar build``) it goes through xacro like a ``.xacro`` does.
 """
 
@@ -25,7 +26,8 @@ from typing import TYPE_CHECKING
 
 from ..errors import InputError, UsageError
 from ..packages.search import PackageSearch
-from .inputs import RobotInput, check_input_size, check_size, display_path
+from .bounded import read_input, read_open
+from .inputs import RobotInput, display_path
 
 if TYPE_CHECKING:  # checking a plain URDF imports neither xacro nor the config code
     from ..config.overrides import Overrides
@@ -92,18 +94,14 @@ def load_robot(inp: RobotInput, options: LoadOptions, stdin=None) -> LoadedRobot
     origin = inp.path if inp.path is not None else Path.cwd()
     search = PackageSearch(package_paths=list(options.package_paths), origin=origin)
     if inp.path is None:
-        data = stdin.read() if stdin is not None else b""
-        if options.size_limited:
-            check_size(len(data), inp.label)
+        data = read_open(stdin, inp.label, options.size_limited) if stdin is not None else b""
         if not options.through_xacro:
             return LoadedRobot(inp, data, search)
         return _expand(inp, options, search, text=data)
     require_robot_file(inp)
     if not inp.is_xacro and not options.through_xacro:
         try:
-            if options.size_limited:
-                check_input_size(inp.path)
-            data = inp.path.read_bytes()
+            data = read_input(inp.path, inp.label, limit_regular=options.size_limited)
         except OSError as error:
             raise InputError(f"cannot read: {error.strerror or error}", file=inp.label) from None
         return LoadedRobot(inp, data, search, deps=[inp.path])

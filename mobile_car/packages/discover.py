@@ -12,6 +12,9 @@ import functools
 import re
 from pathlib import Path
 
+from ..load.bounded import read_head, read_text_quietly
+from ..load.inputs import input_limit_mb
+
 # Folders of a package that hold outputs or tools, never robot files to take as inputs.
 _NOT_SOURCES = {"build", "install", "log", "renders", "node_modules", "__pycache__"}
 
@@ -33,10 +36,13 @@ def root_element(path: Path) -> tuple[str, str | None] | None:
 
     parser = xml.parsers.expat.ParserCreate()
     parser.StartElementHandler = start
+    # The root comes after the prolog: a file of endless blanks (a FIFO) has none.
+    left = int(input_limit_mb() * 1024 * 1024)
     try:
         with open(path, "rb") as handle:
-            while not found:
-                chunk = handle.read(65536)
+            while not found and left > 0:
+                chunk = handle.read(min(65536, left))
+                left -= len(chunk)
                 parser.Parse(chunk, not chunk)
                 if not chunk:
                     break
@@ -54,7 +60,7 @@ def is_robot_file(path: Path) -> bool:
         return root[0] == "robot" and bool(root[1])
     # A broken robot file is still a robot file: building it reports the error.
     try:
-        head = path.read_text(encoding="utf-8", errors="replace")[:4096]
+        head = read_head(path, 4096).decode("utf-8", errors="replace")
     except OSError:
         return False
     return "<robot" in head and "name=" in head.split("<robot", 1)[1].split(">", 1)[0]
@@ -112,9 +118,8 @@ def _included_files(files: list[Path], root: Path) -> set[Path]:
     for path in files:
         if not path.name.endswith(".xacro"):
             continue
-        try:
-            text = path.read_text(encoding="utf-8", errors="replace")
-        except OSError:
+        text = read_text_quietly(path)
+        if text is None:
             continue
         for name in _INCLUDE_RE.findall(text):
             found = _FIND_RE.match(name)
@@ -147,10 +152,7 @@ def package_macros(folder: Path) -> frozenset[str]:
         if any(part.startswith(".") or part in _NOT_SOURCES
                for part in path.relative_to(own[1]).parts[:-1]):
             continue
-        try:
-            names.update(_MACRO_RE.findall(path.read_text(encoding="utf-8", errors="replace")))
-        except OSError:
-            continue
+        names.update(_MACRO_RE.findall(read_text_quietly(path) or ""))
     return frozenset(names)
 
 

@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import InputError, PackageNotFoundError
+from ..load.bounded import read_head
 from .bundled import PACKAGE_NAME, description_dir
 
 _NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
@@ -29,7 +30,7 @@ _MAX_CRAWL_DEPTH = 8
 def package_name(package_xml: Path) -> str | None:
     """The ``<name>`` of a package.xml, or None if it has none or cannot be read."""
     try:
-        head = package_xml.read_bytes()[:65536]
+        head = read_head(package_xml, 65536)
     except OSError:
         return None
     match = _NAME_RE.search(head)

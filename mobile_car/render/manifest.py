@@ -5,8 +5,8 @@ relative to that folder, to a fingerprint of everything that decides its pixels:
 bytes, the bytes of every mesh it reads, the render options and the version of the drawing
 code; plus the renderer that drew it (a picture drawn by OpenGL does not satisfy
 ``--renderer raycast``, either satisfies ``auto``) and a hash of the PNG written, so that a
-picture edited or replaced by hand is rendered again. A missing or unreadable manifest just
-means that everything is rendered.
+picture edited or replaced by hand is rendered again. A missing or unreadable manifest (or
+one over ``MCAR_MAX_INPUT_MB``) just means that everything is rendered.
 """
 
 from __future__ import annotations
@@ -18,6 +18,8 @@ from pathlib import Path
 
 from .. import __version__
 from ..atomic import atomic_write
+from ..errors import InputError
+from ..load.bounded import read_input
 
 MANIFEST_NAME = ".mcar-render.json"
 # Bump when the same input and options give different pixels (lighting, overlays, camera).
@@ -35,7 +37,9 @@ def input_fingerprint(urdf: bytes, meshes: list[Path], settings: dict) -> str:
     digest.update(json.dumps(header, sort_keys=True).encode())
     digest.update(sha256(urdf).encode())
     for mesh in meshes:
-        digest.update(str(mesh).encode() + b"\0" + sha256(mesh.read_bytes()).encode())
+        with open(mesh, "rb") as handle:  # in chunks: a mesh may be large
+            mesh_hash = hashlib.file_digest(handle, "sha256").hexdigest()
+        digest.update(str(mesh).encode() + b"\0" + mesh_hash.encode())
     return digest.hexdigest()
 
 
@@ -47,11 +51,11 @@ class Manifest:
         self.path = self.folder / MANIFEST_NAME
         self.entries: dict[str, dict] = {}
         self._changed = False
-        try:
-            data = json.loads(self.path.read_text(encoding="utf-8"))
+        try:  # within the input limit: it may be a link to /dev/zero, or a FIFO
+            data = json.loads(read_input(self.path))
             if isinstance(data, dict) and isinstance(data.get("outputs"), dict):
                 self.entries = {k: v for k, v in data["outputs"].items() if isinstance(v, dict)}
-        except (OSError, ValueError):
+        except (OSError, ValueError, RecursionError, InputError):
             pass
 
     def key(self, target: Path) -> str:

@@ -21,6 +21,7 @@ import hashlib
 import io
 import logging
 import math
+import tempfile
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -108,8 +109,13 @@ def _line(element, source: ModelSource) -> int | None:
 def mesh_files(root: etree._Element, source: ModelSource, search: PackageSearch,
                collision: bool) -> list[Path]:
     """Every mesh file the chosen geometry (visual or collision) reads, checked to exist."""
+    return [path for _uri, path, _where in _meshes(root, source, search, collision)]
+
+
+def _meshes(root: etree._Element, source: ModelSource, search: PackageSearch,
+            collision: bool):
+    """(uri, file, where) of each mesh of the chosen geometry; RenderError if missing."""
     kind = "collision" if collision else "visual"
-    files: list[Path] = []
     for mesh in root.iterfind(f"link/{kind}/geometry/mesh"):
         uri = (mesh.get("filename") or "").strip()
         link = mesh.getparent().getparent().getparent().get("name", "?")
@@ -123,16 +129,61 @@ def mesh_files(root: etree._Element, source: ModelSource, search: PackageSearch,
         if not path.is_file():
             raise RenderError(f"link '{link}': mesh {uri} not found (looked at "
                               f"{display_path(path)})", **where)
-        files.append(path)
-    return files
+        yield uri, path, dict(where, link=link)
+
+
+def _unpack_compressed(root, source: ModelSource, search: PackageSearch, collision: bool,
+                       folder: Path) -> dict[str, str]:
+    """uri -> a decompressed copy in ``folder`` of each compressed mesh (trimesh would
+    decompress a bomb whole; here it stops at MCAR_MAX_MESH_MB): a single mesh as its
+    own file, an archive as an uncompressed zip trimesh reads as it would the original."""
+    import zipfile
+
+    from ..load.compressed import broken_errors, compressed_kind, decompressed_members
+
+    unpacked: dict[str, str] = {}
+    for uri, path, where in _meshes(root, source, search, collision):
+        kind = compressed_kind(path)
+        if kind is None or uri in unpacked:
+            continue
+        try:
+            members = decompressed_members(path, display_path(path))
+        except McarError as exc:
+            message = exc.message
+        except broken_errors() as exc:
+            message = " ".join(str(exc).split())[:200] or type(exc).__name__
+        else:
+            message = None
+        if message is not None:
+            raise RenderError(f"link '{where['link']}': mesh {uri}: {message}",
+                              file=where["file"], line=where["line"])
+        target = folder / str(len(unpacked))
+        target.mkdir()
+        if kind in ("bz2", "gz"):
+            (target / Path(members[0][0]).name).write_bytes(members[0][1])
+            unpacked[uri] = str(target / Path(members[0][0]).name)
+        else:
+            with zipfile.ZipFile(target / "mesh.zip", "w", zipfile.ZIP_STORED) as archive:
+                for name, data in members:
+                    archive.writestr(name, data)
+            unpacked[uri] = str(target / "mesh.zip")
+    return unpacked
 
 
 def load_scene(source: ModelSource, search: PackageSearch, collision: bool = False) -> Scene:
     """Pose the robot at zero joint positions and flatten its geometry into triangles."""
     root = parse_urdf(source)
     mesh_files(root, source, search, collision)  # report a missing mesh before yourdfpy hides it
+    with tempfile.TemporaryDirectory(prefix="mcar-meshes-") as folder:
+        unpacked = _unpack_compressed(root, source, search, collision, Path(folder))
+        return _load_model(source, search, collision, unpacked)
 
+
+def _load_model(source: ModelSource, search: PackageSearch, collision: bool,
+                unpacked: dict[str, str]) -> Scene:
     def resolve(fname: str) -> str:
+        if fname.strip() in unpacked:
+            return unpacked[fname.strip()]
         return str(search.resolve_uri(fname, base=source.path.parent))
 
     # yourdfpy reports unconnected links and unreadable meshes through logging; the

@@ -30,8 +30,9 @@ BOUNDS = Path(__file__).parent / "bounds"
 CASES = sorted(BOUNDS.glob("cases/*.case"))
 ADDRESS_SPACE = 2 * 1024 ** 3
 TIMEOUT = 120
-# Lines every run may add after its error: summaries, not errors.
-_SUMMARY = re.compile(r"^(mcar check: |\d+ pictures? in )")
+# Lines every run may add after its error: summaries, and the error's own indented
+# context (xacro's "when processing file: ..."), not further errors.
+_SUMMARY = re.compile(r"^(mcar check: |\d+ pictures? in |  when processing file: )")
 _MESH_URDF = """<?xml version="1.0"?>
 <robot name="bomb">
   <link name="base">

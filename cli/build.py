@@ -12,6 +12,7 @@ from mobile_car.errors import EXIT_OK, McarError, UsageError, combine_exit_codes
 from mobile_car.load.inputs import display_path
 from mobile_car.packages.discover import output_name
 
+from . import streams
 from .common import (
     INPUT_HELP,
     handle_errors,
@@ -65,7 +66,7 @@ Exit codes:
 
 def _print_deps(deps: list[Path]) -> None:
     for dep in dict.fromkeys(str(d) for d in deps):
-        click.echo(dep)
+        streams.echo(dep)
 
 
 def _build_one(inp, options, stdin, output: str | None, deps_only: bool) -> None:
@@ -78,8 +79,7 @@ def _build_one(inp, options, stdin, output: str | None, deps_only: bool) -> None
     if deps_only:
         _print_deps(loaded.deps)
     elif output is None or output == "-":
-        sys.stdout.buffer.write(loaded.urdf)
-        sys.stdout.flush()
+        streams.write(loaded.urdf)
     else:
         from mobile_car.load.outputs import refuse_overwriting
 

@@ -14,6 +14,7 @@ from mobile_car.check.diagnostics import github_annotation
 from mobile_car.check.tree import check_urdf_batches
 from mobile_car.errors import combine_exit_codes
 
+from . import signals, streams
 from .common import (
     INPUT_HELP,
     handle_errors,
@@ -63,10 +64,11 @@ def _emit_text(results: list[CheckResult], quiet: bool) -> None:
         if result.failure is not None:
             report(result.failure)
         if not quiet and result.sound:
-            if many:
-                out.write(f"==> {result.file} <==\n".encode())
-            # check_urdf writes names byte for byte: UTF-8 whatever the locale says.
-            write_batches(out, check_urdf_batches(result.robot.name, result.tree))
+            with streams.stdout_writes():
+                if many:
+                    out.write(f"==> {result.file} <==\n".encode())
+                # check_urdf writes names byte for byte: UTF-8 whatever the locale says.
+                write_batches(out, check_urdf_batches(result.robot.name, result.tree))
         for diagnostic in result.diagnostics:
             print_diagnostic(diagnostic)
     errors = sum(r.errors for r in results)
@@ -113,10 +115,10 @@ def _writev_all(fd: int, buffers: list) -> None:
 def _emit_github(results: list[CheckResult]) -> None:
     for result in results:
         if result.failure is not None:
-            click.echo(github_annotation("error", result.file, result.failure.line, None,
+            streams.echo(github_annotation("error", result.file, result.failure.line, None,
                                          result.failure.message))
         for diagnostic in result.diagnostics:
-            click.echo(diagnostic.github())
+            streams.echo(diagnostic.github())
 
 
 def _emit_json(results: list[CheckResult], exit_code: int) -> None:
@@ -124,9 +126,7 @@ def _emit_json(results: list[CheckResult], exit_code: int) -> None:
                 "errors": sum(r.errors for r in results),
                 "warnings": sum(r.warnings for r in results),
                 "exit_code": exit_code}
-    sys.stdout.buffer.write(json.dumps(document, indent=1, ensure_ascii=False).encode("utf-8"))
-    sys.stdout.buffer.write(b"\n")
-    sys.stdout.flush()
+    streams.write(json.dumps(document, indent=1, ensure_ascii=False).encode("utf-8") + b"\n")
 
 
 def overall_exit(results: list[CheckResult], strict: bool) -> int:
@@ -161,10 +161,10 @@ def command(words, output_format, strict, quiet, package_paths, sets, config_fil
     finally:
         if not own_process():
             gc.enable()  # the caller (a test) goes on in this process
-    if own_process():
+    if own_process() and not signals.received():
         # Freeing a 20,000-link robot's lxml tree and model at interpreter exit takes a
         # good part of the run, for nothing: everything is printed, so leave at once.
-        sys.stdout.flush()
+        streams.flush()
         sys.stderr.flush()
         os._exit(exit_code)
     sys.exit(exit_code)

@@ -12,6 +12,7 @@ from mobile_car.errors import McarError
 from mobile_car.load.inputs import display_path
 from mobile_car.packages.bundled import PACKAGE_NAME
 
+from . import streams
 from .common import (
     INPUT_HELP,
     handle_errors,
@@ -163,17 +164,17 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
     if output_format == "junit":
         from mobile_car.ci.junit import junit_report
 
-        click.echo(junit_report(items), nl=False)
+        streams.echo(junit_report(items), nl=False)
         return
     if output_format == "github":
         for item in items:
             for step in item.steps:
                 for diagnostic in step.diagnostics:
-                    click.echo(diagnostic.github())
+                    streams.echo(diagnostic.github())
                 if step.status == "failed" and not step.diagnostics:
                     from mobile_car.check.diagnostics import github_annotation
 
-                    click.echo(github_annotation("error", str(item.source), None,
+                    streams.echo(github_annotation("error", str(item.source), None,
                                                  f"mcar ci {step.name}", step.message))
     else:
         for item in items:
@@ -185,7 +186,7 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
                 else:
                     print_diagnostic(line)
     if not quiet or output_format == "github":
-        click.echo("\n".join(_table(items)))
+        streams.echo("\n".join(_table(items)))
     passed = sum(item.ok for item in items)
     steps = "build, check --strict" + ("" if no_render else ", render")
     click.echo(f"mcar ci: {passed} of {len(items)} files passed ({steps}) in {seconds:.1f} s",

@@ -10,7 +10,9 @@ from pathlib import Path
 
 import click
 
-from mobile_car.errors import EXIT_USAGE, McarError, Terminated, UsageError
+from mobile_car.errors import EXIT_OK, EXIT_USAGE, McarError, Terminated, UsageError
+
+from . import streams
 
 package_path_option = click.option(
     "--package-path", "package_paths", multiple=True, metavar="DIR",
@@ -167,13 +169,10 @@ def _say_if_unconfined() -> None:
         print_warning("mcar", notice)
 
 
-def _exit_terminated(signum: int) -> None:
-    click.echo("mcar: terminated", err=True)
-    sys.exit(128 + signum)
-
-
 def handle_errors(func):
-    """Run a command body; McarError becomes its message and exit code, Ctrl-C exits 130."""
+    """Run a command body and end the run: McarError becomes its message and exit code,
+    Ctrl-C exits 130 and SIGTERM 143 whenever it came, a closed stdout pipe exits 0
+    quietly, and a failed write to stdout or stderr is an I/O error (exit 2)."""
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
@@ -181,38 +180,59 @@ def handle_errors(func):
 
         try:
             signals.arm()
-            result = func(*args, **kwargs)
-        except SystemExit:
-            if signals.received():  # a library swallowed Terminated; the run ended anyway
-                _exit_terminated(signals.received())
-            raise
-        except McarError as error:
-            if signals.received():  # a library swallowed Terminated, then failed
-                _exit_terminated(signals.received())
-            report(error)
-            sys.exit(error.exit_code)
-        except KeyboardInterrupt:
-            click.echo("mcar: interrupted", err=True)
-            sys.exit(130)
-        except Terminated as signal:
-            _exit_terminated(signal.exit_code - 128)
-        except BrokenPipeError:
-            # The reader (head, a closed pipe) went away: not our failure to report.
-            sys.stderr.close()
-            sys.exit(0)
-        except Exception as error:  # a bug in mcar: say so in one line, no traceback
-            if signals.received():  # the same: not a bug of mcar's
-                _exit_terminated(signals.received())
-            if os.environ.get("MCAR_DEBUG"):
-                raise
-            click.echo(f"mcar: internal error: {type(error).__name__}: {error} "
-                       "(set MCAR_DEBUG=1 for a traceback, and please report it)", err=True)
-            sys.exit(EXIT_USAGE)
-        finally:
-            signals.disarm()
+            try:
+                result = func(*args, **kwargs)
+                streams.flush()
+            finally:
+                # The body has unwound (temporary files gone, children ended): from here
+                # on a signal ends mcar at once, even while the lines below print.
+                signals.disarm()
+        except SystemExit as exit_:
+            code = EXIT_OK if exit_.code is None else exit_.code
+        except BaseException as error:
+            code = _exit_code_of(error)
+        else:
+            code = None
+        try:
             _say_if_unconfined()
-        if signals.received():
-            _exit_terminated(signals.received())
-        return result
+        except OSError:  # stderr is gone: nowhere to say it
+            pass
+        if signals.received():  # it may have been swallowed by a library: it still counts
+            streams.say(signals.announcement(signals.received()))
+            code = 128 + signals.received()
+        if code is None:
+            return result
+        streams.exit_quietly(code)
 
     return wrapper
+
+
+def _exit_code_of(error: BaseException) -> int:
+    """Say what ended the command (unless a signal did: said by the caller); its code."""
+    from . import signals
+
+    if isinstance(error, McarError):
+        if not signals.received():
+            try:
+                report(error)
+            except OSError:  # stderr is full or closed: nowhere left to say it
+                pass
+        return error.exit_code
+    if isinstance(error, KeyboardInterrupt):
+        if not signals.received():  # no handler of ours (an embedding program)
+            streams.say("mcar: interrupted")
+        return 130
+    if isinstance(error, Terminated):
+        if not signals.received():
+            streams.say("mcar: terminated")
+        return error.exit_code
+    if isinstance(error, streams.ReaderGone):  # `mcar tree | head -1`: the reader wanted no more
+        return 0
+    if not isinstance(error, Exception) or signals.received():
+        return EXIT_USAGE  # an odd BaseException; or a swallowed signal made this mess
+    if os.environ.get("MCAR_DEBUG"):
+        raise error
+    # If the failure was a write to stderr, this line cannot be written either: exit 2.
+    streams.say(f"mcar: internal error: {type(error).__name__}: {error} "
+                "(set MCAR_DEBUG=1 for a traceback, and please report it)")
+    return EXIT_USAGE

@@ -10,6 +10,7 @@ import click
 from mobile_car.errors import UsageError
 from mobile_car.load.inputs import display_path
 
+from . import streams
 from .common import handle_errors, load_inputs, robot_options
 
 HELP = """Show the robot's dimensions: value, unit, source, meaning, FILE:LINE.
@@ -99,10 +100,10 @@ def command(words, fmt, sets, config_files, package_paths):
             spec, overrides, values = resolve_overrides(search, (), ())
     table = config_table(spec, values, overrides)
     if fmt == "json":
-        click.echo(json.dumps(table, indent=2))
+        streams.echo(json.dumps(table, indent=2))
     elif fmt == "yaml":
         import yaml
 
-        click.echo(yaml.safe_dump(table, sort_keys=False), nl=False)
+        streams.echo(yaml.safe_dump(table, sort_keys=False), nl=False)
     else:
-        click.echo(_text(table))
+        streams.echo(_text(table))

@@ -6,11 +6,16 @@ import importlib
 
 from . import signals
 
-signals.install()  # before the slow imports: a SIGTERM during them ends mcar at once
+signals.install()  # before the slow imports: Ctrl-C or SIGTERM during them ends mcar at once
+
+from . import streams  # noqa: E402
+
+streams.open_closed_standard_fds()
 
 import click  # noqa: E402
 
 from mobile_car import __version__  # noqa: E402
+from mobile_car.errors import EXIT_USAGE, McarError  # noqa: E402
 
 # name -> (module under mobile_car.cli, one-line help shown by `mcar --help`)
 COMMANDS = {
@@ -51,6 +56,27 @@ class LazyGroup(click.Group):
             hint = f" Did you mean '{close[0]}'?" if close else ""
             ctx.fail(f"No such command '{args[0]}'.{hint} Commands: {', '.join(sorted(COMMANDS))}.")
         return super().resolve_command(ctx, args)
+
+    # click writes --help, --version and usage errors itself, outside handle_errors: a
+    # failure to write them ends the run as a failed write of a command does.
+    def make_context(self, *args, **kwargs):
+        with streams.stdout_writes():
+            return super().make_context(*args, **kwargs)
+
+    def invoke(self, ctx):
+        with streams.stdout_writes():
+            return super().invoke(ctx)
+
+    def main(self, *args, **kwargs):
+        try:
+            return super().main(*args, **kwargs)
+        except streams.ReaderGone:
+            streams.exit_quietly(0)
+        except McarError as error:
+            streams.say(f"mcar: error: {error.message}")
+            streams.exit_quietly(error.exit_code)
+        except OSError:  # click could not write a usage error to stderr: nothing to say
+            streams.exit_quietly(EXIT_USAGE)
 
     def format_commands(self, ctx, formatter):
         rows = [(name, COMMANDS[name][1]) for name in self.list_commands(ctx)]

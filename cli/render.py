@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import contextlib
 import dataclasses
-import signal
 import sys
 import time
 from dataclasses import dataclass, field
@@ -25,6 +23,7 @@ from mobile_car.render.options import (
     parse_size,
 )
 
+from . import signals, streams
 from .common import (
     INPUT_HELP,
     handle_errors,
@@ -101,35 +100,6 @@ def _color(ctx, param, value):
         raise click.BadParameter(error.message.split(" ", 1)[1]) from None
 
 
-@contextlib.contextmanager
-def _ctrl_c_survives_imports():
-    """Re-raise a Ctrl-C that arrived while importing: trimesh guards its optional imports
-    with ``except BaseException``, which would swallow it and render everything anyway."""
-    pressed = []
-
-    def on_ctrl_c(signum, frame):
-        pressed.append(signum)
-        raise KeyboardInterrupt
-
-    try:
-        previous = signal.signal(signal.SIGINT, on_ctrl_c)
-    except ValueError:  # not the main thread (an embedding program): nothing to guard
-        yield
-        return
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, previous)
-    if pressed:
-        raise KeyboardInterrupt
-    from . import signals
-
-    if signals.received():  # SIGTERM/SIGHUP during the imports: trimesh swallows them too
-        from mobile_car.errors import Terminated
-
-        raise Terminated(signals.received())
-
-
 def _progress(jobs, quiet: bool):
     """A progress bar on stderr, only on a terminal and not with --quiet."""
     stream = sys.stderr
@@ -176,10 +146,11 @@ def command(words, output, view, size, collision, background, grid, axes, render
 
         probe = GLProbe() if renderer != "raycast" else None
         try:
-            with _ctrl_c_survives_imports():
-                from mobile_car.render.manifest import Manifest
-                from mobile_car.render.session import RenderSession
-        except KeyboardInterrupt:
+            from mobile_car.render.manifest import Manifest
+            from mobile_car.render.session import RenderSession
+
+            signals.raise_if_received()  # trimesh's import guards swallow Ctrl-C and SIGTERM
+        except BaseException:  # the probe child must not outlive the command
             if probe is not None:
                 probe.cancel()
             raise
@@ -189,8 +160,7 @@ def command(words, output, view, size, collision, background, grid, axes, render
             manifest = Manifest(outdir) if outdir is not None else None
             outcome = _run(session, jobs, manifest, quiet)
             if output == "-" and outcome.last_png is not None:
-                sys.stdout.buffer.write(outcome.last_png)
-                sys.stdout.flush()
+                streams.write(outcome.last_png)
             if sheet:
                 if selection.kind in ("package", "folder"):
                     manifest.forget_all_but({manifest.key(job.target) for job in jobs}
@@ -255,13 +225,8 @@ def _run(session, jobs, manifest, quiet: bool) -> _Outcome:
     if bar is not None:
         bar.__enter__()
     try:
-        from . import signals
-
         for result in session.run(jobs, manifest):
-            if signals.received():  # swallowed by a library's import guard: stop here
-                from mobile_car.errors import Terminated
-
-                raise Terminated(signals.received())
+            signals.raise_if_received()  # swallowed by a library's import guard: stop here
             outcome.counts[result.status] += 1
             if bar is not None:
                 bar.update(1, result.job.caption)

@@ -1,22 +1,27 @@
-"""SIGTERM and SIGHUP end mcar as Ctrl-C does, from the first moment to the last.
+"""Ctrl-C, SIGTERM and SIGHUP end mcar the same way, from the first moment to the last.
 
 Installed when ``mcar`` starts, before click and the command are imported. Until a command
 body runs (``arm``) and after it ends (``disarm``) there is nothing to clean up, so a
-signal exits at once with 128 + its number; while it runs it raises
-:class:`~mobile_car.errors.Terminated`, which unwinds the command like KeyboardInterrupt
-(temporary files removed, the xacro child killed) and ``handle_errors`` exits with the same
-code. Only in mcar's own process: an embedding
-program (a test runner) keeps its handlers.
+signal exits at once with 128 + its number (130 for Ctrl-C) and says so; while it runs,
+Ctrl-C raises KeyboardInterrupt and SIGTERM/SIGHUP raise
+:class:`~mobile_car.errors.Terminated`, which unwind the command (temporary files removed,
+the xacro child killed) and ``handle_errors`` exits with the same code. Every signal is
+also recorded, because some libraries swallow it (see :func:`received`). Only in mcar's own
+process: an embedding program (a test runner) keeps its handlers.
 """
 
 from __future__ import annotations
 
+import _signal as signal  # the C half: `signal` costs 6 ms (enum) before install() runs
 import os
-import signal
 import sys
 
 _armed = False
 _received: list[int] = []  # the signals that arrived, even if a library swallowed them
+
+
+def announcement(signum: int) -> str:
+    return "mcar: interrupted" if signum == signal.SIGINT else "mcar: terminated"
 
 
 def _on_signal(signum, frame):
@@ -26,24 +31,56 @@ def _on_signal(signum, frame):
                 stream.flush()
             except Exception:  # noqa: BLE001 - a closed pipe must not stop the exit
                 pass
+        try:  # os.write: the handler may have interrupted a write to the stderr object
+            os.write(2, f"{announcement(signum)}\n".encode())
+        except OSError:
+            pass
         os._exit(128 + signum)
+    if not _received:
+        _start_watchdog(signum)
     _received.append(signum)
+    if signum == signal.SIGINT:
+        raise KeyboardInterrupt
     from mobile_car.errors import Terminated
 
     raise Terminated(signum)
 
 
+# Unwinding removes temporary files and ends children in milliseconds; a run that has not
+# ended this long after the signal is stuck (a lock left held by the interrupted thread
+# pool, a C call that never returns to Python): it ends anyway.
+WATCHDOG_SECONDS = 10.0
+
+
+def _start_watchdog(signum: int) -> None:
+    import threading
+
+    timer = threading.Timer(WATCHDOG_SECONDS, _give_up, args=(signum,))
+    timer.daemon = True
+    timer.start()
+
+
+def _give_up(signum: int) -> None:
+    try:
+        os.write(2, f"{announcement(signum)} (cleanup did not end within "
+                    f"{WATCHDOG_SECONDS:g} s)\n".encode())
+    except OSError:
+        pass
+    os._exit(128 + signum)
+
+
 def received() -> int | None:
     """The signal that arrived, if any. Some libraries catch BaseException around their
-    optional imports (trimesh does), swallowing Terminated and failing later in odd ways;
-    this lets the command line still end as terminated."""
+    optional imports (trimesh does), swallowing the KeyboardInterrupt or Terminated and
+    failing later in odd ways, or not at all; this lets the command line still end as
+    interrupted or terminated."""
     return _received[0] if _received else None
 
 
 def install() -> None:
     if sys.stdout is not sys.__stdout__:
         return
-    for signum in (signal.SIGTERM, signal.SIGHUP):
+    for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
         try:
             signal.signal(signum, _on_signal)
         except ValueError:  # not the main thread
@@ -60,3 +97,16 @@ def disarm() -> None:
     """The command is over (its outputs written or cleaned up): a signal ends mcar."""
     global _armed
     _armed = False
+
+
+def raise_if_received() -> None:
+    """Unwind now if a signal came and a library swallowed it (trimesh's import guards
+    catch BaseException): without this the command would carry on to the end."""
+    signum = received()
+    if signum is None:
+        return
+    if signum == signal.SIGINT:
+        raise KeyboardInterrupt
+    from mobile_car.errors import Terminated
+
+    raise Terminated(signum)

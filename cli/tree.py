@@ -11,6 +11,7 @@ from mobile_car.check.graphviz import write_graph
 from mobile_car.check.tree import graphviz_dot, rich_text
 from mobile_car.errors import EXIT_PROBLEMS, UsageError
 
+from . import streams
 from .common import (
     INPUT_HELP,
     handle_errors,
@@ -69,8 +70,7 @@ def command(words, graph_output, quiet, package_paths, sets, config_files):
         click.echo(f"mcar tree: {result.file} has no single kinematic tree", err=True)
         sys.exit(EXIT_PROBLEMS)
     if not quiet:
-        sys.stdout.buffer.write(rich_text(result.tree).encode("utf-8"))
-        sys.stdout.flush()
+        streams.write(rich_text(result.tree).encode("utf-8"))
     if graph_output:
         written = write_graph(graphviz_dot(result.robot.name, result.tree), graph_output)
         click.echo(f"wrote {written}", err=True)

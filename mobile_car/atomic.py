@@ -8,6 +8,7 @@ over it would replace the device or pipe with a file (as root, ``/dev/null`` its
 
 from __future__ import annotations
 
+import errno
 import os
 import signal
 import stat
@@ -33,7 +34,10 @@ def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
     # behind: hold signals until the cleanup is in place, then let them in.
     held = _hold_signals()
     try:
-        target.parent.mkdir(parents=True, exist_ok=True)
+        try:
+            target.parent.mkdir(parents=True, exist_ok=True)
+        except FileExistsError:  # a file where a folder of the path should be
+            raise OSError(errno.ENOTDIR, os.strerror(errno.ENOTDIR)) from None
         if target.is_dir():
             raise InputError("is a directory, cannot write a file there", file=str(target))
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)

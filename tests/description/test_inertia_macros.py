@@ -20,10 +20,14 @@ PROBE = """<robot name="inertia_probe" xmlns:xacro="http://www.ros.org/wiki/xacr
 
 def expand(tmp_path, call: str) -> etree._Element:
     from mobile_car.expand.xacro_build import build_file
+    from mobile_car.packages.search import PackageSearch
 
     source = tmp_path / "probe.urdf.xacro"
     source.write_text(PROBE.format(define=URDF / "define.xacro", call=call))
-    return etree.fromstring(build_file(source).xml.encode())
+    # The checkout's package is named to the search, as --package-path would: the xacro
+    # sandbox reads only below the package roots and the probe's own folder.
+    search = PackageSearch(package_paths=[URDF.parent])
+    return etree.fromstring(build_file(source, search=search).xml.encode())
 
 
 def inertial_of(root: etree._Element) -> tuple[float, np.ndarray, np.ndarray]:

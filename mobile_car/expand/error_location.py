@@ -46,6 +46,10 @@ def error_from(exc: BaseException, parsing: list, source: Path) -> McarError:
         return BuildError(message, file=display_path(bad), line=line, details=_stack_details())
     if isinstance(exc, xml.parsers.expat.ExpatError):
         bad = parsing[-1] if parsing and parsing[-1] else str(source)
+        encoding = _encoding_error(bad, exc)
+        if encoding is not None:
+            return BuildError(encoding[0], file=display_path(bad), line=encoding[1],
+                              details=_stack_details())
         message = xml.parsers.expat.ErrorString(exc.code) if exc.code else str(exc)
         return BuildError(f"XML parse error: {message} (column {exc.offset + 1})",
                           file=display_path(bad), line=exc.lineno, details=_stack_details())
@@ -164,3 +168,20 @@ def _sandbox_hint(error: OSError) -> str:
         return ""
     return (" (the xacro sandbox reads only below the package roots and the input's "
             "folder; --no-sandbox for a tree you trust)")
+
+
+def _encoding_error(path: str, exc) -> tuple[str, int] | None:
+    """expat's "invalid token" where the real fault is a byte that is not UTF-8."""
+    if exc.code != xml.parsers.expat.errors.codes[xml.parsers.expat.errors.XML_ERROR_INVALID_TOKEN]:
+        return None
+    from ..load.bounded import read_head
+    from ..load.encoding import first_bad_offset, not_utf8
+
+    try:
+        data = read_head(path, 16 * 1024 * 1024)
+    except OSError:
+        return None
+    if data.startswith(b"<?xml") and b"encoding" in data[:data.find(b"?>")]:
+        return None  # a declared encoding: expat decoded it as declared
+    start = first_bad_offset(data)
+    return None if start is None else not_utf8(data, start)

@@ -118,12 +118,16 @@ def test_top_level_properties_are_defined_once_and_pi_is_xacros():
 
 def test_config_total_mass_is_the_built_robots(complete_robot, tmp_path):
     from mobile_car.expand.xacro_build import build_file
+    from mobile_car.packages.search import PackageSearch
 
     probe = tmp_path / "mass.urdf.xacro"
     probe.write_text(f'<robot name="mass" xmlns:xacro="{XACRO_NS}">'
                      f'<xacro:include filename="{URDF / "config.xacro"}"/>'
                      f'<mass value="${{robot_mass}}"/></robot>')
-    stated = float(etree.fromstring(build_file(probe).xml.encode()).find("mass").get("value"))
+    # The checkout's package named to the search: the sandbox reads below package roots.
+    search = PackageSearch(package_paths=[URDF.parent])
+    stated = float(etree.fromstring(build_file(probe, search=search).xml.encode())
+                   .find("mass").get("value"))
     built = sum(link.inertial.mass for link in complete_robot.robot.links if link.inertial)
     assert stated == pytest.approx(built, rel=1e-12)
     # the header states it too, to the gram

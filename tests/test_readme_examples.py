@@ -1,0 +1,141 @@
+"""Every shell example of README.md, and every `mcar` step of examples/, runs as written.
+
+The README's examples are run in order, like a reader following it, in one copy of the
+repository with the files of readme/ beside it (the README's `my_robot.xacro`,
+`my_car.yaml`, `broken.urdf`) and `path/to/...` folders holding copies of the package.
+
+- A ```sh block: each line is a command (a trailing `# comment` is dropped); it must exit
+  0, or N when its comment says `exit N`. `cd DIR` moves the following lines of the block.
+- A transcript (```` ``` ```` lines starting `$ `): the command's stdout and stderr must be
+  the lines shown, up to a `...` line; its exit code is 1 if one of them reports an
+  `error:`, else 0.
+- Lines that only set up or measure (make, the venv, the benchmarks) are listed in
+  NOT_RUN with the reason; anything else in a block is run.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+from conftest import REPO
+
+README = REPO / "README.md"
+FIXTURES = Path(__file__).parent / "readme"
+# Prefixes of lines that are not examples to run here, and why.
+NOT_RUN = {
+    "make ": "the set-up commands themselves; `make test` runs this test",
+    ". .venv/bin/activate": "the tests run with the venv's mcar on PATH already",
+    ".venv/bin/python bench/": "benchmarks take minutes; `make bench` runs them",
+}
+PACKAGE_COPIES = ("path/to/package", "path/to/other_description")
+_COMMENT = re.compile(r"\s+#(?:\s.*)?$")
+_EXIT = re.compile(r"#.*\bexit (\d+)\b")
+
+
+def _blocks(text: str):
+    """(kind, first line number, lines) of every fenced block; kind is the info string."""
+    lines = text.splitlines()
+    i = 0
+    while i < len(lines):
+        if lines[i].startswith("```"):
+            kind, start, body = lines[i][3:].strip(), i + 2, []
+            i += 1
+            while not lines[i].startswith("```"):
+                body.append(lines[i])
+                i += 1
+            yield kind, start, body
+        i += 1
+
+
+def _steps(text: str):
+    """Every example of the README as (line number, command, expected exit, expected
+    output lines or None, cd-folder for the command)."""
+    for kind, start, body in _blocks(text):
+        if kind == "sh":
+            folder = "."
+            for number, line in enumerate(body, start):
+                if not line.strip() or line.lstrip().startswith("#"):
+                    continue
+                command = _COMMENT.sub("", line).strip()
+                if any(command.startswith(prefix) for prefix in NOT_RUN):
+                    continue
+                if command.startswith("cd "):
+                    folder = os.path.normpath(os.path.join(folder, command[3:].strip()))
+                    continue
+                wanted = _EXIT.search(line)
+                yield number, command, int(wanted.group(1)) if wanted else 0, None, folder
+        elif kind == "" and body and body[0].startswith("$ "):
+            for offset, line in enumerate(body):
+                if line.startswith("$ "):
+                    shown = []
+                    for out in body[offset + 1:]:
+                        if out.startswith("$ "):
+                            break
+                        shown.append(out)
+                    code = 1 if any(" error: " in out for out in shown) else 0
+                    yield start + offset, line[2:], code, shown, "."
+
+
+def _workspace(tmp: Path) -> Path:
+    copy = tmp / "mcar"
+    shutil.copytree(REPO, copy, ignore=shutil.ignore_patterns(
+        ".git", ".venv", "build", "renders", "__pycache__", "*.egg-info", ".pytest_cache"))
+    shutil.copytree(FIXTURES, copy, dirs_exist_ok=True)
+    for folder in PACKAGE_COPIES:
+        target = copy / folder
+        target.mkdir(parents=True)
+        for part in ("package.xml", "urdf", "meshes"):
+            source = REPO / part
+            if source.is_dir():
+                shutil.copytree(source, target / part)
+            else:
+                shutil.copy(source, target / part)
+    return copy
+
+
+def test_readme_examples_run_as_written(tmp_path):
+    steps = list(_steps(README.read_text(encoding="utf-8")))
+    assert len(steps) > 30  # the parser found the examples
+    workspace = _workspace(tmp_path)
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")}
+    env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
+    env["NO_COLOR"] = "1"
+    failures = []
+    for number, command, code, shown, folder in steps:
+        result = subprocess.run(["bash", "-o", "pipefail", "-c", command], cwd=workspace / folder,
+                                env=env, capture_output=True, text=True, timeout=300,
+                                stdin=subprocess.DEVNULL)
+        problem = None
+        if result.returncode != code:
+            problem = f"exit {result.returncode}, the README says {code}"
+        elif shown is not None:
+            printed = (result.stdout + result.stderr).splitlines()
+            expected = shown[:shown.index("...")] if "..." in shown else shown
+            got = printed[:len(expected)] if "..." in shown else printed
+            if got != expected:
+                problem = "printed:\n    " + "\n    ".join(printed[:len(expected) + 2])
+        if problem:
+            failures.append(f"README.md:{number}: {command}\n  {problem}\n  stderr: "
+                            f"{result.stderr.strip()[-400:]}")
+    assert not failures, "\n".join(failures)
+
+
+def test_examples_mcar_steps_run_as_written(run_mcar, tmp_path):
+    """examples/github-actions.yml's `mcar` steps, in a package made by `mcar init`."""
+    steps = []
+    for example in sorted((REPO / "examples").glob("*.yml")):
+        for line in example.read_text(encoding="utf-8").splitlines():
+            match = re.match(r"\s*(?:- )?run: (mcar .*)$", line)
+            if match:
+                steps.append((example.name, match.group(1)))
+    assert steps
+    assert run_mcar("init", "my_robot_description", cwd=tmp_path).returncode == 0
+    for name, command in steps:
+        result = run_mcar(*command.split()[1:], cwd=tmp_path)
+        assert result.returncode == 0, f"{name}: {command}\n{result.stderr}"

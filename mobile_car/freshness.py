@@ -27,7 +27,7 @@ SEARCH_ENVIRONMENT = ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")
 # A file modified this close to (or after) the start of the run that read it may have
 # changed after it was read, within one tick of the file system's clock: it gets no
 # stamp, so the next run rebuilds what it made (git's "racy" files).
-RACY_MARGIN_NS = 100_000_000
+RACY_MARGIN_NS = 30_000_000
 
 
 def file_sha256(path: str | os.PathLike) -> str:

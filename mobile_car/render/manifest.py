@@ -24,7 +24,6 @@ import json
 import os
 from pathlib import Path
 
-from .. import __version__
 from ..atomic import atomic_write
 from ..freshness import Basis, key_of, output_current, output_stamp, stamps_current
 
@@ -41,8 +40,7 @@ def sha256(data: bytes) -> str:
 def input_fingerprint(urdf: bytes, meshes: list[Path], settings: dict) -> str:
     """Hash of the URDF, its mesh files (names and bytes) and the settings (plain data)."""
     digest = hashlib.sha256()
-    header = {"mcar": __version__, "drawing": DRAWING_VERSION, "settings": settings}
-    digest.update(json.dumps(header, sort_keys=True).encode())
+    digest.update(key_of("drawing", DRAWING_VERSION, settings).encode())  # mcar's version too
     digest.update(sha256(urdf).encode())
     for mesh in meshes:
         digest.update(str(mesh).encode() + b"\0" + sha256(mesh.read_bytes()).encode())

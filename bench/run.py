@@ -496,8 +496,63 @@ def _big_robot_rows(work: Path, quick: bool) -> list[str]:
     return [*rows, ""]
 
 
+def section_noop(rows: list[str], work: Path, quick: bool) -> None:
+    """`mcar render` and `mcar ci` of the bundled package with nothing changed (the
+    pre-commit hook's case), and with one part file edited (only its pictures redrawn)."""
+    package = work / "mobile_car_description"
+    for name in ("urdf", "meshes"):
+        shutil.copytree(REPO / name, package / name)
+    shutil.copy(REPO / "package.xml", package / "package.xml")
+    runs = 5 if quick else 11
+    motor = package / "urdf" / "motor" / "motor.xacro"
+    original = motor.read_text(encoding="utf-8")
+    edits = iter(range(10**6))
+
+    def edit_motor() -> None:  # a new comment each time: new bytes, same robot
+        motor.write_text(original + f"<!-- edit {next(edits)} -->\n", encoding="utf-8")
+        time.sleep(0.05)  # older than the run's start, as an edit before a commit is
+
+    def timed_after(prepare, cmd) -> Result:
+        result = Result()
+        for _ in range(runs):
+            prepare()
+            wall, code = run_timed(cmd, cwd=package)
+            result.walls.append(wall)
+            result.codes.append(code)
+        return result
+
+    version = measure([MCAR, "--version"], runs)
+    subprocess.run([MCAR, "render"], cwd=package, capture_output=True, check=True)
+    subprocess.run([MCAR, "ci"], cwd=package, capture_output=True, check=True)
+    cases = [
+        ("no-op `mcar render` (13 pictures unchanged)", measure([MCAR, "render"], runs,
+                                                               cwd=package), 0.2),
+        ("no-op `mcar ci` (15 files replayed)", measure([MCAR, "ci"], runs, cwd=package), 0.3),
+        ("`mcar render`, motor.xacro edited (2 of 13 pictures redrawn)",
+         timed_after(edit_motor, [MCAR, "render"]), None),
+        ("`mcar ci`, motor.xacro edited (4 of 15 files built again)",
+         timed_after(edit_motor, [MCAR, "ci"]), None),
+        ("`mcar render --force` (all 13 drawn)", measure([MCAR, "render", "--force"],
+                                                         3 if quick else 5, cwd=package), None),
+    ]
+    rows += ["## Nothing changed", "",
+             "The bundled package, rendered and built once, then run again (the pre-commit "
+             "hook's `mcar ci`). Targets: no-op `mcar render` under 200 ms, no-op `mcar ci` "
+             "under 300 ms (before: 1.5-2.4 s). *x --version*: the time over `mcar --version` "
+             f"in this run ({fmt_time(version.wall)}).", "",
+             "| what | median | x --version | exit | target |", "|---|---:|---:|---|---|"]
+    for label, result, limit in cases:
+        met = None if limit is None else (result.ok and result.wall < limit)
+        rows.append(f"| {label} | {time_cell(result)} | "
+                    f"{result.wall / version.wall:.1f} | {exit_text(result.codes)} | "
+                    f"{verdict(met)} |")
+    rows.append("")
+    rows += notes_for("noop")
+    progress("no-op measured")
+
+
 SECTIONS = {"check": section_check, "build": section_build, "startup": section_startup,
-            "batch": section_batch, "render": section_render}
+            "batch": section_batch, "render": section_render, "noop": section_noop}
 NEEDS_CHECK_URDF = {"check", "startup", "batch"}
 
 

@@ -16,11 +16,14 @@ from . import streams
 from .common import (
     INPUT_HELP,
     handle_errors,
-    load_inputs,
+    input_basis,
+    prepared_load,
     print_diagnostic,
     print_warning,
     report,
     robot_options,
+    say_which_package,
+    select_inputs,
 )
 
 HELP = f"""Build, check (strict) and render every robot file of a description package.
@@ -110,20 +113,43 @@ def _problems(item) -> list:
 def command(words, output_format, build_dir, render_dir, no_render, strict, renderer,
             junit_xml, quiet, sets, config_files, package_paths):
     from mobile_car.ci import pipeline
+    from mobile_car.ci.cache import CiCache
 
     started = time.perf_counter()
     # A .urdf is "built" as it is: only xacro files are expanded, as check sees them.
-    with load_inputs(words, package_paths, sets, config_files) as (selection, options):
-        build_dir = Path(build_dir) if build_dir else selection.output_root / "build"
-        render_dir = Path(render_dir) if render_dir else selection.output_root / "renders"
-        if junit_xml:  # the inputs now, the files they include once they are read
-            from mobile_car.load.outputs import refuse_overwriting
+    selection, mappings = select_inputs(words, package_paths, sets, config_files)
+    build_dir = Path(build_dir) if build_dir else selection.output_root / "build"
+    render_dir = Path(render_dir) if render_dir else selection.output_root / "renders"
+    if junit_xml:  # the inputs now, the files they include once they are read
+        from mobile_car.load.outputs import refuse_overwriting
 
-            refuse_overwriting(junit_xml, [inp.path for inp in selection.inputs])
-        items = pipeline.plan(selection, build_dir, None if no_render else render_dir)
-        checked = [item for item in items if pipeline.build_and_check(item, options, strict)]
-    if not no_render and checked:
-        _render(checked, render_dir, renderer)
+        refuse_overwriting(junit_xml, [inp.path for inp in selection.inputs])
+    items = pipeline.plan(selection, build_dir, None if no_render else render_dir)
+    # Items whose inputs, outputs and picture are unchanged are replayed from the record.
+    basis = input_basis(mappings, package_paths, sets, config_files)
+    cache = CiCache(build_dir)
+    manifest = None
+    if not no_render:
+        from mobile_car.render.manifest import Manifest
+
+        manifest = Manifest(render_dir)
+    todo = [item for item in items
+            if not cache.replay(item, basis, strict, _picture_fresh(manifest, basis, renderer))]
+    checked = []
+    try:
+        if todo:
+            with prepared_load(selection, mappings, package_paths, sets,
+                               config_files) as options:
+                for item in todo:
+                    if pipeline.build_and_check(item, options, strict):
+                        checked.append(item)
+                    cache.record(item, basis, strict)
+        else:
+            say_which_package(selection)
+    finally:
+        cache.save()
+    if manifest is not None and any(item.ok for item in items):
+        _render(checked, items, manifest, renderer, basis)
     code = pipeline.exit_code(items)
     if junit_xml:
         from mobile_car.atomic import atomic_write
@@ -131,7 +157,7 @@ def command(words, output_format, build_dir, render_dir, no_render, strict, rend
         from mobile_car.load.outputs import refuse_overwriting
 
         read = [item.source for item in items] + [
-            dep for item in items if item.checked is not None for dep in item.checked.loaded.deps]
+            dep for item in items if item.ok or item.checked is not None for dep in item.deps]
         refuse_overwriting(junit_xml, read)
 
         atomic_write(junit_xml, junit_report(items))
@@ -139,18 +165,36 @@ def command(words, output_format, build_dir, render_dir, no_render, strict, rend
     sys.exit(code)
 
 
-def _render(items, render_dir: Path, renderer: str) -> None:
-    """Draw the robots that passed their check, as they were loaded and checked."""
+def _picture_fresh(manifest, basis, renderer: str):
+    """Whether an item's picture is current by its stamps (nothing loaded)."""
+    def fresh(item) -> bool:
+        from mobile_car.ci.cache import item_basis
+        from mobile_car.render.manifest import picture_key
+        from mobile_car.render.options import RenderOptions
+
+        if manifest is None:
+            return True
+        key = picture_key(item_basis(item, basis), RenderOptions())
+        return manifest.fresh(item.png, key, renderer) is not None
+
+    return fresh
+
+
+def _render(checked, items, manifest, renderer: str, basis) -> None:
+    """Draw the robots that passed their check, as they were loaded and checked, and the
+    contact sheet; a run whose pictures are all current imports none of the drawing code."""
+    if not checked and manifest.sheet_is_current():
+        manifest.save()
+        return
     from mobile_car.ci import pipeline
-    from mobile_car.render.manifest import Manifest
+    from mobile_car.ci.cache import item_basis
     from mobile_car.render.options import RenderOptions
     from mobile_car.render.session import RenderSession
 
-    manifest = Manifest(render_dir)
     with RenderSession(RenderOptions(), renderer=renderer) as session:
         try:
-            for item in items:
-                pipeline.render_step(item, session, manifest)
+            for item in checked:
+                pipeline.render_step(item, session, manifest, item_basis(item, basis))
         finally:
             manifest.save()
         if any(item.ok for item in items):

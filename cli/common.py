@@ -84,6 +84,14 @@ def load_inputs(words, package_paths, sets, config_files, through_xacro: bool = 
     Arguments the inputs cannot take are refused here, before anything is loaded; the
     overrides are validated and written once, for every input, and removed afterwards.
     """
+    selection, mappings = select_inputs(words, package_paths, sets, config_files, through_xacro)
+    with prepared_load(selection, mappings, package_paths, sets, config_files,
+                       through_xacro) as options:
+        yield selection, options
+
+
+def select_inputs(words, package_paths, sets, config_files, through_xacro: bool = False):
+    """The first half of :func:`load_inputs`, which loads nothing: (Selection, mappings)."""
     from mobile_car.load.inputs import split_words
     from mobile_car.load.package import working_set
     from mobile_car.load.robot import CONFIG_ARG, LoadOptions, refuse_unused_arguments
@@ -95,10 +103,26 @@ def load_inputs(words, package_paths, sets, config_files, through_xacro: bool = 
     selection = select(names, lambda: working_set(Path.cwd(), package_paths))
     refuse_unused_arguments(selection.inputs, LoadOptions(
         mappings, through_xacro=through_xacro), overriding=bool(sets or config_files))
+    return selection, mappings
+
+
+def input_basis(mappings, package_paths, sets, config_files):
+    """What, besides the files they read, decides how the inputs load (see freshness)."""
+    from mobile_car.freshness import Basis
+
+    return Basis.of(mappings, sets, config_files, package_paths)
+
+
+@contextlib.contextmanager
+def prepared_load(selection, mappings, package_paths, sets, config_files,
+                  through_xacro: bool = False):
+    """The second half of :func:`load_inputs`: the overrides validated, the LoadOptions."""
+    from mobile_car.load.robot import LoadOptions
+
     if not sets and not config_files:
-        _say_which_package(selection)
-        yield selection, LoadOptions(mappings, [Path(p) for p in package_paths],
-                                     through_xacro=through_xacro)
+        say_which_package(selection)
+        yield LoadOptions(mappings, [Path(p) for p in package_paths],
+                          through_xacro=through_xacro)
         return
     from mobile_car.config.overrides import prepared_overrides
     from mobile_car.packages.search import PackageSearch
@@ -107,12 +131,11 @@ def load_inputs(words, package_paths, sets, config_files, through_xacro: bool = 
     origin = xacros[0] if xacros else (selection.root or Path.cwd())
     search = PackageSearch(package_paths=list(package_paths), origin=origin)
     with prepared_overrides(search, sets, config_files) as overrides:
-        _say_which_package(selection)
-        yield selection, LoadOptions(mappings, [Path(p) for p in package_paths], overrides,
-                                     through_xacro)
+        say_which_package(selection)
+        yield LoadOptions(mappings, [Path(p) for p in package_paths], overrides, through_xacro)
 
 
-def _say_which_package(selection) -> None:
+def say_which_package(selection) -> None:
     """One line on stderr naming the package a command without INPUT works on: a green
     run must never be a run over the wrong robot without saying so."""
     if selection.working is not None:

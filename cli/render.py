@@ -27,11 +27,14 @@ from . import signals, streams
 from .common import (
     INPUT_HELP,
     handle_errors,
-    load_inputs,
+    input_basis,
+    prepared_load,
     print_diagnostic,
     print_warning,
     report,
     robot_options,
+    say_which_package,
+    select_inputs,
     stdin_for,
 )
 
@@ -138,9 +141,20 @@ def command(words, output, view, size, collision, background, grid, axes, render
     options = RenderOptions(view=view, width=size[0], height=size[1], collision=collision,
                             background=background, grid=grid, axes=axes)
     check_pixels(*size, renderer)
-    with load_inputs(words, package_paths, sets, config_files) as (selection, load):
+    selection, mappings = select_inputs(words, package_paths, sets, config_files)
+    jobs, outdir, sheet = _plan(selection, output)
+    basis = input_basis(mappings, package_paths, sets, config_files)
+    for job in jobs:
+        job.basis = basis
+    if not force and outdir is not None and _nothing_changed(selection, jobs, outdir, sheet,
+                                                             options, renderer):
+        if not quiet:
+            _summary(None, _Outcome(counts={"rendered": 0, "unchanged": len(jobs),
+                                            "failed": 0}),
+                     len(jobs), outdir, sheet, time.perf_counter() - started)
+        sys.exit(EXIT_OK)
+    with prepared_load(selection, mappings, package_paths, sets, config_files) as load:
         load = dataclasses.replace(load, size_limited=True)
-        jobs, outdir, sheet = _plan(selection, output)
         # Try OpenGL in a child process now, while numpy, trimesh and xacro load here.
         from mobile_car.render.backend import GLProbe
 
@@ -172,6 +186,38 @@ def command(words, output, view, size, collision, background, grid, axes, render
     sys.exit(outcome.exit_code)
 
 
+def _nothing_changed(selection, jobs, outdir: Path, sheet: bool, options, renderer) -> bool:
+    """True, after showing the warnings the pictures were drawn with, if every picture
+    and the contact sheet are current by the stamps of the files they were made from:
+    the whole run, decided without loading a robot or importing xacro, numpy or GL."""
+    from mobile_car.freshness import diagnostics_from
+    from mobile_car.render.manifest import CONTACT_SHEET, Manifest, picture_key
+
+    manifest = Manifest(outdir)
+    if not manifest.entries:
+        return False
+    entries = []
+    for job in jobs:
+        if job.input.path is None or job.target is None:
+            return False
+        entry = manifest.fresh(job.target, picture_key(job.basis, options), renderer)
+        if entry is None:
+            return False
+        entries.append(entry)
+    if sheet:
+        listed = {manifest.key(job.target) for job in jobs} | {CONTACT_SHEET}
+        if selection.kind in ("package", "folder") and set(manifest.entries) - listed:
+            return False  # pictures of robots since removed: the sheet changes
+        if not manifest.sheet_is_current():
+            return False
+    manifest.save()  # stamps brought up to date (a file touched, its bytes the same)
+    say_which_package(selection)
+    for entry in entries:
+        for diagnostic in diagnostics_from(entry.get("warnings") or []):
+            print_diagnostic(diagnostic)
+    return True
+
+
 def _plan(selection, output: str | None):
     """The jobs, the output folder (None for stdout) and whether to make a contact sheet;
     no picture may be written over an input, nor two inputs to one picture."""
@@ -186,7 +232,7 @@ def _plan(selection, output: str | None):
 
 
 def _jobs(selection, output: str | None):
-    from mobile_car.render.session import file_job, selection_jobs
+    from mobile_car.render.jobs import file_job, selection_jobs
 
     inputs = selection.inputs
     if selection.kind == "files":
@@ -267,6 +313,6 @@ def _summary(session, outcome: _Outcome, total: int, outdir, sheet: bool,
     if sheet:
         line += f" + {display_path(Path(outdir) / 'index.png')}"
     line += f" ({seconds:.2f} s"
-    if session.renderer_description:
+    if session is not None and session.renderer_description:
         line += f", {session.renderer_description}"
     click.echo(line + ")", err=True)

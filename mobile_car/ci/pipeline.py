@@ -17,7 +17,7 @@ from ..atomic import atomic_write
 from ..check.diagnostics import Diagnostic
 from ..errors import McarError, combine_exit_codes
 from ..load.inputs import RobotInput, display_path
-from ..load.robot import LoadOptions
+from ..load.robot import CONFIG_ARG, LoadOptions
 from ..load.selection import Selection
 from ..packages.discover import output_name, source_base
 
@@ -48,6 +48,8 @@ class CiItem:
     links: int | None = None
     joints: int | None = None
     checked: object = None  # the CheckResult of a passed check step, which render draws
+    deps: list[Path] = field(default_factory=list)  # the files its build read
+    generated: tuple[Path, ...] = ()  # files written for its build (overrides): no inputs
 
     @property
     def source(self) -> Path:
@@ -112,7 +114,7 @@ def _refuse_destroying(items: list[CiItem], inputs: list[Path]) -> None:
         refuse_overwriting(path, inputs)
 
 
-def _fail(item: CiItem, name: str, message: str, diagnostics=(), exit_code: int = 1,
+def fail(item: CiItem, name: str, message: str, diagnostics=(), exit_code: int = 1,
           error: McarError | None = None) -> None:
     item.steps.append(Step(name, "failed", message, list(diagnostics), exit_code=exit_code,
                            error=error))
@@ -152,10 +154,14 @@ def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> 
     try:
         with _item_options(item, options) as item_options:
             loaded = load_robot(item.input, item_options)
+            written = [options.overrides.path if options.overrides else None,
+                       item_options.mappings.get(CONFIG_ARG) if item.variant else None]
+            item.generated = tuple(Path(p) for p in written if p is not None)
+        item.deps = list(loaded.deps)
         refuse_overwriting(item.urdf, loaded.deps)
         atomic_write(item.urdf, loaded.urdf)
     except McarError as error:
-        _fail(item, "build", str(error), exit_code=error.exit_code, error=error)
+        fail(item, "build", str(error), exit_code=error.exit_code, error=error)
         return False
     item.steps.append(Step("build", message=f"wrote {display_path(item.urdf)}",
                            seconds=time.perf_counter() - started))
@@ -164,7 +170,7 @@ def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> 
     if result.robot is not None:
         item.links, item.joints = len(result.robot.links), len(result.robot.joints)
     if result.errors or (strict and result.warnings):
-        _fail(item, "check", result.diagnostics[0].text(), result.diagnostics)
+        fail(item, "check", result.diagnostics[0].text(), result.diagnostics)
         return False
     item.steps.append(Step("check", diagnostics=result.diagnostics,
                            seconds=time.perf_counter() - started))
@@ -172,16 +178,18 @@ def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> 
     return True
 
 
-def render_step(item: CiItem, session, manifest) -> None:
-    """Draw the built URDF of an item that passed build and check."""
+def render_step(item: CiItem, session, manifest, basis=None) -> None:
+    """Draw the built URDF of an item that passed build and check (``basis``: the item's,
+    to keep stamps of what the picture was made from)."""
     from ..render.session import RenderJob
 
     if item.png is None:
         return
-    job = RenderJob(item.input, item.png, item.label, checked=item.checked)
+    job = RenderJob(item.input, item.png, item.label, checked=item.checked, basis=basis,
+                    generated=item.generated)
     result = session.render_one(job, manifest)
     if result.error is not None:
-        _fail(item, "render", str(result.error), getattr(result.error, "diagnostics", ()),
+        fail(item, "render", str(result.error), getattr(result.error, "diagnostics", ()),
               exit_code=result.error.exit_code, error=result.error)
         return
     verb = "unchanged" if result.status == "unchanged" else "wrote"

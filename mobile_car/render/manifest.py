@@ -1,12 +1,21 @@
 """Remember what each picture was rendered from, to skip pictures whose inputs are unchanged.
 
 The manifest (``.mcar-render.json`` in the output folder) maps each output, by its path
-relative to that folder, to a fingerprint of everything that decides its pixels: the URDF
-bytes, the bytes of every mesh it reads, the render options and the version of the drawing
-code; plus the renderer that drew it (a picture drawn by OpenGL does not satisfy
-``--renderer raycast``, either satisfies ``auto``) and a hash of the PNG written, so that a
-picture edited or replaced by hand is rendered again. A missing or unreadable manifest (or
-one over ``MCAR_MAX_INPUT_MB``) just means that everything is rendered.
+relative to that folder, to what decided its pixels, twice over:
+
+* ``key`` and ``files``: a hash of the settings (arguments, overrides, package search,
+  render options, mcar's version; see :mod:`mobile_car.freshness`) and the stamps of every
+  file the picture was made from (the robot file, everything its expansion read, its
+  meshes). A run that finds both unchanged skips the picture after a few ``stat()``
+  calls, loading nothing: a no-op ``mcar render`` never imports xacro or trimesh.
+* ``input``: a fingerprint of the expanded URDF, the mesh bytes and the settings, for when
+  a stamped file did change: a picture whose URDF comes out the same is not redrawn.
+
+Plus the renderer that drew it (a picture drawn by OpenGL does not satisfy ``--renderer
+raycast``, either satisfies ``auto``), the hash and stat of the PNG written (a picture
+edited or replaced by hand is rendered again) and the check's warnings shown with it. A
+missing or unreadable manifest (or one over ``MCAR_MAX_INPUT_MB``) just means that
+everything is rendered.
 """
 
 from __future__ import annotations
@@ -16,12 +25,13 @@ import json
 import os
 from pathlib import Path
 
-from .. import __version__
 from ..atomic import atomic_write
 from ..errors import InputError
+from ..freshness import Basis, key_of, output_current, output_stamp, stamps_current
 from ..load.bounded import read_input
 
 MANIFEST_NAME = ".mcar-render.json"
+CONTACT_SHEET = "index.png"
 # Bump when the same input and options give different pixels (lighting, overlays, camera).
 DRAWING_VERSION = 1
 
@@ -33,14 +43,18 @@ def sha256(data: bytes) -> str:
 def input_fingerprint(urdf: bytes, meshes: list[Path], settings: dict) -> str:
     """Hash of the URDF, its mesh files (names and bytes) and the settings (plain data)."""
     digest = hashlib.sha256()
-    header = {"mcar": __version__, "drawing": DRAWING_VERSION, "settings": settings}
-    digest.update(json.dumps(header, sort_keys=True).encode())
+    digest.update(key_of("drawing", DRAWING_VERSION, settings).encode())  # mcar's version too
     digest.update(sha256(urdf).encode())
     for mesh in meshes:
         with open(mesh, "rb") as handle:  # in chunks: a mesh may be large
             mesh_hash = hashlib.file_digest(handle, "sha256").hexdigest()
         digest.update(str(mesh).encode() + b"\0" + mesh_hash.encode())
     return digest.hexdigest()
+
+
+def picture_key(basis: Basis, options) -> str:
+    """The key of a picture: its robot's basis and the render options (RenderOptions)."""
+    return key_of("render", DRAWING_VERSION, basis.settings, options.fingerprint())
 
 
 class Manifest:
@@ -62,6 +76,17 @@ class Manifest:
         """The output's name in the manifest: its path relative to the folder."""
         return Path(os.path.relpath(Path(target).resolve(), self.folder.resolve())).as_posix()
 
+    def _png_current(self, target: Path, entry: dict) -> bool:
+        """The PNG is still what was written: same stat, else same bytes."""
+        if entry.get("png_stat") is None:  # written by an older mcar: compare the bytes
+            try:
+                return sha256(Path(target).read_bytes()) == entry.get("png")
+            except OSError:
+                return False
+        ok, refreshed = output_current(target, entry["png_stat"])
+        self._changed = self._changed or refreshed
+        return ok
+
     def is_current(self, target: Path, fingerprint: str, renderer: str = "auto") -> bool:
         """True if ``target`` was drawn from this fingerprint by an acceptable renderer
         (``auto``: any) and is still as written."""
@@ -70,17 +95,38 @@ class Manifest:
             return False
         if renderer != "auto" and entry.get("renderer") != renderer:
             return False
-        try:
-            return sha256(Path(target).read_bytes()) == entry.get("png")
-        except OSError:
-            return False
+        return self._png_current(target, entry)
+
+    def fresh(self, target: Path, key: str, renderer: str = "auto") -> dict | None:
+        """The entry of ``target`` if its key and every stamped file are unchanged and
+        the picture is as written (nothing is loaded), else None."""
+        entry = self.entries.get(self.key(target))
+        if not entry or entry.get("key") != key or not entry.get("files"):
+            return None
+        if renderer != "auto" and entry.get("renderer") != renderer:
+            return None
+        current, refreshed = stamps_current(entry["files"])
+        self._changed = self._changed or refreshed
+        if not current or not self._png_current(target, entry):
+            return None
+        return entry
 
     def record(self, target: Path, fingerprint: str, png: bytes, caption: str,
                renderer: str | None = None) -> None:
-        entry = {"input": fingerprint, "png": sha256(png), "caption": caption}
+        entry = {"input": fingerprint, "png": sha256(png), "caption": caption,
+                 "png_stat": output_stamp(target, sha256(png))}
         if renderer is not None:
             entry["renderer"] = renderer
         self.entries[self.key(target)] = entry
+        self._changed = True
+
+    def stamp(self, target: Path, key: str, files: list | None, warnings: list) -> None:
+        """Record what ``target`` was made from (``files``: stamps, None when one could
+        not be stamped) and the warnings shown with it, for :meth:`fresh`."""
+        entry = self.entries.get(self.key(target))
+        if entry is None:
+            return
+        entry.update(key=key, files=files, warnings=warnings)
         self._changed = True
 
     def forget_all_but(self, keys: set[str]) -> None:
@@ -89,6 +135,18 @@ class Manifest:
         for key in stale:
             del self.entries[key]
         self._changed = self._changed or bool(stale)
+
+    def sheet_pictures(self) -> list[tuple[str, dict]]:
+        """The pictures the contact sheet shows: every one listed that is on disk."""
+        return sorted((key, entry) for key, entry in self.entries.items()
+                      if key != CONTACT_SHEET and (self.folder / key).is_file())
+
+    def sheet_fingerprint(self) -> str:
+        return sha256(repr((DRAWING_VERSION, [(key, entry.get("caption"), entry.get("png"))
+                                              for key, entry in self.sheet_pictures()])).encode())
+
+    def sheet_is_current(self) -> bool:
+        return self.is_current(self.folder / CONTACT_SHEET, self.sheet_fingerprint())
 
     def save(self) -> None:
         if self._changed:

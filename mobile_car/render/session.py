@@ -22,33 +22,20 @@ from PIL import Image
 from ..atomic import atomic_write
 from ..check.checker import CheckResult, check_input
 from ..errors import CheckFailed, McarError, RenderError, RendererUnavailableError
-from ..load.inputs import RobotInput
+from ..freshness import Stamper, diagnostics_data, diagnostics_from
 from ..load.outputs import refuse_overwriting
 from ..load.robot import LoadedRobot, LoadOptions
-from ..load.selection import Selection
-from ..packages.discover import output_name
 from .backend import GLProbe, open_renderer
 from .compose import png_bytes
-from .manifest import DRAWING_VERSION, Manifest, input_fingerprint, sha256
+from .jobs import RenderJob, file_job, picture_name, picture_path, selection_jobs  # noqa: F401
+from .manifest import CONTACT_SHEET, Manifest, input_fingerprint, picture_key
 from .options import RenderOptions
 from .picture import DrawnView, draw_views, finish_picture
 from .scene import ModelSource, load_scene
 from .sheet import THUMBNAIL_WIDTH, contact_sheet
 
-CONTACT_SHEET = "index.png"
 # Pictures finished (overlays, PNG, write) in parallel with drawing the next ones.
 FINISH_THREADS = 1
-URDF_SUFFIXES = (".urdf.xacro", ".xacro", ".urdf")
-
-
-@dataclass
-class RenderJob:
-    """One robot input and the PNG it becomes (None: return the bytes, write nothing)."""
-
-    input: RobotInput
-    target: Path | None
-    caption: str
-    checked: CheckResult | None = None  # already loaded and checked (mcar ci): draw that
 
 
 @dataclass
@@ -74,6 +61,8 @@ class _Drawn:
     renderer: str
     warnings: list
     started: float
+    key: str | None
+    files: list[Path]
 
 
 def _ready(item) -> bool:
@@ -97,41 +86,6 @@ def _drawing_error(job: RenderJob, exc: Exception) -> RenderError:
     other robots of the run are still drawn, and the run ends with exit 1."""
     return RenderError(f"cannot draw this robot: {type(exc).__name__}: {exc}",
                        file=job.input.label)
-
-
-def picture_name(path: Path | None) -> str:
-    """``test_wheel.urdf.xacro`` -> ``test_wheel.png``; stdin -> ``stdin.png``."""
-    if path is None:
-        return "stdin.png"
-    name = path.name
-    for suffix in URDF_SUFFIXES:
-        if name.endswith(suffix) and len(name) > len(suffix):
-            name = name[: -len(suffix)]
-            break
-    return name + ".png"
-
-
-def picture_path(inp: RobotInput) -> Path:
-    """Where an input's picture goes below the output folder: mirrored below the folder
-    it was found in (``wheel/test_wheel.png``), else just its name."""
-    if inp.path is None or inp.base is None:
-        return Path(picture_name(inp.path))
-    return output_name(inp.path, inp.base).with_name(picture_name(inp.path))
-
-
-def selection_jobs(selection: Selection, outdir: Path) -> list[RenderJob]:
-    """A job per input, its picture mirrored into outdir."""
-    jobs = []
-    for inp in selection.inputs:
-        relative = picture_path(inp)
-        caption = relative.with_suffix("").as_posix() if inp.base is not None \
-            else relative.stem
-        jobs.append(RenderJob(inp, outdir / relative, caption))
-    return jobs
-
-
-def file_job(inp: RobotInput, target: Path | None) -> RenderJob:
-    return RenderJob(inp, target, picture_name(inp.path)[: -len(".png")])
 
 
 def model_source(loaded: LoadedRobot) -> ModelSource:
@@ -169,6 +123,7 @@ class RenderSession:
         self.renderer = None
         self.notes: list[str] = []
         self.thumbnails: dict[str, Image.Image] = {}
+        self.stamper = Stamper()
 
     def __enter__(self):
         return self
@@ -194,13 +149,29 @@ class RenderSession:
     def settings(self) -> dict:
         return {"options": self.options.fingerprint()}
 
+    def _key(self, job: RenderJob, manifest: Manifest | None) -> str | None:
+        """The picture's key, when it is kept in a manifest with stamps (not stdin)."""
+        if manifest is None or job.target is None or job.basis is None or job.input.path is None:
+            return None
+        return picture_key(job.basis, self.options)
+
+    def _stamps(self, job: RenderJob, files: list[Path]) -> list | None:
+        generated = [*job.generated, self.load.overrides.path if self.load.overrides else None]
+        return self.stamper.stamps([*files, *job.basis.files], skip=generated)
+
     def _draw(self, job: RenderJob, manifest: Manifest | None) -> JobResult | _Drawn:
-        """First stage, on the calling thread: load and check, look for changes, draw.
+        """First stage, on the calling thread: look for changes, load and check, draw.
 
         Returns a finished JobResult (unchanged, or failed) or the drawn views to finish.
         A robot that ``mcar check`` rejects fails with the check's diagnostics.
         """
         started = time.perf_counter()
+        key = self._key(job, manifest)
+        if key is not None and not self.force:
+            entry = manifest.fresh(job.target, key, self.renderer_choice)
+            if entry is not None:  # nothing it was made from changed: nothing loaded
+                return JobResult(job, "unchanged", seconds=time.perf_counter() - started,
+                                 warnings=diagnostics_from(entry.get("warnings") or []))
         try:
             result = job.checked or check_input(job.input, self.load, stdin=self.stdin)
             blocking = blocking_diagnostics(result, self.options.collision)
@@ -209,12 +180,16 @@ class RenderSession:
             warnings = [d for d in result.diagnostics if d.rule == "W220"]
             kind = "collision" if self.options.collision else "visual"
             meshes = [mesh.path for mesh in result.mesh_files if mesh.kind == kind]
+            files = [*result.loaded.deps, *meshes]
             source = model_source(result.loaded)
             if job.target is not None:
-                refuse_overwriting(job.target, [*result.loaded.deps, *meshes])
+                refuse_overwriting(job.target, files)
             fingerprint = input_fingerprint(source.xml, meshes, self.settings())
             if (manifest is not None and job.target is not None and not self.force
                     and manifest.is_current(job.target, fingerprint, self.renderer_choice)):
+                if key is not None:  # a file changed, the robot did not: stamp it anew
+                    manifest.stamp(job.target, key, self._stamps(job, files),
+                                   diagnostics_data(warnings))
                 return JobResult(job, "unchanged", warnings=warnings,
                                  seconds=time.perf_counter() - started)
             scene = load_scene(source, result.loaded.search, collision=self.options.collision)
@@ -229,7 +204,8 @@ class RenderSession:
         except Exception as exc:  # trimesh, numpy or GL on input nothing checked for
             return JobResult(job, "failed", error=_drawing_error(job, exc),
                              seconds=time.perf_counter() - started)
-        return _Drawn(job, views, scene.bounds, fingerprint, renderer.name, warnings, started)
+        return _Drawn(job, views, scene.bounds, fingerprint, renderer.name, warnings, started,
+                      key, files)
 
     def _finish(self, drawn: _Drawn, manifest: Manifest | None) -> JobResult:
         """Second stage, on any thread: overlays, PNG encoding, atomic write, manifest."""
@@ -242,6 +218,10 @@ class RenderSession:
                 if manifest is not None:
                     manifest.record(job.target, drawn.fingerprint, png, job.caption,
                                     drawn.renderer)
+                    if drawn.key is not None:
+                        shown = [w for w in drawn.warnings if not isinstance(w, str)]
+                        manifest.stamp(job.target, drawn.key, self._stamps(job, drawn.files),
+                                       diagnostics_data(shown))
                     self.thumbnails[manifest.key(job.target)] = _sheet_copy(image)
         except McarError as error:
             return JobResult(job, "failed", error=error,
@@ -289,10 +269,8 @@ class RenderSession:
         Returns the sheet's path and whether it was written.
         """
         target = manifest.folder / CONTACT_SHEET
-        listed = sorted((key, entry) for key, entry in manifest.entries.items()
-                        if key != CONTACT_SHEET and (manifest.folder / key).is_file())
-        fingerprint = sha256(repr((DRAWING_VERSION, [(key, entry.get("caption"), entry.get("png"))
-                                                      for key, entry in listed])).encode())
+        listed = manifest.sheet_pictures()
+        fingerprint = manifest.sheet_fingerprint()
         if not self.force and manifest.is_current(target, fingerprint):
             return target, False
         pictures = []

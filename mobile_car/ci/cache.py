@@ -1,0 +1,124 @@
+"""Reuse the build and check of robot files whose inputs did not change (``mcar ci``).
+
+The record (``.mcar-ci.json`` in the build folder) holds per built file the key of its
+settings and the stamps of every file it was made from (see :mod:`mobile_car.freshness`),
+the stamp of the URDF written, and the check's verdict, counts and diagnostics. An item
+whose key, inputs and output are unchanged, and whose picture the render manifest finds
+current, is *replayed*: its steps are made from the record, so the report (text, JUnit,
+exit code) is the one a full run prints, without expanding or checking anything. An item
+whose URDF or picture was deleted or edited since is built again. Build failures are not
+recorded: they are built again every time.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+from ..atomic import atomic_write
+from ..freshness import (
+    Basis,
+    Stamper,
+    diagnostics_data,
+    diagnostics_from,
+    file_sha256,
+    key_of,
+    output_current,
+    output_stamp,
+    stamps_current,
+)
+from ..load.inputs import display_path
+from .pipeline import CiItem, Step, fail
+
+CACHE_NAME = ".mcar-ci.json"
+
+
+def item_basis(item: CiItem, basis: Basis) -> Basis:
+    """The run's basis plus the item's variant file, read as --config is."""
+    return basis.with_file(item.variant, "variant")
+
+
+class CiCache:
+    def __init__(self, build_dir: Path):
+        self.folder = Path(build_dir)
+        self.path = self.folder / CACHE_NAME
+        self.entries: dict[str, dict] = {}
+        self.stamper = Stamper()
+        self._changed = False
+        from ..errors import InputError
+        from ..load.bounded import read_input
+
+        try:  # bounded like every read: a record linked to /dev/zero is just unreadable
+            data = json.loads(read_input(self.path))
+            if isinstance(data, dict) and isinstance(data.get("items"), dict):
+                self.entries = {k: v for k, v in data["items"].items() if isinstance(v, dict)}
+        except (OSError, ValueError, RecursionError, InputError):
+            pass
+
+    def _name(self, item: CiItem) -> str:
+        return Path(os.path.relpath(os.path.abspath(item.urdf),
+                                    os.path.abspath(self.folder))).as_posix()
+
+    @staticmethod
+    def _key(item: CiItem, basis: Basis, strict: bool) -> str:
+        return key_of("ci", item_basis(item, basis).settings, strict)
+
+    def replay(self, item: CiItem, basis: Basis, strict: bool, picture_fresh) -> bool:
+        """Fill in the item's steps from the record if nothing it depends on changed;
+        ``picture_fresh(item)`` says whether its picture (if it has one) is current."""
+        entry = self.entries.get(self._name(item))
+        if not entry or entry.get("key") != self._key(item, basis, strict):
+            return False
+        current, refreshed = stamps_current(entry.get("files"))
+        if not current:
+            return False
+        written, touched = output_current(item.urdf, entry.get("urdf"))
+        if not written:
+            return False
+        self._changed = self._changed or refreshed or touched
+        check = entry.get("check") or {}
+        diagnostics = diagnostics_from(check.get("diagnostics") or [])
+        passed = check.get("passed") is True
+        if passed and item.png is not None and not picture_fresh(item):
+            return False
+        item.links, item.joints = entry.get("links"), entry.get("joints")
+        item.deps = [Path(p) for p in entry.get("deps") or []]
+        item.steps.append(Step("build", message=f"wrote {display_path(item.urdf)}"))
+        if not passed:
+            fail(item, "check", diagnostics[0].text(), diagnostics)
+            return True
+        item.steps.append(Step("check", diagnostics=diagnostics))
+        if item.png is not None:
+            item.steps.append(Step("render", message=f"unchanged {display_path(item.png)}"))
+        return True
+
+    def record(self, item: CiItem, basis: Basis, strict: bool) -> None:
+        """Remember an item just built and checked (a failed build is forgotten)."""
+        name = self._name(item)
+        self._changed = True
+        check = next((step for step in item.steps if step.name == "check"), None)
+        if check is None or check.status == "skipped":
+            self.entries.pop(name, None)
+            return
+        files = self.stamper.stamps([*item.deps, *item_basis(item, basis).files],
+                                    skip=item.generated)
+        try:
+            urdf = output_stamp(item.urdf, file_sha256(item.urdf))
+        except OSError:
+            urdf = None
+        if files is None or urdf is None:
+            self.entries.pop(name, None)
+            return
+        self.entries[name] = {
+            "key": self._key(item, basis, strict), "files": files, "urdf": urdf,
+            "deps": [os.path.abspath(p) for p in item.deps],
+            "links": item.links, "joints": item.joints,
+            "check": {"passed": check.status == "passed",
+                      "diagnostics": diagnostics_data(check.diagnostics)}}
+
+    def save(self) -> None:
+        if self._changed:
+            text = json.dumps({"items": dict(sorted(self.entries.items()))}, indent=1)
+            atomic_write(self.path, text + "\n")
+            self._changed = False

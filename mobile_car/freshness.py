@@ -1,0 +1,170 @@
+"""Decide "nothing changed" from file stats, without loading anything.
+
+An output (a built URDF, a picture) records the files it was made from as *stamps*:
+``[path, size, mtime_ns, sha256]``, and a *key*: a hash of everything else that decides it
+(the command line's arguments and overrides, the package search environment, options,
+mcar's version). A later run that finds the same key and every stamped file with the same
+size and mtime knows the output is current after a few ``stat()`` calls; only a file whose
+stat differs is hashed, and only a changed hash means rebuilding. A file that would newly
+be included cannot appear without a stamped file (the one including it) changing.
+
+Kept free of xacro, lxml, numpy and trimesh: this is what a no-op run imports.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import stat
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from . import __version__
+
+# Environment that changes where $(find PKG) and package:// lead.
+SEARCH_ENVIRONMENT = ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")
+# A file modified this close to (or after) the start of the run that read it may have
+# changed after it was read, within one tick of the file system's clock: it gets no
+# stamp, so the next run rebuilds what it made (git's "racy" files).
+RACY_MARGIN_NS = 30_000_000
+
+
+def file_sha256(path: str | os.PathLike) -> str:
+    digest = hashlib.sha256()
+    with open(path, "rb") as handle:
+        if not stat.S_ISREG(os.fstat(handle.fileno()).st_mode):
+            return "not a regular file"  # a device or FIFO never counts as unchanged
+        for block in iter(lambda: handle.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def key_of(*parts) -> str:
+    """A hash of plain data (and mcar's version): two runs with equal keys were asked the
+    same thing."""
+    text = json.dumps([__version__, *parts], sort_keys=True, default=str)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+@dataclass(frozen=True)
+class Basis:
+    """What, besides the files a robot's expansion reads, decides what it becomes: xacro
+    arguments, --set words, --config files (read, not included, so stamped here), package
+    search paths and environment."""
+
+    settings: dict = field(default_factory=dict)
+    files: tuple[Path, ...] = ()
+
+    @classmethod
+    def of(cls, mappings=None, sets=(), config_files=(), package_paths=(), environ=None):
+        environ = os.environ if environ is None else environ
+        configs = tuple(Path(os.path.abspath(p)) for p in config_files)
+        settings = {"mappings": dict(sorted((mappings or {}).items())), "sets": list(sets),
+                    "configs": [str(p) for p in configs],
+                    "package_paths": [os.path.abspath(p) for p in package_paths],
+                    "environment": {name: environ.get(name) for name in SEARCH_ENVIRONMENT}}
+        return cls(settings, configs)
+
+    def with_file(self, path: Path | None, name: str) -> Basis:
+        """The basis plus one more file that is read as a setting (a ci variant)."""
+        if path is None:
+            return self
+        absolute = Path(os.path.abspath(path))
+        return Basis({**self.settings, name: str(absolute)}, (*self.files, absolute))
+
+
+class Stamper:
+    """Stamps files read by one run (started when the Stamper was made)."""
+
+    def __init__(self):
+        self.started_ns = time.time_ns()
+
+    def stamps(self, paths, skip=()) -> list[list] | None:
+        """Stamps of the files (each once, ``skip`` left out); None if one is missing."""
+        skipped = {os.path.abspath(p) for p in skip if p is not None}
+        result = []
+        for path in dict.fromkeys(os.path.abspath(p) for p in paths):
+            if path in skipped:
+                continue
+            try:
+                info = os.stat(path)
+                digest = file_sha256(path)
+            except OSError:
+                return None
+            if info.st_mtime_ns >= self.started_ns - RACY_MARGIN_NS:
+                result.append([path, -1, -1, ""])  # never matches: rebuilt next time
+            else:
+                result.append([path, info.st_size, info.st_mtime_ns, digest])
+        return result
+
+
+def output_stamp(path: str | os.PathLike, digest: str) -> list | None:
+    """[size, mtime_ns] of a file this run just wrote (its hash is known)."""
+    try:
+        info = os.stat(path)
+    except OSError:
+        return None
+    return [info.st_size, info.st_mtime_ns, digest]
+
+
+def stamps_current(stamps) -> tuple[bool, bool]:
+    """(current, refreshed): whether every stamped file still has its recorded content,
+    and whether a stamp was brought up to date (same bytes, new mtime: a touch)."""
+    refreshed = False
+    if not isinstance(stamps, list):
+        return False, False
+    for stamp in stamps:
+        ok, changed = stamp_current(stamp)
+        if not ok:
+            return False, refreshed
+        refreshed = refreshed or changed
+    return True, refreshed
+
+
+def stamp_current(stamp) -> tuple[bool, bool]:
+    """One ``[path, size, mtime_ns, sha256]`` stamp: (current, refreshed in place)."""
+    try:
+        path, size, mtime_ns, digest = stamp
+        info = os.stat(path)
+    except (OSError, ValueError, TypeError):
+        return False, False
+    if info.st_size == size and info.st_mtime_ns == mtime_ns:
+        return True, False
+    if info.st_size != size or not digest:
+        return False, False
+    try:
+        if file_sha256(path) != digest:
+            return False, False
+    except OSError:
+        return False, False
+    stamp[2] = info.st_mtime_ns
+    return True, True
+
+
+def output_current(path: str | os.PathLike, stamp) -> tuple[bool, bool]:
+    """Whether an output still holds what was written (``[size, mtime_ns, sha256]``), and
+    whether its stamp was refreshed in place (same bytes, new mtime)."""
+    if not isinstance(stamp, list) or len(stamp) != 3:
+        return False, False
+    full = [os.fspath(path), *stamp]
+    ok, refreshed = stamp_current(full)
+    stamp[1] = full[2]
+    return ok, refreshed
+
+
+def diagnostics_data(diagnostics) -> list[dict]:
+    """Diagnostics as plain data; file names made absolute, to be shown relative to the
+    working folder of the run that replays them (as they were shown when found)."""
+    return [{"rule": d.rule, "file": os.path.abspath(d.file) if os.path.exists(d.file)
+             else d.file, "line": d.line, "message": d.message} for d in diagnostics]
+
+
+def diagnostics_from(data) -> list:
+    """The Diagnostics :func:`diagnostics_data` recorded."""
+    from .check.diagnostics import Diagnostic
+    from .load.inputs import display_path
+
+    return [Diagnostic(d["rule"], display_path(d["file"]) if os.path.isabs(d["file"])
+                       else d["file"], d["line"], d["message"]) for d in data]

@@ -151,11 +151,13 @@ def read_config_file(spec: ConfigSpec, path: Path) -> dict[str, float]:
     import yaml
 
     from ..load.bounded import read_input
-    from .bounded_yaml import TooLarge, compose_and_load, short_repr
+    from .bounded_yaml import DuplicateKey, TooLarge, compose_and_load, short_repr
 
     shown = str(path)
     try:
-        node, data = compose_and_load(read_input(path, shown).decode("utf-8"))
+        # Numbers stay text: each value is read by parse_quantity, as --set reads it.
+        node, data = compose_and_load(read_input(path, shown).decode("utf-8"),
+                                      numbers_as_text=True)
     except FileNotFoundError:
         raise InputError("no such file", file=shown) from None
     except IsADirectoryError:
@@ -165,7 +167,7 @@ def read_config_file(spec: ConfigSpec, path: Path) -> dict[str, float]:
     except yaml.YAMLError as error:
         mark = getattr(error, "problem_mark", None)
         problem = getattr(error, "problem", None) or "not valid YAML"
-        if not isinstance(error, TooLarge):
+        if not isinstance(error, (TooLarge, DuplicateKey)):
             problem = f"not valid YAML: {problem}"
         raise UsageError(problem, file=shown,
                          line=mark.line + 1 if mark else None) from None

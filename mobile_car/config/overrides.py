@@ -143,8 +143,11 @@ def config_table(spec: ConfigSpec, values: dict[str, float],
     """
     def entry(dimension: Dimension) -> dict:
         item = {"value": values[dimension.name], "unit": dimension.unit,
-                "source": dimension.source, "meaning": dimension.meaning,
-                "defined": f"{dimension.file}:{dimension.line}"}
+                "kind": dimension.kind, "source": dimension.source,
+                "meaning": dimension.meaning, "defined": f"{dimension.file}:{dimension.line}"}
+        if dimension.range is not None:
+            item["range"] = [dimension.range.low, dimension.range.high]
+            item["range_text"] = dimension.range.text
         if dimension.derived:
             item["expression"] = dimension.expression.strip()[2:-1]
         elif overrides.get(dimension.name, float(dimension.expression)) != \

@@ -123,3 +123,27 @@ def test_mcar_config_shows_the_range(run_mcar):
     rows = {line.split()[0]: line.split() for line in run_mcar("config").stdout.splitlines()
             if line.strip()}
     assert rows["wheel_radius"][1:5] == ["0.0325", "m", "listing", "5mm..0.5m"]
+
+
+def test_a_derived_value_that_overflows_is_refused(run_mcar, tmp_path):
+    """Finite, in-range inputs can still overflow an expression: the probe refuses "inf"
+    before it reaches a URDF (exit 2 for an override, 1 for config.xacro's own numbers)."""
+    assert run_mcar("init", "demo", cwd=tmp_path).returncode == 0
+    config = tmp_path / "demo" / "urdf" / "config.xacro"
+    text = config.read_text()
+    anchor = "<!-- kg 10g..500kg; estimate: mass of the base -->\n"
+    config.write_text(text.replace(anchor, anchor + (
+        '  <xacro:property name="a" value="1"/> <!-- m; design: no range, so > 0 -->\n'
+        '  <xacro:property name="a_cubed" value="${a * a * a}"/> <!-- m; derived: cube -->\n')))
+    ok = run_mcar("config", "--set", "a=1e100", cwd=tmp_path / "demo")
+    assert ok.returncode == 0, ok.stderr
+    bad = run_mcar("config", "--set", "a=1e200", cwd=tmp_path / "demo")
+    assert (bad.returncode, bad.stderr.splitlines()[-1]) == (2, (
+        "mcar: error: the dimensions do not fit together: a_cubed = a * a * a comes out as "
+        "inf, not a finite number"))
+    config.write_text(config.read_text().replace('name="a" value="1"', 'name="a" value="1e200"'))
+    own = run_mcar("config", cwd=tmp_path / "demo")
+    assert own.returncode == 1
+    assert own.stderr.splitlines()[-1].endswith(
+        "config.xacro:21: error: config: a_cubed = a * a * a comes out as inf, not a finite "
+        "number"), own.stderr

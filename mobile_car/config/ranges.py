@@ -62,6 +62,8 @@ def parse_range(text: str, unit: str) -> Range:
         raise ValueError(f"range {text!r} is empty: {low:g} > {high:g} {unit}")
     if unit == "count" and not (low.is_integer() and high.is_integer()):
         raise ValueError(f"range {text!r}: a count's range has whole ends")
+    if unit == "count":  # shown as 1..100000 in JSON too, not 1.0
+        low, high = int(low), int(high)
     return Range(low, high, text, unit)
 
 

@@ -68,7 +68,8 @@ def test_every_dimension_of_the_car_has_a_range_and_a_kind():
     assert all(d.range is None for d in spec.derived())
     assert {d.kind for d in spec.base()} <= set(KINDS.values())
     assert {"length", "mass", "count", "rate"} <= {d.kind for d in spec.base()}
-    assert spec.dimensions["laser_samples"].unit == "count"
+    samples = spec.dimensions["laser_samples"]
+    assert (samples.unit, samples.range.low, type(samples.range.high)) == ("count", 1, int)
 
 
 def _config(tmp_path, *properties: str):

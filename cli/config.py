@@ -13,7 +13,7 @@ from mobile_car.load.inputs import display_path
 from . import streams
 from .common import handle_errors, load_inputs, robot_options
 
-HELP = """Show the robot's dimensions: value, unit, source, meaning, FILE:LINE.
+HELP = """Show the robot's dimensions: value, unit, source, range, meaning, FILE:LINE.
 
 \b
   mcar config                               the table, then the derived values
@@ -21,7 +21,8 @@ HELP = """Show the robot's dimensions: value, unit, source, meaning, FILE:LINE.
   mcar config --format json > car.json      a document --config reads back
 
 The dimensions live once, in urdf/config.xacro (one <xacro:property> each, with a
-"UNIT; SOURCE: meaning" comment); derived ones are xacro expressions of the others,
+"UNIT LO..HI; SOURCE: meaning" comment: --set/--config values outside the plausible
+range LO..HI are refused); derived ones are xacro expressions of the others,
 evaluated here by xacro itself. The config is urdf/config.xacro of the package found
 from INPUT (a robot .xacro, a folder or part of the package), else of the package you
 stand in, else the bundled mobile car's. A URDF has no dimensions to show.
@@ -59,8 +60,9 @@ def _text(table: dict) -> str:
                 note += f"  = {item['expression']}"
             path, _, line = item["defined"].rpartition(":")
             where = f"{Path(path).name}:{line}"
+            plausible = item.get("range_text", "")
             rows.append(f"{mark}{name:<{width}}{value:>10} {item['unit']:<7} "
-                        f"{item['source']:<10}{where:<18}{note}")
+                        f"{item['source']:<10}{plausible:<14}{where:<18}{note}")
         rows.append("")
     if any(item.get("overridden") for item in table["dimensions"].values()):
         rows.append("* overridden: its meaning was written for the default value")

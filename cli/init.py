@@ -20,7 +20,7 @@ HELP = """Create a robot description package at PATH, ready for mcar ci.
 It follows the mobile car's layout (the seed's method):
   package.xml, CMakeLists.txt        a ROS 2 (ament_cmake) package
   urdf/define.xacro                  colours, inertia macros (box, cylinder, sphere)
-  urdf/config.xacro                  the dimensions, each "UNIT; SOURCE: meaning"
+  urdf/config.xacro                  the dimensions, each "UNIT LO..HI; SOURCE: meaning"
   urdf/NAME.urdf.xacro               the complete robot
   meshes/, .gitignore
   .github/workflows/mcar.yml         CI: mcar ci on this package

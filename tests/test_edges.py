@@ -3,6 +3,7 @@ the exact first line of stderr."""
 
 from __future__ import annotations
 
+import shlex
 import shutil
 from pathlib import Path
 
@@ -16,7 +17,7 @@ def _cases():
     for raw in (HERE / "cases.txt").read_text().splitlines():
         if raw.strip() and not raw.startswith("#"):
             name, words, code, first = (part.strip() for part in raw.split("|", 3))
-            yield pytest.param(words.replace("{REPO}", str(REPO)).split(), int(code), first,
+            yield pytest.param(shlex.split(words.replace("{REPO}", str(REPO))), int(code), first,
                                id=name)
 
 

@@ -5,6 +5,12 @@ nodes ("billion laughs"): whatever walks the value afterwards (an error message'
 a type check) walks every copy. Nesting 50,000 deep exhausts Python's recursion. So the
 composer counts nodes with every alias expanded, as they are composed, and the depth, and
 stops at fixed limits with a YAMLError that has a line, before anything is constructed.
+
+Two more refusals a config file needs: a key given twice in one mapping (YAML says keys
+are unique; PyYAML silently keeps the last), and, with ``numbers_as_text``, YAML's own
+number syntax: plain scalars that YAML 1.1 reads as numbers (``0x10``, ``1_000``,
+``.inf``, ``0o17``, ``1:30``) stay text, so the caller reads them with the grammar of
+``--set`` and a file means what the same words mean on the command line.
 """
 
 from __future__ import annotations
@@ -15,6 +21,7 @@ import yaml
 from yaml.composer import ComposerError
 from yaml.constructor import ConstructorError
 from yaml.events import AliasEvent
+from yaml.nodes import MappingNode, ScalarNode
 
 MAX_NODES = 100_000  # with aliases expanded; a config file has a few hundred
 MAX_DEPTH = 100
@@ -32,6 +39,10 @@ def short_repr(value) -> str:
 
 class TooLarge(ComposerError):
     """The document passes MAX_NODES or MAX_DEPTH: valid YAML, refused all the same."""
+
+
+class DuplicateKey(ConstructorError):
+    """A mapping gives the same key twice: valid to PyYAML, an error to us."""
 
 
 class BoundedLoader(yaml.SafeLoader):
@@ -66,6 +77,19 @@ class BoundedLoader(yaml.SafeLoader):
         self._sizes[id(node)] = self._expanded - before
         return node
 
+    def construct_mapping(self, node, deep=False):
+        if isinstance(node, MappingNode):
+            first: dict[tuple[str, str], int] = {}
+            for key, _value in node.value:
+                if not isinstance(key, ScalarNode) or key.tag == "tag:yaml.org,2002:merge":
+                    continue  # "<<" merges may override by design
+                if (key.tag, key.value) in first:
+                    raise DuplicateKey(None, None, f"duplicate key {short_repr(key.value)} "
+                                       f"(first given on line {first[key.tag, key.value]})",
+                                       key.start_mark)
+                first[key.tag, key.value] = key.start_mark.line + 1
+        return super().construct_mapping(node, deep)
+
     def _count(self, size: int, mark) -> None:
         self._expanded += size
         if self._expanded > MAX_NODES:
@@ -73,9 +97,21 @@ class BoundedLoader(yaml.SafeLoader):
                          "bomb?)", mark)
 
 
-def compose_and_load(text: str):
+_NUMBER_TAGS = ("tag:yaml.org,2002:int", "tag:yaml.org,2002:float")
+
+
+class NumbersAsTextLoader(BoundedLoader):
+    """BoundedLoader whose plain scalars are never resolved to int or float."""
+
+
+NumbersAsTextLoader.yaml_implicit_resolvers = {
+    first: [(tag, regexp) for tag, regexp in resolvers if tag not in _NUMBER_TAGS]
+    for first, resolvers in BoundedLoader.yaml_implicit_resolvers.items()}
+
+
+def compose_and_load(text: str, numbers_as_text: bool = False):
     """(the document's node, its value): one pass, bounded; raises yaml.YAMLError."""
-    loader = BoundedLoader(text)
+    loader = (NumbersAsTextLoader if numbers_as_text else BoundedLoader)(text)
     try:
         node = loader.get_single_node()
         if node is None:

@@ -123,7 +123,25 @@ def evaluate(spec: ConfigSpec, mappings: dict[str, str],
                                  f"{error.message[len('config:'):].strip()}") from None
             raise
     element = etree.fromstring(result.xml.encode()).find("values")
-    return {name: float(element.get(name)) for name in names}
+    values = {name: float(element.get(name)) for name in names}
+    _refuse_non_finite(spec, values, bool(mappings))
+    return {name: int(value) if spec.dimensions[name].unit == "count" and value.is_integer()
+            else value for name, value in values.items()}
+
+
+def _refuse_non_finite(spec: ConfigSpec, values: dict[str, float], overridden: bool) -> None:
+    """Finite inputs can still overflow an expression (a product of huge sizes): an "inf"
+    or "nan" would go into the URDF as text, so it stops here, naming the expression."""
+    import math
+
+    for name, value in values.items():
+        if not math.isfinite(value):
+            dimension = spec.dimensions[name]
+            expression = dimension.expression.strip().removeprefix("${").removesuffix("}")
+            message = f"{name} = {expression} comes out as {value}, not a finite number"
+            if overridden:
+                raise UsageError(f"the dimensions do not fit together: {message}")
+            raise BuildError(f"config: {message}", file=str(spec.path), line=dimension.line)
 
 
 def resolve_overrides(search: PackageSearch, sets, files
@@ -143,8 +161,11 @@ def config_table(spec: ConfigSpec, values: dict[str, float],
     """
     def entry(dimension: Dimension) -> dict:
         item = {"value": values[dimension.name], "unit": dimension.unit,
-                "source": dimension.source, "meaning": dimension.meaning,
-                "defined": f"{dimension.file}:{dimension.line}"}
+                "kind": dimension.kind, "source": dimension.source,
+                "meaning": dimension.meaning, "defined": f"{dimension.file}:{dimension.line}"}
+        if dimension.range is not None:
+            item["range"] = [dimension.range.low, dimension.range.high]
+            item["range_text"] = dimension.range.text
         if dimension.derived:
             item["expression"] = dimension.expression.strip()[2:-1]
         elif overrides.get(dimension.name, float(dimension.expression)) != \

@@ -1,12 +1,14 @@
 """The robot's dimensions: read from ``urdf/config.xacro``, overridden, validated.
 
 ``config.xacro`` is the one source of truth. Each dimension is a ``<xacro:property>`` with a
-comment on its line, ``UNIT[ (BOUND)]; SOURCE: meaning``; SOURCE ``derived`` marks a value
-computed from the others by an xacro expression. Values are never re-computed here: they
-are evaluated by xacro itself, by building a small probe that includes ``config.xacro``.
+comment on its line, ``UNIT[ LO..HI][ (FLAG)]; SOURCE: meaning``; LO..HI is its plausible
+range (:mod:`mobile_car.config.ranges`); SOURCE ``derived`` marks a value computed from the
+others by an xacro expression, which has no range of its own. Values are never re-computed
+here: they are evaluated by xacro itself, by building a small probe that includes
+``config.xacro``.
 
-This module reads the spec and validates override values one by one (unit, sign, known
-name); :mod:`mobile_car.config.overrides` applies them.
+This module reads the spec and validates override values one by one (unit, range, whole
+counts, known name); :mod:`mobile_car.config.overrides` applies them.
 """
 
 from __future__ import annotations
@@ -19,11 +21,15 @@ from pathlib import Path
 from ..errors import InputError, UsageError
 from ..packages.bundled import PACKAGE_NAME
 from ..packages.search import PackageSearch
+from .ranges import KINDS, Range, outside_message, parse_range
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"
-# "m (>=0); listing: hub boss length" -> unit, optional flag, source, meaning.
+# "m 0..20mm (mesh); listing: hub boss length" -> unit, optional range, optional flag,
+# source, meaning. A comment without a range (a package made before ranges) keeps the old
+# bounds: > 0, or the flag's ">=0" / "any sign".
 COMMENT_RE = re.compile(
-    r"^ (?P<unit>m|kg|kg/m\^3|rad/s|rad|N\*m|Hz|1)(?: \((?P<flag>>=0|any sign|mesh)\))?; "
+    r"^ (?P<unit>m|kg|kg/m\^3|rad/s|rad|N\*m|Hz|count|1)(?: (?P<range>[^\s;()]+))?"
+    r"(?: \((?P<flag>>=0|any sign|mesh)\))?; "
     r"(?P<source>datasheet|listing|estimate|design|derived): (?P<meaning>\S.*\S) $")
 _KIND = {"m": "a length", "kg": "a mass"}
 
@@ -41,12 +47,17 @@ class Dimension:
     name: str
     expression: str
     unit: str
-    bound: str  # ">0" (the default), ">=0" or "any sign"
+    bound: str  # ">0" (the default), ">=0" or "any sign"; used only without a range
     baked: bool  # baked into a generated mesh: not overridable
     source: str
     meaning: str
     file: Path
     line: int
+    range: Range | None = None  # the plausible values; None in configs made before ranges
+
+    @property
+    def kind(self) -> str:
+        return KINDS.get(self.unit, "value")
 
     @property
     def derived(self) -> bool:
@@ -93,14 +104,40 @@ def load_spec(path: Path) -> ConfigSpec:
         if isinstance(comment, etree._Comment) and comment.sourceline == prop.sourceline:
             match = COMMENT_RE.match(comment.text or "")
         if match is None:
-            raise InputError(f"property '{prop.get('name')}' has no 'UNIT; SOURCE: meaning' "
+            raise InputError(f"property '{prop.get('name')}' has no 'UNIT LO..HI; SOURCE: meaning' "
                              "comment on its line", file=str(path), line=prop.sourceline)
         dimensions[prop.get("name")] = Dimension(
             name=prop.get("name"), expression=prop.get("value", ""), unit=match["unit"],
             bound=match["flag"] if match["flag"] in (">=0", "any sign") else ">0",
             baked=match["flag"] == "mesh", source=match["source"], meaning=match["meaning"],
-            file=path, line=prop.sourceline)
+            file=path, line=prop.sourceline, range=_range_of(prop, match, path))
     return ConfigSpec(path=path, dimensions=dimensions)
+
+
+def _range_of(prop, match, path: Path) -> Range | None:
+    """The property's range, checked against its own flag and default value."""
+    if match["range"] is None:
+        return None
+    name, line = prop.get("name"), prop.sourceline
+
+    def refuse(problem: str):
+        return InputError(f"property '{name}': {problem}", file=str(path), line=line)
+
+    if match["source"] == "derived":
+        raise refuse("a derived value has no range: give ranges to what it is computed from")
+    if match["flag"] in (">=0", "any sign"):
+        raise refuse(f"the range {match['range']} already bounds it; drop ({match['flag']})")
+    try:
+        plausible = parse_range(match["range"], match["unit"])
+    except ValueError as error:
+        raise refuse(str(error)) from None
+    try:
+        default = float(prop.get("value", ""))
+    except ValueError:
+        return plausible
+    if default not in plausible:
+        raise refuse(f"its value {default:g} is outside its own range {plausible.shown}")
+    return plausible
 
 
 def _check_bound(dimension: Dimension, value: float, origin: str) -> None:
@@ -128,11 +165,18 @@ def _override(spec: ConfigSpec, name: str, raw, origin: str) -> float:
         raise UsageError(f"{origin}: {name} is derived ({dimension.expression.strip('${}')}), "
                          "not set: change what it is computed from")
     value = parse_quantity(raw, dimension.unit, f"{origin}: {name}")
+    if dimension.unit == "count" and not value.is_integer():
+        raise UsageError(f"{origin}: {name} = {value:g}: a count is a whole number")
     if dimension.baked and value != float(dimension.expression):
         raise UsageError(f"{origin}: {name} is baked into a mesh (scripts/make_meshes.py); "
                          "change it in config.xacro and regenerate the meshes instead")
-    _check_bound(dimension, value, origin)
-    return value
+    if dimension.range is None:
+        _check_bound(dimension, value, origin)
+    elif value not in dimension.range:
+        raise UsageError(f"{origin}: "
+                         f"{outside_message(name, raw, value, dimension.unit, dimension.range)}")
+    # A count is written as an integer: xacro and Gazebo read "360.0" samples as text.
+    return int(value) if dimension.unit == "count" else value
 
 
 def parse_set_options(spec: ConfigSpec, words: list[str]) -> dict[str, float]:
@@ -151,11 +195,13 @@ def read_config_file(spec: ConfigSpec, path: Path) -> dict[str, float]:
     import yaml
 
     from ..load.bounded import read_input
-    from .bounded_yaml import TooLarge, compose_and_load, short_repr
+    from .bounded_yaml import DuplicateKey, TooLarge, compose_and_load, short_repr
 
     shown = str(path)
     try:
-        node, data = compose_and_load(read_input(path, shown).decode("utf-8"))
+        # Numbers stay text: each value is read by parse_quantity, as --set reads it.
+        node, data = compose_and_load(read_input(path, shown).decode("utf-8"),
+                                      numbers_as_text=True)
     except FileNotFoundError:
         raise InputError("no such file", file=shown) from None
     except IsADirectoryError:
@@ -165,7 +211,7 @@ def read_config_file(spec: ConfigSpec, path: Path) -> dict[str, float]:
     except yaml.YAMLError as error:
         mark = getattr(error, "problem_mark", None)
         problem = getattr(error, "problem", None) or "not valid YAML"
-        if not isinstance(error, TooLarge):
+        if not isinstance(error, (TooLarge, DuplicateKey)):
             problem = f"not valid YAML: {problem}"
         raise UsageError(problem, file=shown,
                          line=mark.line + 1 if mark else None) from None

@@ -115,8 +115,12 @@ def _expand(inp: RobotInput, options: LoadOptions, search: PackageSearch,
     mappings = dict(options.mappings)
     if options.overrides is not None:
         mappings.update(options.overrides.mappings)
-    built = build_file(inp.path, mappings, search, optional_args=frozenset({CONFIG_ARG}),
-                       text=text)
+    # The overrides' config:= is offered to every file of a package, and a file found in a
+    # folder may leave config.xacro out; a config:= the user typed for a file they named
+    # is refused, like any argument that file never declares.
+    typed = CONFIG_ARG in options.mappings and inp.base is None
+    optional = frozenset() if typed else frozenset({CONFIG_ARG})
+    built = build_file(inp.path, mappings, search, optional_args=optional, text=text)
     # A file found in a folder may leave config.xacro out; one the user named may not.
     if options.overrides is not None and inp.base is None and CONFIG_ARG not in built.known_args:
         raise UsageError("--set/--config change config.xacro, which this file does not "

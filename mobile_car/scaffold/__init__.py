@@ -2,7 +2,7 @@
 
 ``create_package`` writes a package that ``mcar ci`` passes at once: package.xml and
 CMakeLists.txt, ``urdf/define.xacro`` (colours and inertia macros), ``urdf/config.xacro``
-(dimensions, each with its "UNIT; SOURCE: meaning" comment, overridable by ``--set``),
+(dimensions, each with its "UNIT LO..HI; SOURCE: meaning" comment, overridable by ``--set``),
 the complete robot ``urdf/NAME.urdf.xacro``, ``meshes/``, a .gitignore, a GitHub workflow
 and a pre-commit config that run mcar on the package. ``add_part`` adds a part folder with
 a documented macro and a test file that builds it alone. Neither overwrites anything: if

@@ -113,10 +113,10 @@ def test_overrides_apply_to_every_file_of_the_package(run_mcar, tmp_path):
 @pytest.mark.parametrize("args, message", [
     (["--set", "wheel_radus=0.04"],
      "--set wheel_radus=0.04: unknown dimension 'wheel_radus' (did you mean 'wheel_radius'?)"),
-    (["--set", "wheel_radius=-0.01"], "wheel_radius = -0.01 m: a length must be > 0"),
-    (["--set", "wheel_mass=0"], "wheel_mass = 0 kg: a mass must be > 0"),
+    (["--set", "wheel_radius=-0.01"], "wheel_radius = -0.01 m is outside 5 mm..0.5 m"),
+    (["--set", "wheel_mass=0"], "wheel_mass = 0 kg is outside 1 g..5 kg"),
     (["--set", "wheel_hub_clearance=-1mm"],
-     "wheel_hub_clearance = -0.001 m: a length must be >= 0"),
+     "wheel_hub_clearance = -1mm (-0.001 m) is outside 0 m..20 mm"),
     (["--set", "wheel_radius=3kg"], "wheel_radius: '3kg' has the wrong unit: expected m, got kg"),
     (["--set", "wheel_radius=big"], "wheel_radius: 'big' is neither a number nor"),
     (["--set", "wheel_radius"], "--set wheel_radius: expected NAME=VALUE"),

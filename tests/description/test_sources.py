@@ -73,7 +73,7 @@ def test_every_config_property_states_unit_and_source():
         assert isinstance(comment, etree._Comment), f"{name}: no comment on its line"
         assert comment.sourceline == prop.sourceline, f"{name}: comment not on its line"
         match = CONFIG_COMMENT.match(comment.text)
-        assert match, f"{name}: comment {comment.text!r} is not 'UNIT; SOURCE: note'"
+        assert match, f"{name}: comment {comment.text!r} is not 'UNIT LO..HI; SOURCE: note'"
         if match["source"] == "derived":
             assert value.startswith("${"), f"{name}: derived but typed in"
         else:

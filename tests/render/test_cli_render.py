@@ -311,3 +311,18 @@ def test_a_real_ctrl_c_mid_run_exits_130_with_whole_pictures_only(pkg_copy, tmp_
     assert all(p.suffix == ".png" or p.name == ".mcar-render.json" for p in written)
     for picture in pictures:
         assert px.read_png(picture).shape == (1200, 1600, 3)
+
+
+def test_output_ending_in_a_slash_is_a_folder_and_other_formats_are_refused(
+        cli, tmp_path, px, monkeypatch):
+    """-o newdir/ wrote a file named newdir; -o r.jpg wrote PNG bytes into r.jpg."""
+    monkeypatch.chdir(tmp_path)
+    source = REPO / "urdf/tutorial/03_color.urdf"
+    result = cli("render", source, "-o", "newdir/", *SMALL)
+    assert result.exit_code == 0, result.output
+    assert px.read_png(tmp_path / "newdir/03_color.png").shape == (120, 160, 3)
+    refused = cli("render", source, "-o", "r.jpg", *SMALL)
+    assert (refused.exit_code, refused.stderr) == (2, (
+        "mcar: error: -o r.jpg: mcar render writes PNG pictures, not .jpg; name it r.png, "
+        "or end a folder's name with /\n"))
+    assert not (tmp_path / "r.jpg").exists()

@@ -150,8 +150,11 @@ def test_missing_mesh_is_check_s_line_naming_file_and_line(run_mcar, repo, tmp_p
     assert result.returncode == 1
     lines = result.stderr.splitlines()
     assert lines[0] == (f"{source}:7: warning: mesh 'package://render_test_parts/meshes/"
-                        f"no_such_mesh.stl' not found ({repo}/tests/render/pkg/meshes/"
-                        "no_such_mesh.stl) [W207]")
+                        f"no_such_mesh.stl' not found at {repo}/tests/render/pkg/meshes/"
+                        "no_such_mesh.stl (package 'render_test_parts' found first in the "
+                        f"package holding {source}; search order: the package holding "
+                        f"{source} (render_test_parts); ROS_PACKAGE_PATH (unset); "
+                        "AMENT_PREFIX_PATH (unset); the bundled mobile_car_description) [W207]")
     checked = run_mcar("check", "-q", source, cwd=repo)
     assert lines[0] in checked.stderr.splitlines()  # the very line mcar check prints
     assert "Traceback" not in result.stderr and not (tmp_path / "x.png").exists()

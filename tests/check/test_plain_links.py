@@ -191,6 +191,7 @@ STRUCTURE = {
     "negative mass on a fixed link": _append(
         "link[@name='camera']", "<inertial><mass value='-1'/><inertia ixx='1e-4' ixy='0' "
         "ixz='0' iyy='1e-4' iyz='0' izz='1e-4'/></inertial>"),
+    "rgba not 4 numbers": _set(f"{SHELL}/material/color", "rgba", "1 0 0"),
     "inertia not positive definite": _set(f"{INERTIAL}/inertia", "ixx", "-1"),
     "triangle inequality broken": lambda root: root.find(f"{INERTIAL}/inertia").attrib.update(
         {"ixx": "1", "ixy": "0", "iyy": "1", "izz": "3"}),

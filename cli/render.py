@@ -183,6 +183,8 @@ def _plan(selection, output: str | None):
     refuse_clashes(pictures)
     for target, _source in pictures:
         refuse_overwriting(target, [inp.path for inp in selection.inputs])
+    if output and len(jobs) == 1 and jobs[0].target == Path(output):
+        _refuse_other_formats(output)  # (after: overwriting an input is the worse mistake)
     return jobs, outdir, sheet
 
 
@@ -194,7 +196,6 @@ def _jobs(selection, output: str | None):
     names_file = bool(output) and output != "-" and not names_folder(output) and (
         Path(output).suffix != "" and not Path(output).is_dir())
     if names_file:
-        _refuse_other_formats(output)
         if len(inputs) > 1:
             raise UsageError(f"-o {output} is one picture, but there are {len(inputs)} robot "
                              "files to draw; name one INPUT file, or give -o a folder")
@@ -224,7 +225,7 @@ def _jobs(selection, output: str | None):
 def _refuse_other_formats(output: str) -> None:
     """mcar render writes PNG: a picture named .jpg, .svg, ... would hold PNG bytes."""
     suffix = Path(output).suffix
-    if suffix.lower() != ".png":
+    if suffix and suffix.lower() != ".png":  # (no suffix: /dev/null, /dev/stdout, a pipe)
         png = Path(output).with_suffix(".png")
         raise UsageError(f"-o {output}: mcar render writes PNG pictures, not {suffix}; "
                          f"name it {png}, or end a folder's name with /")

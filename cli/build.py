@@ -28,6 +28,7 @@ HELP = f"""Expand xacro into URDF.
 \b
   mcar build FILE.xacro [NAME:=VALUE ...]      URDF on stdout
   mcar build FILE.xacro -o OUT.urdf            URDF written to OUT.urdf
+  mcar build FILE.xacro -o OUTDIR/             URDF written to OUTDIR/FILE.urdf
   mcar build - < FILE.xacro                    xacro text from stdin
   mcar build DIR [-o OUTDIR]                   every robot file of a package
   mcar build wheel chassis                     the robot files of those parts
@@ -49,7 +50,14 @@ declare is an error (plain xacro ignores it silently).
 `mcar config`); they are checked before anything is built (exit 2 when they
 cannot make a working robot) and apply to every file that includes config.xacro.
 
-Outputs are written atomically: a failed build leaves an earlier output untouched.
+Outputs are written atomically: a failed build leaves an earlier output untouched,
+and a rebuilt file keeps its permissions. -o ending in / is a folder; -o OUT.urdf
+needs exactly one robot to build.
+
+--deps prints the files the expansion reads (the input first, then includes and
+loaded YAML), relative to the current folder (--absolute: absolute). Alone it builds
+nothing; with -o it writes the outputs too, so one run both builds and tells Make
+what to rebuild on.
 Errors are printed as FILE:LINE: error: message, then xacro's macro/include stack.
 
 {INPUT_HELP}
@@ -64,38 +72,44 @@ Exit codes:
 """
 
 
-def _print_deps(deps: list[Path]) -> None:
-    for dep in dict.fromkeys(str(d) for d in deps):
+def _print_deps(deps: list[Path], absolute: bool) -> None:
+    from mobile_car.load.outputs import shown_dep
+
+    for dep in dict.fromkeys(shown_dep(d, absolute) for d in deps):
         streams.echo(dep)
 
 
-def _build_one(inp, options, stdin, output: str | None, deps_only: bool) -> None:
-    """One file (or stdin) to stdout or to ``-o OUT``."""
+def _build_one(inp, options, stdin, output: str | None, deps: str | None) -> None:
+    """One file (or stdin) to stdout or to ``-o OUT``; ``deps`` None, "relative" or
+    "absolute": print the files read (and, with -o, write the output too)."""
     from mobile_car.load.robot import load_robot
 
     loaded = load_robot(inp, options, stdin)
     for warning in loaded.warnings:
         print_warning(inp.label, warning)
-    if deps_only:
-        _print_deps(loaded.deps)
-    elif output is None or output == "-":
-        streams.write(loaded.urdf)
-    else:
+    if output is not None and output != "-":
         from mobile_car.load.outputs import refuse_overwriting
 
         refuse_overwriting(output, [inp.path, *loaded.deps])
         atomic_write(output, loaded.urdf)
+    if deps:
+        _print_deps(loaded.deps, deps == "absolute")
+    elif output is None or output == "-":
+        streams.write(loaded.urdf)
 
 
-def _build_many(inputs, options, outdir: Path, deps_only: bool, quiet: bool) -> int:
+def _build_many(inputs, options, outdir: Path | None, deps: str | None, quiet: bool) -> int:
     """Build every input into outdir, mirrored below its folder; go on past failures."""
     from mobile_car.load.outputs import refuse_clashes, refuse_overwriting
     from mobile_car.load.robot import load_robot
 
-    targets = [outdir / output_name(inp.path, inp.base or inp.path.parent) for inp in inputs]
-    refuse_clashes(zip(targets, (inp.path for inp in inputs), strict=True))
-    for target in targets:
-        refuse_overwriting(target, [inp.path for inp in inputs])
+    deps_only = outdir is None  # --deps without -o: print, build nothing
+    targets = [(outdir or Path()) / output_name(inp.path, inp.base or inp.path.parent)
+               for inp in inputs]
+    if not deps_only:
+        refuse_clashes(zip(targets, (inp.path for inp in inputs), strict=True))
+        for target in targets:
+            refuse_overwriting(target, [inp.path for inp in inputs])
     codes = []
     for inp, target in zip(inputs, targets, strict=True):
         try:
@@ -108,11 +122,13 @@ def _build_many(inputs, options, outdir: Path, deps_only: bool, quiet: bool) -> 
             continue
         for warning in loaded.warnings:
             print_warning(inp.label, warning)
+        if not deps_only:
+            refuse_overwriting(target, loaded.deps)
+            atomic_write(target, loaded.urdf)
+        if deps:
+            _print_deps(loaded.deps, deps == "absolute")
         if deps_only:
-            _print_deps(loaded.deps)
             continue
-        refuse_overwriting(target, loaded.deps)
-        atomic_write(target, loaded.urdf)
         if not quiet:
             click.echo(f"built {display_path(target)}", err=True)
     if not quiet:
@@ -127,22 +143,36 @@ def _build_many(inputs, options, outdir: Path, deps_only: bool, quiet: bool) -> 
               help="Output file (one file INPUT; default: stdout) or folder "
                    "(a folder, parts, several files or no INPUT; default: build/ under the "
                    "package's root, or here for files outside a package).")
-@click.option("--deps", "deps_only", is_flag=True,
-              help="Print the files the expansion reads, one per line (for Make); build nothing.")
+@click.option("--deps", "deps", is_flag=True,
+              help="Print the files the expansion reads, one per line (for Make); without "
+                   "-o build nothing, with -o write the outputs too.")
+@click.option("--absolute", is_flag=True, help="--deps prints absolute paths (default: "
+                                                "relative to the current folder).")
 @click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
 @robot_options
 @handle_errors
-def command(words, output, deps_only, quiet, package_paths, sets, config_files):
+def command(words, output, deps, absolute, quiet, package_paths, sets, config_files):
+    from mobile_car.load.outputs import names_folder
+
+    if absolute and not deps:
+        raise UsageError("--absolute goes with --deps")
+    if deps and output == "-":
+        raise UsageError("--deps prints to stdout: give -o a file, not -")
+    deps = ("absolute" if absolute else "relative") if deps else None
     with load_inputs(words, package_paths, sets, config_files, through_xacro=True) as (
             selection, options):
-        if selection.kind == "files" and len(selection.inputs) == 1:
-            _build_one(selection.inputs[0], options, stdin_for(selection), output, deps_only)
+        inputs = selection.inputs
+        names_file = bool(output) and output.endswith((".urdf", ".xml"))
+        if len(inputs) == 1 and (selection.kind == "files" or names_file) and not (
+                output and names_folder(output)):
+            _build_one(inputs[0], options, stdin_for(selection), output, deps)
             return
         if selection.reads_stdin:
-            raise UsageError("- (stdin) is built alone, to stdout")
+            raise UsageError("- (stdin) is built alone, to stdout or to -o FILE")
         if output == "-":
             raise UsageError("-o - (stdout) works with one file INPUT only")
-        if output and output.endswith((".urdf", ".xml")):
-            raise UsageError(f"-o names a folder when building several files, not {output}")
-        outdir = Path(output) if output else selection.output_root / "build"
-        sys.exit(_build_many(selection.inputs, options, outdir, deps_only, quiet))
+        if names_file:
+            raise UsageError(f"-o {output} is one file, but there are {len(inputs)} robot "
+                             "files to build; name one INPUT file, or give -o a folder")
+        outdir = Path(output) if output else None if deps else selection.output_root / "build"
+        sys.exit(_build_many(inputs, options, outdir, deps, quiet))

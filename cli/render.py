@@ -48,7 +48,8 @@ HELP = f"""Draw robot descriptions as PNG pictures, with no display and no GPU.
   mcar render wheel chassis          only the files of those part folders
   mcar render DIR [-o OUTDIR]        every robot file of a folder
   mcar render FILE [-o OUT.png]      one .urdf or .xacro file (default:
-                                     renders/NAME.png; -o - writes to stdout)
+                                     renders/NAME.png; -o - writes to stdout;
+                                     -o DIR/ writes DIR/NAME.png)
   mcar build X.xacro | mcar render -   a URDF from stdin (renders/stdin.png)
 
 Every robot is checked first, as by `mcar check`: one with errors, or with a missing
@@ -228,19 +229,29 @@ def _plan(selection, output: str | None):
     refuse_clashes(pictures)
     for target, _source in pictures:
         refuse_overwriting(target, [inp.path for inp in selection.inputs])
+    if output and len(jobs) == 1 and jobs[0].target == Path(output):
+        _refuse_other_formats(output)  # (after: overwriting an input is the worse mistake)
     return jobs, outdir, sheet
 
 
 def _jobs(selection, output: str | None):
+    from mobile_car.load.outputs import names_folder
     from mobile_car.render.jobs import file_job, selection_jobs
 
     inputs = selection.inputs
+    names_file = bool(output) and output != "-" and not names_folder(output) and (
+        Path(output).suffix != "" and not Path(output).is_dir())
+    if names_file:
+        if len(inputs) > 1:
+            raise UsageError(f"-o {output} is one picture, but there are {len(inputs)} robot "
+                             "files to draw; name one INPUT file, or give -o a folder")
+    if names_file:  # (a folder or part with one robot file, too)
+        return [file_job(inputs[0], Path(output))], Path(output).parent, False
     if selection.kind == "files":
-        if len(inputs) > 1 and output and output.endswith(".png"):
-            raise UsageError("-o names a folder when rendering several files")
         if output == "-" and len(inputs) != 1:
             raise UsageError("-o - (stdout) works with one INPUT only")
-        if len(inputs) == 1 and output and (output == "-" or not Path(output).is_dir()):
+        if len(inputs) == 1 and output and (output == "-" or not (
+                names_folder(output) or Path(output).is_dir())):
             target = None if output == "-" else Path(output)
             return [file_job(inputs[0], target)], None if target is None else target.parent, False
         outdir = Path(output) if output else selection.output_root / "renders"
@@ -255,6 +266,15 @@ def _jobs(selection, output: str | None):
         raise UsageError("-o - (stdout) works with one INPUT only")
     outdir = Path(output) if output else selection.output_root / "renders"
     return selection_jobs(selection, outdir), outdir, True
+
+
+def _refuse_other_formats(output: str) -> None:
+    """mcar render writes PNG: a picture named .jpg, .svg, ... would hold PNG bytes."""
+    suffix = Path(output).suffix
+    if suffix and suffix.lower() != ".png":  # (no suffix: /dev/null, /dev/stdout, a pipe)
+        png = Path(output).with_suffix(".png")
+        raise UsageError(f"-o {output}: mcar render writes PNG pictures, not {suffix}; "
+                         f"name it {png}, or end a folder's name with /")
 
 
 @dataclass

@@ -4,11 +4,15 @@ A reader never sees a half-written file, and a failure (an exception, a full dis
 leaves whatever was at the target before untouched. A target that exists and is not a
 regular file (``/dev/null``, ``/dev/stdout``, a named pipe) is written to in place: renaming
 over it would replace the device or pipe with a file (as root, ``/dev/null`` itself).
+
+A rebuilt file keeps its permission bits (0600 stays private, 0755 executable). A read-only
+output (0444) is replaced and stays 0444, as ``make`` would: the rename replaces the
+folder's entry, which needs a writable folder, not a writable file; read-only guards the
+file against editors, not against the tool that generates it.
 """
 
 from __future__ import annotations
 
-import errno
 import os
 import signal
 import stat
@@ -36,8 +40,9 @@ def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
     try:
         try:
             target.parent.mkdir(parents=True, exist_ok=True)
-        except FileExistsError:  # a file where a folder of the path should be
-            raise OSError(errno.ENOTDIR, os.strerror(errno.ENOTDIR)) from None
+        except (FileExistsError, NotADirectoryError):  # a file where a folder should be
+            raise InputError(f"cannot write: {_blocking_file(target)} is a file, not a folder",
+                             file=str(target)) from None
         if target.is_dir():
             raise InputError("is a directory, cannot write a file there", file=str(target))
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
@@ -53,10 +58,8 @@ def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
             handle.write(payload)
             handle.flush()
             os.fsync(handle.fileno())
-        # mkstemp creates 0600; give the output the permissions a plain write would.
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
+        # mkstemp creates 0600: give the output the mode it had, or a plain write's.
+        os.chmod(tmp, _mode_for(target))
         os.replace(tmp, target)
     except BaseException as exc:
         try:
@@ -67,6 +70,24 @@ def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
             raise InputError(f"cannot write: {exc.strerror or exc}", file=str(target)) from None
         raise
     return target
+
+
+def _mode_for(target: Path) -> int:
+    """The permission bits of the file at ``target``, else 0666 less the umask."""
+    try:
+        return stat.S_IMODE(target.stat().st_mode)
+    except OSError:
+        umask = os.umask(0)
+        os.umask(umask)
+        return 0o666 & ~umask
+
+
+def _blocking_file(target: Path) -> str:
+    """The first folder of ``target``'s path that is a file (for the message)."""
+    for parent in reversed(target.parents):
+        if parent.exists() and not parent.is_dir():
+            return str(parent)
+    return str(target.parent)
 
 
 _HELD = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)

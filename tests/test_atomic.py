@@ -65,3 +65,23 @@ def test_a_pipe_or_device_is_written_in_place_not_replaced(tmp_path):
     assert received == [b"<robot name='r'/>"]
     assert stat.S_ISFIFO(fifo.stat().st_mode)
     assert os.listdir(tmp_path) == ["pipe"]
+
+
+@pytest.mark.parametrize("mode", [0o600, 0o755, 0o444])
+def test_a_rewritten_file_keeps_its_mode(tmp_path, mode):
+    """A private (0600), executable (0755) or read-only (0444) output stays so when it is
+    rebuilt; a read-only one is replaced as make would (the folder is writable)."""
+    target = tmp_path / "out.urdf"
+    target.write_text("old")
+    target.chmod(mode)
+    atomic_write(target, "new")
+    assert (target.read_text(), target.stat().st_mode & 0o7777) == ("new", mode)
+
+
+def test_a_file_in_the_path_is_named(tmp_path):
+    blocker = tmp_path / "robot.urdf"
+    blocker.write_text("<robot/>")
+    with pytest.raises(InputError) as info:
+        atomic_write(blocker / "sub" / "out.urdf", "new")
+    assert info.value.message == f"cannot write: {blocker} is a file, not a folder"
+    assert blocker.read_text() == "<robot/>"

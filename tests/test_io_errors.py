@@ -156,7 +156,7 @@ def _under_a_file(suffix):
     with tempfile.TemporaryDirectory() as folder:
         blocker = Path(folder) / "robot"
         blocker.write_bytes(GOOD)
-        yield blocker / f"out{suffix}", "Not a directory", blocker
+        yield blocker / f"out{suffix}", f"{blocker} is a file, not a folder", blocker
 
 
 @contextlib.contextmanager

@@ -1,9 +1,10 @@
 """Inertia rules: an ``<inertial>`` must be complete (E115), and should be physical.
 
-A mass <= 0 on a moving link, a tensor that is not positive definite, principal moments
-that break the triangle inequality (no rigid body has them), a moving link with no inertia
-at all, and an inertia on the root link (KDL ignores it) are warnings: the file is valid
-URDF, but a simulator or a dynamics library will misbehave on it.
+A negative mass on any link is an error (E118). A mass of 0 on a moving link, a tensor
+that is not positive definite, principal moments that break the triangle inequality (no
+rigid body has them), a moving link with no inertia at all, and an inertia on the root
+link (KDL ignores it) are warnings: the file is valid URDF, but a simulator or a dynamics
+library will misbehave on it.
 """
 
 from __future__ import annotations
@@ -51,7 +52,12 @@ def _check_mass_inertia(inertial, parts: dict, owner: str, moving: bool,
         mass = report.number(mass_element, "value", owner)
         sane = report.bounded(mass_element, "value", None if mass is None else (mass,),
                               MAX_MASS, " kg", owner)
-        if sane and mass is not None and mass <= 0 and moving:
+        # A fixed link may be a massless frame (0), but no body weighs less than nothing:
+        # the negative test used to sit behind the moving one, so fixed links escaped it.
+        if sane and mass is not None and mass < 0:
+            report.add("E118", mass_element, f"{owner}: mass {mass:g} kg is negative; no body "
+                       "has a negative mass")
+        elif sane and mass is not None and mass == 0 and moving:
             report.add("W203", mass_element, f"{owner} moves but its mass is {mass:g}")
     inertia = parts.get("inertia")
     if inertia is None:

@@ -21,7 +21,8 @@ def material_colours(robot: Robot, report: Reporter) -> set[str]:
         name = element.get("name")
         if name is None:
             continue  # E107, reported with the other names
-        if _material_body(parts, f"material '{name}'", report):
+        usable = _material_body(parts, f"material '{name}'", report)
+        if usable is not False:  # (None: its colour is wrong, reported as such)
             defined.add(name)
         else:
             report.add("E116", element, f"material '{name}' has neither <color rgba=...> "
@@ -29,8 +30,11 @@ def material_colours(robot: Robot, report: Reporter) -> set[str]:
     return defined
 
 
-def _material_body(parts: dict | None, owner: str, report: Reporter) -> bool:
-    """True if a material's parts (None: it has none) define a usable colour or texture."""
+def _material_body(parts: dict | None, owner: str, report: Reporter) -> bool | None:
+    """True if a material's parts (None: it has none) define a usable colour or texture;
+    None if they define one that is wrong (reported here: the material is defined, so
+    saying it is not, E116, beside the real error would send the user the wrong way);
+    False if they define neither."""
     if not parts:
         return False  # a reference by name: <material name="grey"/>
     color = parts.get("color")
@@ -42,8 +46,11 @@ def _material_body(parts: dict | None, owner: str, report: Reporter) -> bool:
         if rgba is not None and not all(0.0 <= c <= 1.0 for c in rgba):
             report.add("E114", color, f"{owner}: rgba=\"{rgba_text}\" has a component "
                        "outside 0..1")
-        elif rgba is not None or has_xacro_expression(rgba_text):
+            return ok or None
+        if rgba is not None or has_xacro_expression(rgba_text):
             ok = True
+        elif not ok:
+            return None  # unreadable numbers: E114 from report.numbers
     return ok
 
 
@@ -127,8 +134,9 @@ def _check_visual_material(body: Body, owner: str, materials: set[str], top_leve
         return
     if has_xacro_expression(name):
         return
-    if _material_body(body.material, f"{owner} material '{name}'", report):
-        # urdfdom registers a material defined in a visual for the links after it.
+    if _material_body(body.material, f"{owner} material '{name}'", report) is not False:
+        # urdfdom registers a material defined in a visual for the links after it (one
+        # with a wrong colour is reported where it is defined, not where it is used).
         materials.add(name)
     elif name not in materials and name not in top_level:  # (colourless top-level: E116 there)
         report.add("E116", material, f"{owner} uses material '{name}', which is not "

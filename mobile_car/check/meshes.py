@@ -51,8 +51,8 @@ def check_meshes(root, base: Path, search: PackageSearch, report: Reporter
             found.append(MeshFile(kind, None, False))
             continue
         if not path.is_file():
-            shown = f" ({path})" if str(path) != filename else ""
-            report.add("W207", mesh, f"mesh '{filename}' not found{shown}")
+            report.add("W207", mesh, f"mesh '{filename}' not found at {os.path.abspath(path)}"
+                       f"{_where_looked(filename, search)}")
             found.append(MeshFile(kind, path, False))
             continue
         problem = load_problem(path)
@@ -60,6 +60,19 @@ def check_meshes(root, base: Path, search: PackageSearch, report: Reporter
             report.add("W207", mesh, f"mesh '{filename}' cannot be loaded: {problem}")
         found.append(MeshFile(kind, path, not problem))
     return found
+
+
+def _where_looked(filename: str, search: PackageSearch) -> str:
+    """Why that path: the package a package:// URI named, found first of the search places
+    (ROS, too, looks only in the first package of a name); the input's folder for a
+    relative filename."""
+    if filename.startswith("package://"):
+        name = filename[len("package://"):].partition("/")[0]
+        return (f" (package '{name}' found first in {search.found_in(name)}; search order: "
+                + "; ".join(search.where_looked()) + ")")
+    if filename.startswith("file://") or os.path.isabs(filename):
+        return ""
+    return " (a relative filename starts at the input's folder)"
 
 
 def load_problem(path: Path) -> str | None:

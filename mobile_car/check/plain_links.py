@@ -88,7 +88,7 @@ def _inertial(inertial, report: Reporter, moving: bool) -> bool:
     if mass is None or inertia is None:
         return False
     value = report.value(mass.get("value"))
-    if value is None or (moving and value <= 0) or not within((value,), MAX_MASS):
+    if value is None or value < 0 or (moving and value == 0) or not within((value,), MAX_MASS):
         return False
     get, number = inertia.get, report.value
     moments = [number(get(name)) for name in INERTIA]

@@ -72,6 +72,8 @@ _TABLE = [
          "beyond 1e6 m, an angle (rpy) beyond 1e6 rad, an axis component beyond 1e6, a mesh "
          "scale beyond 1e6 (1e6 m of mesh times it still fits float32), a mass beyond 1e6 kg, "
          "an inertia moment beyond 1e18 kg m² (nan, inf, 1e999: E114)", "accepts"),
+    Rule("E118", "mass-negative", "a negative mass, on any link (a fixed link's mass counts "
+         "in the robot's total; a massless frame has 0)", "accepts"),
     # Joints
     Rule("E120", "joint-type", "a joint without a type, or of an unknown type", "rejects"),
     Rule("E121", "joint-link-missing", "a joint without `<parent link>` or `<child link>`",
@@ -101,7 +103,8 @@ _TABLE = [
          "`<visul>`, `<limits>`), with a did-you-mean", "ignores"),
     Rule("W202", "unknown-attribute", "an attribute URDF does not define (a typo such as "
          "`xzy=`), with a did-you-mean", "ignores"),
-    Rule("W203", "mass-nonpositive", "mass <= 0 on a moving link (child of a non-fixed joint)",
+    Rule("W203", "mass-nonpositive", "mass 0 on a moving link (child of a non-fixed joint); "
+         "a negative mass is E118",
          "accepts"),
     Rule("W204", "inertia-not-positive-definite", "an inertia tensor that is not positive "
          "definite", "accepts"),

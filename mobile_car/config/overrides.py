@@ -55,6 +55,9 @@ def prepared_overrides(search: PackageSearch, sets, files) -> Iterator[Overrides
         yield None
         return
     spec, values = read_overrides(search, sets, files)
+    if not values:  # a --config file that changes nothing ({}): as if none were given
+        yield None
+        return
     with override_mappings(values) as mappings:
         yield Overrides(spec, values, evaluate(spec, mappings, search), Path(mappings[CONFIG_ARG]))
 

@@ -17,6 +17,18 @@ from ..errors import UsageError
 from .inputs import display_path
 
 
+def names_folder(output: str) -> bool:
+    """True for an ``-o`` that ends in a slash: a folder, even one that does not exist yet
+    (``-o newdir/`` wrote a file named ``newdir``)."""
+    return output.endswith(("/", os.sep))
+
+
+def shown_dep(path: Path, absolute: bool) -> str:
+    """A file a build read, for ``--deps``: relative to the working directory (``..``
+    where needed), or absolute; one way for every file."""
+    return os.path.abspath(path) if absolute else os.path.relpath(path)
+
+
 def _key(path: Path) -> str:
     return os.path.realpath(path)
 

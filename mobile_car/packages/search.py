@@ -115,6 +115,22 @@ class PackageSearch:
         places.append(f"the bundled {PACKAGE_NAME}")
         return places
 
+    def found_in(self, name: str) -> str:
+        """Which of where_looked()'s places gave package ``name`` (call after find())."""
+        root = self.find(name)
+        if self.origin is not None:
+            own = enclosing_package(self.origin)
+            if own and own[0] == name:
+                return f"the package holding {self.origin}"
+        if self._crawled_packages().get(name) == root:
+            for place in self.package_paths:
+                if root == place or place in root.parents:
+                    return f"--package-path {place}"
+            return "ROS_PACKAGE_PATH"
+        if root == description_dir():
+            return f"the bundled {PACKAGE_NAME}"
+        return "AMENT_PREFIX_PATH"
+
     def _crawled_packages(self) -> dict[str, Path]:
         if self._crawled is None:
             found: dict[str, Path] = {}

@@ -187,6 +187,11 @@ STRUCTURE = {
     "rgba below 0": _set(f"{SHELL}/material/color", "rgba", "-0.1 0 0 1"),
     "moving link without inertial": _remove("link[@name='tool']/inertial"),
     "mass 0 on a moving link": _set(f"{INERTIAL}/mass", "value", "0"),
+    "negative mass on a moving link": _set(f"{INERTIAL}/mass", "value", "-1"),
+    "negative mass on a fixed link": _append(
+        "link[@name='camera']", "<inertial><mass value='-1'/><inertia ixx='1e-4' ixy='0' "
+        "ixz='0' iyy='1e-4' iyz='0' izz='1e-4'/></inertial>"),
+    "rgba not 4 numbers": _set(f"{SHELL}/material/color", "rgba", "1 0 0"),
     "inertia not positive definite": _set(f"{INERTIAL}/inertia", "ixx", "-1"),
     "triangle inequality broken": lambda root: root.find(f"{INERTIAL}/inertia").attrib.update(
         {"ixx": "1", "ixy": "0", "iyy": "1", "izz": "3"}),

@@ -94,7 +94,8 @@ def test_malformed_argument_is_a_usage_error(run_mcar, arg_xacro):
     (["nowhere.xacro"], "nowhere.xacro: error: no such file"),
     (["a.xacro", "b.xacro"], "a.xacro: error: no such file\nb.xacro: error: no such file"),
     (["a.xacro", "b.xacro", "-o", "out.urdf"],
-     "-o names a folder when building several files, not out.urdf"),
+     "mcar: error: -o out.urdf is one file, but there are 2 robot files to build; name one "
+     "INPUT file, or give -o a folder"),
 ])
 def test_usage_and_io_errors_exit_2(run_mcar, tmp_path, args, message):
     result = run_mcar("build", *args, cwd=tmp_path)
@@ -238,9 +239,49 @@ def test_find_of_the_bundled_package_works_from_any_folder(run_mcar, tmp_path, m
         '<robot name="u" xmlns:xacro="http://www.ros.org/wiki/xacro">'
         '<xacro:include filename="$(find mobile_car_description)/urdf/define.xacro"/>'
         '<link name="a"/></robot>')
-    result = run_mcar("build", "--deps", robot, cwd=tmp_path)
+    result = run_mcar("build", "--deps", "--absolute", robot, cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     define = Path(result.stdout.splitlines()[1])
     # Installed non-editable: the include comes from the wheel's own copy.
     assert define.parts[-4:] == ("mobile_car", "description", "urdf", "define.xacro")
     assert Path(sys.executable).parent.parent in define.parents
+
+
+def test_deps_are_relative_to_the_current_folder_or_absolute(run_mcar, tmp_path):
+    """One way for every line: the input and its includes alike."""
+    (tmp_path / "src" / "parts").mkdir(parents=True)
+    (tmp_path / "src" / "parts" / "wheel.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="w"/></robot>')
+    (tmp_path / "src" / "robot.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="parts/wheel.xacro"/></robot>')
+    here = tmp_path / "here"
+    here.mkdir()
+    relative = run_mcar("build", "--deps", tmp_path / "src" / "robot.xacro", cwd=here)
+    assert (relative.returncode, relative.stdout.splitlines()) == \
+        (0, ["../src/robot.xacro", "../src/parts/wheel.xacro"]), relative.stderr
+    absolute = run_mcar("build", "--deps", "--absolute", "../src/robot.xacro", cwd=here)
+    assert absolute.stdout.splitlines() == [str(tmp_path / "src" / "robot.xacro"),
+                                            str(tmp_path / "src" / "parts" / "wheel.xacro")]
+
+
+def test_deps_with_an_output_builds_it_too(run_mcar, tmp_path, arg_xacro):
+    result = run_mcar("build", "--deps", arg_xacro.name, "-o", "out/argbot.urdf",
+                      cwd=arg_xacro.parent)
+    assert (result.returncode, result.stdout) == (0, f"{arg_xacro.name}\n"), result.stderr
+    built = arg_xacro.parent / "out" / "argbot.urdf"
+    assert parse(built.read_text()).get("name") == "argbot"
+
+
+def test_trailing_slash_output_is_a_folder(run_mcar, tmp_path, arg_xacro):
+    result = run_mcar("build", arg_xacro, "-o", f"{tmp_path}/newdir/")
+    assert result.returncode == 0, result.stderr
+    assert parse((tmp_path / "newdir" / "argbot.urdf").read_text()).get("name") == "argbot"
+
+
+def test_a_rebuilt_output_keeps_its_mode(run_mcar, tmp_path, arg_xacro):
+    out = tmp_path / "private.urdf"
+    assert run_mcar("build", arg_xacro, "-o", out).returncode == 0
+    out.chmod(0o600)
+    assert run_mcar("build", arg_xacro, "-o", out).returncode == 0
+    assert out.stat().st_mode & 0o777 == 0o600

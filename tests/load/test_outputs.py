@@ -32,8 +32,9 @@ def _snapshot(folder):
     (["build", "self.xacro", "-o", "self.xacro"], "self.xacro"),
     (["build", "self.xacro", "-o", "incd/props.xacro"], "incd/props.xacro"),
     (["render", "t.urdf", "-o", "t.urdf", "--renderer", "raycast"], "t.urdf"),
+    # A picture is refused a name that is not .png before the includes are known.
     (["render", "self.xacro", "-o", "incd/props.xacro", "--renderer", "raycast"],
-     "incd/props.xacro"),
+     "-o incd/props.xacro: mcar render writes PNG pictures, not .xacro"),
     (["ci", "self.xacro", "--no-render", "--junit-xml", "self.xacro"], "self.xacro"),
     (["ci", "self.xacro", "--no-render", "--junit-xml", "incd/props.xacro"],
      "incd/props.xacro"),
@@ -42,7 +43,9 @@ def test_an_output_over_a_file_the_run_reads_is_refused(args, overwritten, tree,
     before = _snapshot(tree)
     result = run_mcar(*args, cwd=tree)
     assert result.returncode == 2, result.stderr
-    assert f"error: would overwrite {overwritten}, a file this run reads" in result.stderr
+    message = (overwritten if overwritten.startswith("-o ")
+               else f"would overwrite {overwritten}, a file this run reads")
+    assert f"error: {message}" in result.stderr
     assert {path: path.read_bytes() for path in before} == before
 
 

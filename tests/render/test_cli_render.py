@@ -150,8 +150,11 @@ def test_missing_mesh_is_check_s_line_naming_file_and_line(run_mcar, repo, tmp_p
     assert result.returncode == 1
     lines = result.stderr.splitlines()
     assert lines[0] == (f"{source}:7: warning: mesh 'package://render_test_parts/meshes/"
-                        f"no_such_mesh.stl' not found ({repo}/tests/render/pkg/meshes/"
-                        "no_such_mesh.stl) [W207]")
+                        f"no_such_mesh.stl' not found at {repo}/tests/render/pkg/meshes/"
+                        "no_such_mesh.stl (package 'render_test_parts' found first in the "
+                        f"package holding {source}; search order: the package holding "
+                        f"{source} (render_test_parts); ROS_PACKAGE_PATH (unset); "
+                        "AMENT_PREFIX_PATH (unset); the bundled mobile_car_description) [W207]")
     checked = run_mcar("check", "-q", source, cwd=repo)
     assert lines[0] in checked.stderr.splitlines()  # the very line mcar check prints
     assert "Traceback" not in result.stderr and not (tmp_path / "x.png").exists()
@@ -311,3 +314,18 @@ def test_a_real_ctrl_c_mid_run_exits_130_with_whole_pictures_only(pkg_copy, tmp_
     assert all(p.suffix == ".png" or p.name == ".mcar-render.json" for p in written)
     for picture in pictures:
         assert px.read_png(picture).shape == (1200, 1600, 3)
+
+
+def test_output_ending_in_a_slash_is_a_folder_and_other_formats_are_refused(
+        cli, tmp_path, px, monkeypatch):
+    """-o newdir/ wrote a file named newdir; -o r.jpg wrote PNG bytes into r.jpg."""
+    monkeypatch.chdir(tmp_path)
+    source = REPO / "urdf/tutorial/03_color.urdf"
+    result = cli("render", source, "-o", "newdir/", *SMALL)
+    assert result.exit_code == 0, result.output
+    assert px.read_png(tmp_path / "newdir/03_color.png").shape == (120, 160, 3)
+    refused = cli("render", source, "-o", "r.jpg", *SMALL)
+    assert (refused.exit_code, refused.stderr) == (2, (
+        "mcar: error: -o r.jpg: mcar render writes PNG pictures, not .jpg; name it r.png, "
+        "or end a folder's name with /\n"))
+    assert not (tmp_path / "r.jpg").exists()

@@ -14,11 +14,11 @@ file against editors, not against the tool that generates it.
 from __future__ import annotations
 
 import os
-import signal
 import stat
 from pathlib import Path
 
 from .errors import InputError
+from .held_signals import hold_signals, release_signals
 
 
 def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
@@ -36,7 +36,7 @@ def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
 
     # A signal between creating the temporary file and the try below would leave it
     # behind: hold signals until the cleanup is in place, then let them in.
-    held = _hold_signals()
+    held = hold_signals()
     try:
         try:
             target.parent.mkdir(parents=True, exist_ok=True)
@@ -47,13 +47,13 @@ def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
             raise InputError("is a directory, cannot write a file there", file=str(target))
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
     except InputError:
-        _release_signals(held)
+        release_signals(held)
         raise
     except OSError as exc:
-        _release_signals(held)
+        release_signals(held)
         raise InputError(f"cannot write: {exc.strerror or exc}", file=str(target)) from None
     try:
-        _release_signals(held)
+        release_signals(held)
         with os.fdopen(fd, "wb") as handle:
             handle.write(payload)
             handle.flush()
@@ -88,22 +88,6 @@ def _blocking_file(target: Path) -> str:
         if parent.exists() and not parent.is_dir():
             return str(parent)
     return str(target.parent)
-
-
-_HELD = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
-
-
-def _hold_signals():
-    """Block Ctrl-C, SIGTERM and SIGHUP in this thread; returns what to restore."""
-    try:
-        return signal.pthread_sigmask(signal.SIG_BLOCK, _HELD)
-    except (AttributeError, OSError, ValueError):  # no pthread_sigmask on this platform
-        return None
-
-
-def _release_signals(held) -> None:
-    if held is not None:
-        signal.pthread_sigmask(signal.SIG_SETMASK, held)
 
 
 def _is_special(target: Path) -> bool:

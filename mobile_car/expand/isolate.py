@@ -22,6 +22,8 @@ import signal
 import time
 from pathlib import Path
 
+from ..held_signals import hold_signals, release_signals
+
 TIMEOUT_ENV = "MCAR_XACRO_TIMEOUT"
 MEMORY_ENV = "MCAR_XACRO_MEMORY_MB"
 DEFAULT_TIMEOUT = 60.0
@@ -57,8 +59,14 @@ def run_isolated(func, *args, read_roots: list[Path] = ()):
     memory_mb = int(env_number(MEMORY_ENV, DEFAULT_MEMORY_MB, 64, 1e7, "MB"))
     confined_roots = sandbox.prepare(list(read_roots))
     read_fd, write_fd = os.pipe()
-    pid = os.fork()
+    held = hold_signals()  # not inside fork's after-fork callbacks: see held_signals
+    try:
+        pid = os.fork()
+    except BaseException:
+        release_signals(held)
+        raise
     if pid == 0:  # the child: do the work, send (ok, value), leave without cleanup
+        release_signals(held)
         os.close(read_fd)
         status = 0
         try:
@@ -92,6 +100,7 @@ def run_isolated(func, *args, read_roots: list[Path] = ()):
     chunks = []
     deadline = time.monotonic() + timeout
     try:
+        release_signals(held)  # a signal held over the fork lands here, and kills the child
         with os.fdopen(read_fd, "rb") as pipe:
             while True:
                 left = deadline - time.monotonic()

@@ -136,13 +136,19 @@ class Manifest:
             del self.entries[key]
         self._changed = self._changed or bool(stale)
 
+    @staticmethod
+    def sheet_caption(key: str) -> str:
+        """A picture's caption on the contact sheet: its path below the folder, without
+        ``.png`` (``chassis/steps/01_plate``). One rule, whichever command drew it."""
+        return key.removesuffix(".png")
+
     def sheet_pictures(self) -> list[tuple[str, dict]]:
         """The pictures the contact sheet shows: every one listed that is on disk."""
         return sorted((key, entry) for key, entry in self.entries.items()
                       if key != CONTACT_SHEET and (self.folder / key).is_file())
 
     def sheet_fingerprint(self) -> str:
-        return sha256(repr((DRAWING_VERSION, [(key, entry.get("caption"), entry.get("png"))
+        return sha256(repr((DRAWING_VERSION, [(key, entry.get("png"))
                                               for key, entry in self.sheet_pictures()])).encode())
 
     def sheet_is_current(self) -> bool:

@@ -274,7 +274,7 @@ class RenderSession:
         if not self.force and manifest.is_current(target, fingerprint):
             return target, False
         pictures = []
-        for key, entry in listed:
+        for key, _entry in listed:
             image = self.thumbnails.get(key)
             if image is None:
                 try:
@@ -282,7 +282,7 @@ class RenderSession:
                         image = _sheet_copy(opened.convert("RGB"))
                 except (OSError, ValueError):
                     continue  # a damaged picture is left out, and redrawn when its input changes
-            pictures.append((entry.get("caption") or key, image))
+            pictures.append((manifest.sheet_caption(key), image))
         png = png_bytes(contact_sheet(pictures))
         atomic_write(target, png)
         manifest.record(target, fingerprint, png, "contact sheet")

@@ -159,7 +159,8 @@ def compare(old: RobotFacts, new: RobotFacts, tolerance: float = 1e-9) -> RobotD
 
     joint_map = _match(result, "joint", old.joints, new.joints, tolerance, translated)
     for name, new_name in joint_map.items():
-        result.changes += _field_changes("joint", new_name, old.joints[name],
+        # A joint whose link was renamed is not changed by that: the rename says it.
+        result.changes += _field_changes("joint", new_name, translated(old.joints[name]),
                                          new.joints[new_name], tolerance)
     for name, new_name in link_map.items():
         result.changes += _field_changes("link", new_name, old.links[name],

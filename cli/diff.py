@@ -9,7 +9,7 @@ from pathlib import Path
 
 import click
 
-from mobile_car.errors import EXIT_PROBLEMS, EXIT_USAGE, McarError, UsageError
+from mobile_car.errors import EXIT_PROBLEMS, EXIT_USAGE, InputError, McarError, UsageError
 
 from . import streams
 from .common import INPUT_HELP, handle_errors, prepared_load, robot_options, stdin_for
@@ -154,6 +154,12 @@ def _revision_sides(stack, revisions, names, cwd, package_paths):
     trees = [(stack.enter_context(revision_tree(rev, cwd)), rev) for rev in revisions]
     if len(trees) == 1:
         trees.append((top, WORKING_TREE))
+    for name in names:
+        path = (cwd / name).resolve()
+        if _looks_like_file(name, cwd) and path.is_relative_to(top) and not any(
+                (root / path.relative_to(top)).exists() for root, _ in trees):
+            raise InputError(f"no such file at {' nor at '.join(rev for _, rev in trees)}",
+                             file=name)
     return [_side_inputs(root, rev, inside, top, names, cwd, package_paths)
             for root, rev in trees]
 
@@ -176,8 +182,7 @@ def _side_inputs(root: Path, rev: str, inside: Path, top: Path, names, cwd, pack
     for name in names:
         if name == STDIN:
             raise UsageError("- (stdin) has no git revision: give files of the repository")
-        path = (cwd / name).resolve() if (cwd / name).exists() or "/" in name \
-            or name.endswith((".urdf", ".xacro")) else None
+        path = (cwd / name).resolve() if _looks_like_file(name, cwd) else None
         if path is None:
             words.append(name)  # a part name
             continue
@@ -195,3 +200,8 @@ def _side_inputs(root: Path, rev: str, inside: Path, top: Path, names, cwd, pack
         label = display_path(inp.path) if rev == WORKING_TREE else f"{key}@{rev}"
         side[key] = (inp, label)
     return side
+
+
+def _looks_like_file(name: str, cwd: Path) -> bool:
+    """A path (in this tree or another side's), not a part name."""
+    return (cwd / name).exists() or "/" in name or name.endswith((".urdf", ".xacro"))

@@ -280,3 +280,10 @@ def test_errors_exit_2_with_one_line(run_mcar, tmp_path, args, message):
     first = result.stderr.splitlines()[0]
     assert first.startswith(message), result.stderr
     assert "Traceback" not in result.stderr
+
+
+def test_a_robot_file_on_neither_side_is_an_error(run_mcar, two_commits):
+    result = run_mcar("diff", "HEAD~1", "urdf/nothere.xacro", cwd=two_commits)
+    assert result.returncode == 2
+    assert result.stderr == ("urdf/nothere.xacro: error: no such file at HEAD~1 nor at "
+                             "working tree\n")

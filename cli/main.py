@@ -24,6 +24,7 @@ COMMANDS = {
     "render": ("render", "Draw robot descriptions as PNG pictures, headless."),
     "check": ("check", "Check URDF/xacro files: check_urdf's tree, stricter, located."),
     "ci": ("ci", "Build, check --strict and render a whole package: the CI job."),
+    "diff": ("diff", "Show what a change does to the robot: kinematics, masses, dimensions."),
     "tree": ("tree", "Print the kinematic tree with joint types, origins and axes."),
     "init": ("init", "Create a robot description package, ready for mcar ci."),
     "new": ("new", "Add a part to the package you stand in."),

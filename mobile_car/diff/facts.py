@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import NamedTuple
 
+from ..check.inertia import principal_moments
 from ..check.urdf_model import (
     axis_of,
     first_child,
@@ -22,7 +23,7 @@ from ..check.urdf_model import (
 )
 from ..check.urdf_reader import read_links, read_robot
 from ..errors import McarError
-from .geometry import Pose, half_extents, matrix_rpy, principal_moments
+from .geometry import Pose, half_extents, matrix_rpy
 from .mesh_bounds import mesh_bounds
 
 

@@ -1,6 +1,6 @@
 """The little 3-D arithmetic a robot comparison needs, in plain Python: poses composed
-down a tree of a few dozen frames, principal moments of a 3x3 inertia, the box around a
-placed primitive. numpy would cost more to import than all of this costs to run.
+down a tree of a few dozen frames, the box around a placed primitive (principal moments
+come from check's inertia module). numpy would cost more to import than all of this costs to run.
 """
 
 from __future__ import annotations
@@ -68,27 +68,6 @@ def angle_between(a: Matrix, b: Matrix) -> float:
     """The angle (radians) of the rotation taking ``a`` to ``b``."""
     trace = sum(a[k][i] * b[k][i] for i in range(3) for k in range(3))  # trace(aᵀ b)
     return math.acos(max(-1.0, min(1.0, (trace - 1.0) / 2.0)))
-
-
-def principal_moments(ixx, ixy, ixz, iyy, iyz, izz) -> Vector:
-    """The eigenvalues of a symmetric 3x3 inertia, smallest first (closed form for
-    symmetric matrices: the trigonometric solution of the characteristic cubic)."""
-    off = ixy * ixy + ixz * ixz + iyz * iyz
-    if off == 0.0:
-        return tuple(sorted((ixx, iyy, izz)))
-    q = (ixx + iyy + izz) / 3.0
-    p = math.sqrt(((ixx - q) ** 2 + (iyy - q) ** 2 + (izz - q) ** 2 + 2.0 * off) / 6.0)
-    if p == 0.0:
-        return (q, q, q)
-    b = [[(ixx - q) / p, ixy / p, ixz / p], [ixy / p, (iyy - q) / p, iyz / p],
-         [ixz / p, iyz / p, (izz - q) / p]]
-    det = (b[0][0] * (b[1][1] * b[2][2] - b[1][2] * b[2][1])
-           - b[0][1] * (b[1][0] * b[2][2] - b[1][2] * b[2][0])
-           + b[0][2] * (b[1][0] * b[2][1] - b[1][1] * b[2][0]))
-    phi = math.acos(max(-1.0, min(1.0, det / 2.0))) / 3.0
-    largest = q + 2.0 * p * math.cos(phi)
-    smallest = q + 2.0 * p * math.cos(phi + 2.0 * math.pi / 3.0)
-    return (smallest, 3.0 * q - largest - smallest, largest)
 
 
 def half_extents(kind: str, size, r: Matrix) -> Vector:

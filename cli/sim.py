@@ -157,6 +157,8 @@ def _emit(reports, output_format: str, exit_code: int) -> None:
     for result in reports:
         for scenario in result.scenarios:
             counts[scenario.status] += 1
+    errors = sum(len(r.lint_errors) for r in reports)
+    lint = f", {errors} lint error{'s' * (errors != 1)}" if errors else ""
     click.echo(f"mcar sim: {counts['passed']} passed, {counts['failed']} failed, "
-               f"{counts['skipped']} skipped in {len(reports)} "
+               f"{counts['skipped']} skipped{lint} in {len(reports)} "
                f"file{'s' * (len(reports) != 1)}", err=True)

@@ -92,7 +92,14 @@ def moving_links_without_mass(checked) -> list[SimDiagnostic]:
     locate = Locator(checked)
     robot = checked.robot
     moving = {j.child for j in robot.joints if j.type not in ("fixed", None)}
+    children = {j.child for j in robot.joints}
     found = []
+    for link in robot.links:  # the root: mcar sim gives it a free joint
+        if link.name not in children and _subtree_mass(robot, link.name) <= 0:
+            found.append(_at(locate, "E305", link.element,
+                             f"root link {link.name} and the links fixed to it have no mass: "
+                             "MuJoCo cannot move the robot freely; give one of them an "
+                             "<inertial>"))
     for link in robot.links:
         if link.name in moving and link_mass(link) <= 0:
             # A wheel's mass could live on a fixed child link: the engine adds those up.

@@ -70,6 +70,8 @@ class SimModel:
     why_no_drive: str | None
     rest_height: float  # the root's height when the geometry rests on the floor
     ground_parts: dict[str, int] = field(default_factory=dict)  # link -> body id (castor)
+    # link -> its lowest point above the drive wheels' floor plane (wheels, ground parts)
+    clearance: dict[str, float] = field(default_factory=dict)
     floor_geom: int = 0
     notes: list[str] = field(default_factory=list)
 
@@ -88,6 +90,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left: str | None = 
     root = etree.fromstring(urdf, etree.XMLParser(resolve_entities=False, no_network=True))
     joints = {j.get("name"): j for j in root.iter("joint") if isinstance(j.tag, str)}
     friction = _gazebo_friction(root)
+    colours = _link_colours(root)
     notes = _prepare(root, base, search)
     try:
         spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
@@ -98,12 +101,15 @@ def build_model(urdf: bytes, label: str, base: Path, search, left: str | None = 
     if root_body is None:
         raise SimModelError("the robot has no link MuJoCo can place", file=label)
     root_body.add_freejoint(name="mcar_free")
+    spec.compiler.discardvisual = False  # (the URDF's visuals are gone; keep the floor's look)
     spec.option.timestep = TIMESTEP
     spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
     _add_floor(spec, mj)
     for geom in spec.geoms:
         if geom.name != "mcar_floor":
             geom.contype, geom.conaffinity = 1, 0
+            if geom.parent.name in colours:
+                geom.rgba = colours[geom.parent.name]
             mu = friction.get(geom.parent.name)
             if mu is not None:
                 geom.friction = [mu, geom.friction[1], geom.friction[2]]
@@ -120,11 +126,14 @@ def build_model(urdf: bytes, label: str, base: Path, search, left: str | None = 
                             "floor, the robot would fall through it", file=label)
     ground = min(wheels_lowest) if wheels_lowest else min(lowest[g] for g in robot_geoms)
     wheel_bodies = {w.body_id for w in wheels}
-    parts = {}
+    parts, clearance = {}, {}
     for g in robot_geoms:
         body = int(shape.geom_bodyid[g])
+        name = shape.body(body).name
+        if body in wheel_bodies or lowest[g] <= ground + GROUND_TOLERANCE:
+            clearance[name] = min(clearance.get(name, np.inf), lowest[g] - ground)
         if body not in wheel_bodies and lowest[g] <= ground + GROUND_TOLERANCE:
-            parts[shape.body(body).name] = body
+            parts[name] = body
     for wheel in wheels:
         _round_tyre(spec, shape, wheel, mj)
         spec.joint(wheel.joint).armature = WHEEL_ARMATURE
@@ -132,6 +141,8 @@ def build_model(urdf: bytes, label: str, base: Path, search, left: str | None = 
                                      trntype=mj.mjtTrn.mjTRN_JOINT)
         actuator.set_to_velocity(kv=SERVO_GAIN)
         effort = wheel.effort if wheel.effort is not None else 0.0
+        # MuJoCo refuses an empty range: a motor of no effort gets a vanishing one.
+        effort = max(effort, 1e-12)
         actuator.forcelimited = True
         actuator.forcerange = [-effort, effort]
     model = _compile(spec, label)
@@ -140,7 +151,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left: str | None = 
     pair = (wheels + [None, None])[:2] if wheels else [None, None]
     return SimModel(model=model, spec=spec, root=root_body.name,
                     root_body=model.body(root_body.name).id, left=pair[0], right=pair[1],
-                    why_no_drive=why, rest_height=-ground, ground_parts=parts,
+                    why_no_drive=why, rest_height=-ground, ground_parts=parts, clearance=clearance,
                     floor_geom=model.geom("mcar_floor").id, notes=notes)
 
 
@@ -152,6 +163,25 @@ def _gazebo_friction(root) -> dict[str, float]:
         value = parse_number(mu.text.strip()) if mu is not None and mu.text else None
         if gazebo.get("reference") and value is not None and value >= 0:
             found[gazebo.get("reference")] = value
+    return found
+
+
+def _link_colours(root) -> dict[str, list[float]]:
+    """link -> the rgba of its first visual's material, so a recording shows the colours."""
+    named = {}
+    for material in root.findall("material"):
+        colour = material.find("color")
+        if colour is not None and material.get("name"):
+            named[material.get("name")] = colour.get("rgba")
+    found = {}
+    for link in root.iter("link"):
+        for material in link.iterfind("visual/material"):
+            colour = material.find("color")
+            text = colour.get("rgba") if colour is not None else named.get(material.get("name"))
+            values = [parse_number(v) for v in (text or "").split()]
+            if len(values) == 4 and None not in values:
+                found[link.get("name")] = values
+                break
     return found
 
 
@@ -186,8 +216,10 @@ def _add_floor(spec, mj) -> None:
                                builtin=mj.mjtBuiltin.mjBUILTIN_CHECKER, width=256, height=256,
                                rgb1=[0.82, 0.84, 0.86], rgb2=[0.42, 0.45, 0.5])
     material = spec.add_material(name="mcar_floor")
-    material.textures[mj.mjtTextureRole.mjTEXROLE_RGB] = texture.name
-    material.texrepeat = [10, 10]  # 0.1 m squares on the 2 m x 2 m... drawn floor (x10)
+    textures = list(material.textures)
+    textures[mj.mjtTextureRole.mjTEXROLE_RGB] = texture.name
+    material.textures = textures
+    material.texrepeat = [100, 100]  # 0.2 m squares over the 20 m floor (2 per repeat)
     spec.worldbody.add_geom(name="mcar_floor", type=mj.mjtGeom.mjGEOM_PLANE,
                             size=[10, 10, 0.05], material="mcar_floor", contype=1,
                             conaffinity=1)

@@ -47,9 +47,8 @@ def simulate(checked, names, left=None, right=None, record: bool = False,
     started = time.perf_counter()
     loaded = checked.loaded
     report = SimReport(checked.file, checked.robot.name)
-    report.diagnostics = moving_links_without_mass(checked)
-    if report.diagnostics:
-        report.error = "a moving link has no mass (see the errors above)"
+    if only_if_drives and _drive_candidates(checked.robot) < 2:
+        report.simulated, report.why_no_drive = False, _no_drive(checked.robot)
         return report
     unsimulable = _unsimulable(checked.robot)
     if unsimulable:
@@ -60,6 +59,10 @@ def simulate(checked, names, left=None, right=None, record: bool = False,
         report.scenarios = [ScenarioResult(name, problems=unsimulable) if name == "drop" else
                             ScenarioResult(name, skipped=report.why_no_drive)
                             for name in names]
+        return report
+    report.diagnostics = moving_links_without_mass(checked)
+    if report.diagnostics:
+        report.error = "a link MuJoCo must move has no mass (E305 above)"
         return report
     try:
         sim = build_model(loaded.urdf, checked.file, loaded.base, loaded.search, left, right)
@@ -106,11 +109,17 @@ def _unsimulable(robot) -> list[str]:
     return problems
 
 
+def _drive_candidates(robot) -> int:
+    """Continuous joints that move collision geometry: a car has two or more."""
+    colliding = {link.name for link in robot.links if link.collisions}
+    return sum(1 for j in robot.joints if j.type == "continuous" and j.child in colliding)
+
+
 def _no_drive(robot) -> str:
     continuous = [j.name for j in robot.joints if j.type == "continuous"]
     if continuous:
-        return (f"no drive wheels: continuous joints {', '.join(continuous)} move no "
-                "collision geometry")
+        return (f"no drive wheels: continuous joints {', '.join(continuous)}, not a pair "
+                "with collision geometry")
     joints = ", ".join(f"{j.name} ({j.type})" for j in robot.joints[:6])
     return f"no drive wheels: no continuous joint{': ' + joints if joints else ''}"
 
@@ -133,6 +142,9 @@ def text_table(report: SimReport) -> list[str]:
                      f"{d['command_speed']:g} rad/s")
     elif report.why_no_drive:
         lines.append(f"  {report.why_no_drive}: drop only")
+    if report.lint_errors or report.error:
+        lines.append(f"  lint   FAILED  {report.error or ''}" + "; ".join(
+            f"{d.rule} {d.message}" for d in report.lint_errors))
     for scenario in report.scenarios:
         lines.append(f"  {scenario.name:<6} {scenario.status.upper()}"
                      + (f"  {scenario.message()}" if scenario.status != "passed" else ""))

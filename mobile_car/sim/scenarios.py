@@ -178,6 +178,13 @@ def run_drop(sim: SimModel, frame=None) -> ScenarioResult:
         Figure("pitch", abs(math.degrees(pitch)), TILT_BOUND, "deg"),
         Figure("speed", speed, REST_SPEED_BOUND, "m/s"),
     ]
+    for link, gap in sorted(sim.clearance.items()):
+        if gap > REST_HEIGHT_BOUND:
+            result.problems.append(f"{link} is {1000 * gap:.2f} mm above the floor the other "
+                                   "parts rest on (geometry)")
+        elif gap < -REST_HEIGHT_BOUND:
+            result.problems.append(f"{link} reaches {-1000 * gap:.2f} mm below the drive "
+                                   "wheels (geometry): the wheels cannot both touch")
     touching = run.on_floor()
     expected = {w.link: w.body_id for w in (sim.left, sim.right) if w is not None}
     expected.update(sim.ground_parts)
@@ -215,6 +222,7 @@ def forward_sign(run: Run, wheel) -> float:
 def run_drive(sim: SimModel, frame=None) -> ScenarioResult:
     result = ScenarioResult("drive", seconds=SETTLE_TIME + DRIVE_TIME)
     run = Run(sim, frame=frame)
+    axes = {w.joint: run.data.xaxis[w.joint_id].copy() for w in (sim.left, sim.right)}
     omega = command_speed(sim)
     control, signs = _drive_control(run, sim, omega, spin=False)
     run.step(SETTLE_TIME, control)
@@ -253,7 +261,7 @@ def run_drive(sim: SimModel, frame=None) -> ScenarioResult:
         result.problems.append(f"the motors' effort limit ({efforts}) cannot turn the wheels "
                                f"at {omega:.4g} rad/s")
     for wheel in (sim.left, sim.right):
-        axis = run.data.xaxis[wheel.joint_id]
+        axis = axes[wheel.joint]
         if abs(axis[1]) < 0.9:
             result.problems.append(f"{wheel.joint} turns about ({_vector(axis)}), not across "
                                    "the car (y): the wheel does not roll forward")

@@ -65,6 +65,16 @@ BROKEN = {
         "<wheel_separation>${track_width + 0.02}<", "lint",
         "urdf/mobile_robot.gazebo.xacro:36: error: DiffDrive wheel_separation 0.185 m, but the "
         "drive wheels wheel_left_joint and wheel_right_joint are 0.165 m apart"),
+    "DiffDrive radius": (
+        "urdf/mobile_robot.gazebo.xacro", "<wheel_radius>${wheel_radius}<",
+        "<wheel_radius>${wheel_radius * 1.1}<", "lint",
+        "error: DiffDrive wheel_radius 0.03575 m, but the drive wheels' collision radius is "
+        "0.0325 m [E302]"),
+    "DiffDrive joints swapped": (
+        "urdf/mobile_robot.gazebo.xacro", "<left_joint>wheel_left_joint<",
+        "<left_joint>wheel_right_joint<", "lint",
+        "error: DiffDrive left_joint wheel_right_joint: is the right wheel (y = -0.0825 m) "
+        "[E303]"),
     "drive joint with effort 0": (
         "urdf/wheel/wheel.xacro", 'effort="${motor_stall_torque}"', 'effort="0"', "drive",
         "the motors' effort limit (wheel_left_joint 0 N·m, wheel_right_joint 0 N·m) cannot "

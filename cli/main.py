@@ -23,6 +23,7 @@ COMMANDS = {
     "config": ("config", "Show the robot's dimensions, with overrides applied."),
     "render": ("render", "Draw robot descriptions as PNG pictures, headless."),
     "check": ("check", "Check URDF/xacro files: check_urdf's tree, stricter, located."),
+    "sim": ("sim", "Simulate the robot in MuJoCo: it stands, drives and turns."),
     "ci": ("ci", "Build, check --strict and render a whole package: the CI job."),
     "diff": ("diff", "Show what a change does to the robot: kinematics, masses, dimensions."),
     "tree": ("tree", "Print the kinematic tree with joint types, origins and axes."),

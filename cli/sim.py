@@ -1,0 +1,164 @@
+"""``mcar sim``: prove in MuJoCo that the car stands, drives straight and turns in place."""
+
+from __future__ import annotations
+
+import json
+
+import click
+
+from mobile_car.errors import EXIT_PROBLEMS, UsageError, combine_exit_codes
+
+from . import streams
+from .common import (
+    INPUT_HELP,
+    handle_errors,
+    load_inputs,
+    print_diagnostic,
+    report,
+    robot_options,
+    severity_label,
+    stdin_for,
+    use_color,
+)
+
+SCENARIO_NAMES = ("drop", "drive", "spin")
+
+HELP = f"""Simulate the robot in MuJoCo, headless, and check that it stands, drives
+straight and turns in place as its geometry says.
+
+\b
+  mcar sim urdf/mobile_robot.xacro           drop, drive and spin, a table of figures
+  mcar sim --config urdf/variants/small.yaml the same robot with other dimensions
+  mcar sim ROBOT --scenario drop,spin        some of the scenarios
+  mcar sim ROBOT --format junit > sim.xml    one testcase per scenario, for CI
+  mcar sim ROBOT --record run.gif            an animation of the runs
+
+\b
+Scenarios (bounds in the README, "mcar sim"):
+  drop   released 5 mm above the floor, after 2 s: at rest at the geometric rest
+         height (1 mm), roll and pitch under 1 degree, both drive wheels and the
+         castor on the floor
+  drive  both wheels at the same speed for 3 s: distance within 2% of r·ω·t (the
+         0.5 s ramp accounted for), small drift and heading change, no wheel off
+         the floor, the motors' effort limit enough for the speed
+  spin   opposite speeds: yaw rate within 5% of 2·r·ω/track, the centre within 1 cm
+
+The drive wheels are the continuous joints with collision geometry, one on each side
+(y > 0 left, y < 0 right); name them with --left and --right when there are more. A
+robot without drive wheels runs drop only, and says why. Of a package or folder, only
+the robot files with drive wheels are simulated.
+
+Every robot is checked first, as by `mcar check`: one with errors is reported with
+check's diagnostics (exit 1). The <gazebo> DiffDrive plugin's wheel separation, radius
+and joints are compared with the geometry (E301-E303), and links whose mass a simulator
+would invent are reported (E305, W304), as FILE:LINE: error: message [E301].
+
+{INPUT_HELP}
+
+\b
+Exit codes:
+  0  every scenario passed
+  1  a scenario failed, the robot fails its check, or a sim rule error (E3xx)
+  2  usage, I/O or environment error: bad option, missing file, unknown scenario, a
+     --record format that cannot be written
+  130  interrupted (Ctrl-C); 143 terminated
+"""
+
+
+def _scenarios(ctx, param, value):
+    names = [n.strip() for n in value.split(",") if n.strip()]
+    unknown = [n for n in names if n not in SCENARIO_NAMES]
+    if unknown or not names:
+        raise click.BadParameter(f"{', '.join(unknown) or 'none given'}: the scenarios are "
+                                 f"{', '.join(SCENARIO_NAMES)} (comma-separated)")
+    return [n for n in SCENARIO_NAMES if n in names]
+
+
+@click.command("sim", help=HELP, short_help="Simulate the robot: drop, drive, spin.")
+@click.argument("words", nargs=-1, metavar="[INPUT]... [NAME:=VALUE]...")
+@click.option("--scenario", "scenarios", default=",".join(SCENARIO_NAMES), show_default=True,
+              callback=_scenarios, metavar="LIST", help="Scenarios to run, comma-separated.")
+@click.option("--format", "output_format", type=click.Choice(("text", "json", "junit")),
+              default="text", show_default=True,
+              help="text: a table on stdout, problems on stderr; json: one document; "
+                   "junit: JUnit XML, one testcase per scenario.")
+@click.option("--record", metavar="FILE.gif",
+              help="Write an animation of the runs (one INPUT only); MP4 is refused.")
+@click.option("--left", metavar="JOINT", help="The left drive wheel's joint.")
+@click.option("--right", metavar="JOINT", help="The right drive wheel's joint.")
+@robot_options
+@handle_errors
+def command(words, scenarios, output_format, record, left, right, package_paths, sets,
+            config_files):
+    if record:
+        from mobile_car.sim.record import require_format
+
+        require_format(record)
+    if bool(left) != bool(right):
+        raise UsageError("--left and --right go together: name both drive joints")
+    reports, codes = [], []
+    with load_inputs(words, package_paths, sets, config_files) as (selection, options):
+        if record and len(selection.inputs) != 1:
+            raise UsageError(f"--record writes one animation, but there are "
+                             f"{len(selection.inputs)} robot files: name one INPUT")
+        explicit = selection.kind == "files"
+        stdin = stdin_for(selection)
+        from mobile_car.check.checker import check_input
+        from mobile_car.sim.report import simulate
+
+        for inp in selection.inputs:
+            checked = check_input(inp, options, stdin=stdin)
+            if checked.failure is not None:
+                report(checked.failure)
+                codes.append(checked.failure.exit_code)
+                continue
+            if checked.errors or not checked.tree_is_drawable:
+                for diagnostic in checked.diagnostics:
+                    print_diagnostic(diagnostic)
+                codes.append(EXIT_PROBLEMS)
+                continue
+            result = simulate(checked, scenarios, left, right, record=bool(record),
+                              only_if_drives=not explicit)
+            if not result.simulated:
+                click.echo(f"mcar: {result.file}: not simulated: {result.why_no_drive}",
+                           err=True)
+                continue
+            reports.append(result)
+            codes.append(result.exit_code)
+    if record and reports and reports[0].recording is not None:
+        from mobile_car.atomic import atomic_write
+
+        atomic_write(record, reports[0].recording)
+    _emit(reports, output_format, combine_exit_codes(codes))
+    raise SystemExit(combine_exit_codes(codes))
+
+
+def _emit(reports, output_format: str, exit_code: int) -> None:
+    from mobile_car.sim.report import as_json, failure_lines, junit, text_table
+
+    for result in reports:
+        for diagnostic in result.diagnostics:
+            print_diagnostic(diagnostic)
+        for line in failure_lines(result):
+            click.echo(f"{result.file}: {severity_label('error')} {line}", err=True,
+                       color=use_color())
+    if output_format == "json":
+        document = {"files": [as_json(r) for r in reports], "exit_code": exit_code}
+        streams.write(json.dumps(document, indent=1, ensure_ascii=False).encode() + b"\n")
+        return
+    if output_format == "junit":
+        streams.write(junit(reports).encode())
+        return
+    for result in reports:
+        for note in result.notes:
+            click.echo(f"mcar: {result.file}: {note}", err=True)
+        streams.echo("\n".join(text_table(result)))
+    counts = {"passed": 0, "failed": 0, "skipped": 0}
+    for result in reports:
+        for scenario in result.scenarios:
+            counts[scenario.status] += 1
+    errors = sum(len(r.lint_errors) for r in reports)
+    lint = f", {errors} lint error{'s' * (errors != 1)}" if errors else ""
+    click.echo(f"mcar sim: {counts['passed']} passed, {counts['failed']} failed, "
+               f"{counts['skipped']} skipped{lint} in {len(reports)} "
+               f"file{'s' * (len(reports) != 1)}", err=True)

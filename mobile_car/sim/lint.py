@@ -1,0 +1,214 @@
+"""What a simulator would disagree with in a description that ``mcar check`` accepts: the
+``<gazebo>`` DiffDrive parameters against the geometry, and links whose mass the engine
+would have to invent. Diagnostics are ``FILE:LINE: error: message [E301]``, as check's.
+
+Rule ids are their own series (E3xx, W3xx) so that check's table stays check_urdf's.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from ..check.urdf_model import parse_number
+from ..load.bounded import read_text_quietly
+from ..load.inputs import display_path
+
+ERROR, WARNING = "error", "warning"
+# id -> (name, summary), for the README and --format json.
+SIM_RULES = {
+    "E301": ("diffdrive-separation", "the DiffDrive plugin's wheel separation differs from "
+             "the distance between the drive wheels by more than 1%"),
+    "E302": ("diffdrive-radius", "the DiffDrive plugin's wheel radius (or diameter) differs "
+             "from the drive wheels' collision radius by more than 1%"),
+    "E303": ("diffdrive-joint", "the DiffDrive plugin names a joint that is not a drive "
+             "wheel of the robot, or puts the left wheel on the right"),
+    "E305": ("moving-link-massless", "a moving link without mass: MuJoCo refuses to "
+             "simulate it, Gazebo gives it 1 kg"),
+    "W304": ("mass-invented", "a link with collision geometry and no `<inertial>`: Gazebo "
+             "gives it 1 kg and a unit inertia, MuJoCo a mass from its volume; mcar sim "
+             "keeps it massless, as URDF says"),
+}
+RELATIVE_TOLERANCE = 0.01
+# The tags gz-sim's DiffDrive, gazebo_ros (ROS 2) and gazebo_ros (ROS 1) plugins read.
+SEPARATION_TAGS = ("wheel_separation", "wheelSeparation")
+RADIUS_TAGS = ("wheel_radius",)
+DIAMETER_TAGS = ("wheel_diameter", "wheelDiameter")
+LEFT_TAGS = ("left_joint", "leftJoint")
+RIGHT_TAGS = ("right_joint", "rightJoint")
+
+
+@dataclass(frozen=True)
+class SimDiagnostic:
+    """A sim rule broken at FILE:LINE; prints like check's Diagnostic."""
+
+    rule: str
+    file: str
+    line: int | None
+    message: str
+
+    @property
+    def severity(self) -> str:
+        return ERROR if self.rule.startswith("E") else WARNING
+
+    @property
+    def is_error(self) -> bool:
+        return self.severity == ERROR
+
+    def location(self) -> str:
+        return f"{self.file}:{self.line}" if self.line else self.file
+
+    def text(self) -> str:
+        return f"{self.location()}: {self.severity}: {self.message} [{self.rule}]"
+
+    def as_json(self) -> dict:
+        return {"rule": self.rule, "severity": self.severity, "file": self.file,
+                "line": self.line, "message": self.message}
+
+
+class Locator:
+    """Element of the built URDF -> (file, line): check's source map for links; for a
+    plugin's parameter, the first line of the sources that holds its tag."""
+
+    def __init__(self, checked):
+        self.checked = checked
+        loaded = checked.loaded
+        self.files = list(loaded.deps) if loaded is not None and loaded.from_xacro else []
+
+    def __call__(self, element) -> tuple[str, int | None]:
+        if self.files and element.getparent() is not None and \
+                element.getparent().tag == "plugin":
+            pattern = re.compile(rf"<{re.escape(element.tag)}\b")
+            for path in self.files:
+                for number, text in enumerate((read_text_quietly(path) or "").splitlines(), 1):
+                    if pattern.search(text):
+                        return display_path(path), number
+        file, line, _ = self.checked.where(element)
+        return file, line
+
+
+def moving_links_without_mass(checked) -> list[SimDiagnostic]:
+    """E305 for moving links without mass: run before the engine, which would refuse them."""
+    locate = Locator(checked)
+    robot = checked.robot
+    moving = {j.child for j in robot.joints if j.type not in ("fixed", None)}
+    children = {j.child for j in robot.joints}
+    found = []
+    for link in robot.links:  # the root: mcar sim gives it a free joint
+        if link.name not in children and _subtree_mass(robot, link.name) <= 0:
+            found.append(_at(locate, "E305", link.element,
+                             f"root link {link.name} and the links fixed to it have no mass: "
+                             "MuJoCo cannot move the robot freely; give one of them an "
+                             "<inertial>"))
+    for link in robot.links:
+        if link.name in moving and link_mass(link) <= 0:
+            # A wheel's mass could live on a fixed child link: the engine adds those up.
+            if _subtree_mass(robot, link.name) > 0:
+                continue
+            found.append(_at(locate, "E305", link.element,
+                             f"link {link.name} moves (child of a non-fixed joint) but has no "
+                             "mass: MuJoCo cannot simulate it, Gazebo would give it 1 kg; give "
+                             "it an <inertial>"))
+    return found
+
+
+def lint(checked, sim) -> list[SimDiagnostic]:
+    """Every sim diagnostic of a checked robot and its model, sorted."""
+    locate = Locator(checked)
+    found = []
+    for link in checked.robot.links:
+        if link.collisions and link.inertial is None:
+            found.append(_at(locate, "W304", link.element,
+                             f"link {link.name} has collision geometry but no <inertial>: "
+                             "Gazebo gives it 1 kg, MuJoCo a mass from its volume; mcar sim "
+                             "keeps it massless"))
+    for plugin in _diff_drive_plugins(checked.robot.element):
+        found += _check_plugin(plugin, sim, locate)
+    return sorted(found, key=lambda d: (d.file, d.line or 0, d.rule))
+
+
+def _diff_drive_plugins(root):
+    for plugin in root.iter("plugin"):
+        text = f"{plugin.get('name', '')} {plugin.get('filename', '')}".lower()
+        if "diffdrive" in text or "diff_drive" in text or "diff-drive" in text:
+            yield plugin
+
+
+def _child(plugin, tags):
+    for tag in tags:
+        element = plugin.find(tag)
+        if element is not None:
+            return element
+    return None
+
+
+def _value(element) -> float | None:
+    return parse_number((element.text or "").strip()) if element is not None else None
+
+
+def _check_plugin(plugin, sim, locate) -> list[SimDiagnostic]:
+    found = []
+    joints = {}
+    for side, tags, wheel in (("left", LEFT_TAGS, sim.left), ("right", RIGHT_TAGS, sim.right)):
+        element = _child(plugin, tags)
+        if element is None:
+            continue
+        name = (element.text or "").strip()
+        joints[side] = name
+        other = sim.right if side == "left" else sim.left
+        if wheel is not None and name == wheel.joint:
+            continue
+        if other is not None and name == other.joint:
+            problem = f"is the {'right' if side == 'left' else 'left'} wheel (y = {other.y:+.4g} m)"
+        elif wheel is None:
+            problem = "is not a drive wheel: the robot has none the simulation could find"
+        else:
+            problem = f"is not the {side} drive wheel, {wheel.joint}"
+        found.append(_at(locate, "E303", element,
+                         f"DiffDrive {element.tag} {name}: {problem}"))
+    if not sim.drives:
+        return found
+    separation = _child(plugin, SEPARATION_TAGS)
+    value = _value(separation)
+    if value is not None and _differs(value, sim.track):
+        found.append(_at(locate, "E301", separation,
+                         f"DiffDrive {separation.tag} {value:g} m, but the drive wheels "
+                         f"{sim.left.joint} and {sim.right.joint} are {sim.track:.4g} m "
+                         "apart: odometry and turning rates would be off by "
+                         f"{100 * abs(value - sim.track) / sim.track:.1f}%"))
+    radius = (sim.left.radius + sim.right.radius) / 2
+    element = _child(plugin, RADIUS_TAGS)
+    value, factor = _value(element), 1.0
+    if element is None:
+        element = _child(plugin, DIAMETER_TAGS)
+        value, factor = _value(element), 0.5
+    if value is not None and _differs(value * factor, radius):
+        found.append(_at(locate, "E302", element,
+                         f"DiffDrive {element.tag} {value:g} m, but the drive wheels' collision "
+                         f"radius is {radius:.4g} m"))
+    return found
+
+
+def _differs(value: float, actual: float) -> bool:
+    return abs(value - actual) > RELATIVE_TOLERANCE * abs(actual)
+
+
+def _at(locate, rule, element, message) -> SimDiagnostic:
+    file, line = locate(element)
+    return SimDiagnostic(rule, file, line, message)
+
+
+def link_mass(link) -> float:
+    if link.inertial is None or link.inertial.get("mass") is None:
+        return 0.0
+    return parse_number(link.inertial["mass"].get("value")) or 0.0
+
+
+def _subtree_mass(robot, name) -> float:
+    links = {link.name: link for link in robot.links}
+    total, todo = 0.0, [name]
+    while todo:
+        current = todo.pop()
+        total += link_mass(links[current]) if current in links else 0.0
+        todo += [j.child for j in robot.joints if j.parent == current and j.type == "fixed"]
+    return total

@@ -1,0 +1,338 @@
+"""The robot as MuJoCo simulates it: URDF in, a compiled model on a floor out, with the
+drive wheels found, velocity motors on them and the heights the scenarios measure against.
+
+The simulation-only choices (README, "mcar sim") are made here and nowhere else:
+
+* the root link gets a free joint (MuJoCo's URDF importer otherwise welds it to the world);
+* robot geoms collide with the floor only (Gazebo's default: no self-collision);
+* a drive wheel touches the floor through a sphere of the tyre's radius: a cylinder
+  touches at both tyre edges and scrubs when the car turns in place;
+* friction comes from the description's ``<gazebo reference><mu1>``, with a contact
+  priority so the part's own value wins (MuJoCo otherwise takes the larger of the pair's);
+* a link without ``<inertial>`` is massless, as URDF says (MuJoCo would invent a mass from
+  its geometry, Gazebo 1 kg; lint reports such links);
+* the drive joints get an armature of 1e-4 kg m², about a small gear motor's rotor
+  inertia seen through its gearbox (JGA25-370: ~2e-7 kg m² x 21²): without it the light
+  wheels (~2e-5 kg m²) chatter against the stiff velocity servo and the car over-travels
+  ~7%; and a 1 ms step (0.6% over-travel, 2% at MuJoCo's default 2 ms).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from lxml import etree
+
+from ..check.urdf_model import parse_number
+from ..errors import EXIT_PROBLEMS, McarError, UsageError
+from .engine import mujoco
+
+TIMESTEP = 0.001
+# Above the floor by this much, a part does not rest on it (contacts, ground parts).
+GROUND_TOLERANCE = 0.003
+MESH_FORMATS = (".stl", ".obj", ".msh")
+# kv of the wheel motors' velocity servo (N m s/rad): stiff enough to follow a ramp of
+# a few rad/s², within the effort limit, which clamps it.
+SERVO_GAIN = 0.5
+WHEEL_ARMATURE = 1e-4  # kg m², see the module's docstring
+
+
+class SimModelError(McarError):
+    """MuJoCo cannot make a model of the robot (exit 1: the description's fault)."""
+
+    exit_code = EXIT_PROBLEMS
+
+
+@dataclass
+class Wheel:
+    joint: str
+    link: str
+    joint_id: int
+    body_id: int
+    geom_ids: list[int]
+    radius: float
+    y: float            # wheel centre in the root frame
+    effort: float | None
+    velocity: float | None
+    actuator_id: int = -1
+
+
+@dataclass
+class SimModel:
+    model: object       # mujoco.MjModel
+    spec: object        # mujoco.MjSpec (mcar build --format mjcf writes it)
+    root: str
+    root_body: int
+    left: Wheel | None
+    right: Wheel | None
+    why_no_drive: str | None
+    rest_height: float  # the root's height when the geometry rests on the floor
+    ground_parts: dict[str, int] = field(default_factory=dict)  # link -> body id (castor)
+    # link -> its lowest point above the drive wheels' floor plane (wheels, ground parts)
+    clearance: dict[str, float] = field(default_factory=dict)
+    floor_geom: int = 0
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def drives(self) -> bool:
+        return self.left is not None and self.right is not None
+
+    @property
+    def track(self) -> float:
+        return abs(self.left.y - self.right.y)
+
+
+def build_model(urdf: bytes, label: str, base: Path, search, left: str | None = None,
+                right: str | None = None) -> SimModel:
+    mj = mujoco()
+    root = etree.fromstring(urdf, etree.XMLParser(resolve_entities=False, no_network=True))
+    joints = {j.get("name"): j for j in root.iter("joint") if isinstance(j.tag, str)}
+    friction = _gazebo_friction(root)
+    colours = _link_colours(root)
+    notes = _prepare(root, base, search)
+    try:
+        spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
+    except ValueError as error:
+        raise SimModelError(f"MuJoCo cannot read the robot: {_engine_message(error)}",
+                            file=label) from None
+    root_body = spec.worldbody.first_body()
+    if root_body is None:
+        raise SimModelError("the robot has no link MuJoCo can place", file=label)
+    root_body.add_freejoint(name="mcar_free")
+    spec.compiler.discardvisual = False  # (the URDF's visuals are gone; keep the floor's look)
+    spec.option.timestep = TIMESTEP
+    spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
+    _add_floor(spec, mj)
+    for geom in spec.geoms:
+        if geom.name != "mcar_floor":
+            geom.contype, geom.conaffinity = 1, 0
+            if geom.parent.name in colours:
+                geom.rgba = colours[geom.parent.name]
+            mu = friction.get(geom.parent.name)
+            if mu is not None:
+                geom.friction = [mu, geom.friction[1], geom.friction[2]]
+                geom.priority = 1
+    shape = _compile(spec, label)  # once with the description's own shapes, to look at
+    data = mj.MjData(shape)
+    mj.mj_kinematics(shape, data)
+    lowest = _lowest_points(mj, shape, data)
+    wheels, why = _find_wheels(mj, shape, data, joints, left, right)
+    wheels_lowest = [lowest[g] for w in wheels for g in w.geom_ids]
+    robot_geoms = [g for g in range(shape.ngeom) if shape.geom_bodyid[g] != 0]
+    if not robot_geoms:
+        raise SimModelError("no link has <collision> geometry: nothing can rest on the "
+                            "floor, the robot would fall through it", file=label)
+    ground = min(wheels_lowest) if wheels_lowest else min(lowest[g] for g in robot_geoms)
+    wheel_bodies = {w.body_id for w in wheels}
+    parts, clearance = {}, {}
+    for g in robot_geoms:
+        body = int(shape.geom_bodyid[g])
+        name = shape.body(body).name
+        if body in wheel_bodies or lowest[g] <= ground + GROUND_TOLERANCE:
+            clearance[name] = min(clearance.get(name, np.inf), lowest[g] - ground)
+        if body not in wheel_bodies and lowest[g] <= ground + GROUND_TOLERANCE:
+            parts[name] = body
+    for wheel in wheels:
+        _round_tyre(spec, shape, wheel, mj)
+        spec.joint(wheel.joint).armature = WHEEL_ARMATURE
+        actuator = spec.add_actuator(name=f"mcar_motor_{wheel.joint}", target=wheel.joint,
+                                     trntype=mj.mjtTrn.mjTRN_JOINT)
+        actuator.set_to_velocity(kv=SERVO_GAIN)
+        effort = wheel.effort if wheel.effort is not None else 0.0
+        # MuJoCo refuses an empty range: a motor of no effort gets a vanishing one.
+        effort = max(effort, 1e-12)
+        actuator.forcelimited = True
+        actuator.forcerange = [-effort, effort]
+    model = _compile(spec, label)
+    for wheel in wheels:
+        wheel.actuator_id = model.actuator(f"mcar_motor_{wheel.joint}").id
+    pair = (wheels + [None, None])[:2] if wheels else [None, None]
+    return SimModel(model=model, spec=spec, root=root_body.name,
+                    root_body=model.body(root_body.name).id, left=pair[0], right=pair[1],
+                    why_no_drive=why, rest_height=-ground, ground_parts=parts, clearance=clearance,
+                    floor_geom=model.geom("mcar_floor").id, notes=notes)
+
+
+def _gazebo_friction(root) -> dict[str, float]:
+    """link -> mu1 of its ``<gazebo reference="link"><mu1>``."""
+    found = {}
+    for gazebo in root.iter("gazebo"):
+        mu = gazebo.find("mu1")
+        value = parse_number(mu.text.strip()) if mu is not None and mu.text else None
+        if gazebo.get("reference") and value is not None and value >= 0:
+            found[gazebo.get("reference")] = value
+    return found
+
+
+def _link_colours(root) -> dict[str, list[float]]:
+    """link -> the rgba of its first visual's material, so a recording shows the colours."""
+    named = {}
+    for material in root.findall("material"):
+        colour = material.find("color")
+        if colour is not None and material.get("name"):
+            named[material.get("name")] = colour.get("rgba")
+    found = {}
+    for link in root.iter("link"):
+        for material in link.iterfind("visual/material"):
+            colour = material.find("color")
+            text = colour.get("rgba") if colour is not None else named.get(material.get("name"))
+            values = [parse_number(v) for v in (text or "").split()]
+            if len(values) == 4 and None not in values:
+                found[link.get("name")] = values
+                break
+    return found
+
+
+def _prepare(root, base: Path, search) -> list[str]:
+    """Strip what MuJoCo must not read (visuals, Gazebo and ros2_control extras), point
+    collision meshes at their files; the notes say what was left out."""
+    notes = []
+    for element in list(root.iter("visual", "gazebo", "transmission", "ros2_control")):
+        element.getparent().remove(element)
+    for mesh in list(root.iter("mesh")):
+        collision = mesh.getparent().getparent()
+        filename = mesh.get("filename") or ""
+        try:
+            path = search.resolve_uri(filename, base)
+        except McarError:
+            path = None
+        if path is None or not path.is_file() or path.suffix.lower() not in MESH_FORMATS:
+            link = collision.getparent()
+            notes.append(f"link {link.get('name')}: collision mesh {filename} left out "
+                         f"(MuJoCo reads {', '.join(MESH_FORMATS)} files that exist)")
+            link.remove(collision)
+            continue
+        mesh.set("filename", str(path.resolve()))
+    extension = etree.SubElement(root, "mujoco")
+    etree.SubElement(extension, "compiler", discardvisual="true", fusestatic="false",
+                     inertiafromgeom="false", balanceinertia="false", strippath="false")
+    return notes
+
+
+def _add_floor(spec, mj) -> None:
+    texture = spec.add_texture(name="mcar_checker", type=mj.mjtTexture.mjTEXTURE_2D,
+                               builtin=mj.mjtBuiltin.mjBUILTIN_CHECKER, width=256, height=256,
+                               rgb1=[0.82, 0.84, 0.86], rgb2=[0.42, 0.45, 0.5])
+    material = spec.add_material(name="mcar_floor")
+    textures = list(material.textures)
+    textures[mj.mjtTextureRole.mjTEXROLE_RGB] = texture.name
+    material.textures = textures
+    material.texrepeat = [100, 100]  # 0.2 m squares over the 20 m floor (2 per repeat)
+    spec.worldbody.add_geom(name="mcar_floor", type=mj.mjtGeom.mjGEOM_PLANE,
+                            size=[10, 10, 0.05], material="mcar_floor", contype=1,
+                            conaffinity=1)
+    spec.worldbody.add_light(pos=[0, 0, 3], dir=[0, 0, -1], diffuse=[0.8, 0.8, 0.8])
+
+
+def _compile(spec, label):
+    try:
+        return spec.compile()
+    except ValueError as error:
+        raise SimModelError(f"MuJoCo cannot simulate the robot: {_engine_message(error)}",
+                            file=label) from None
+
+
+def _engine_message(error) -> str:
+    text = str(error).strip().splitlines()
+    return (text[0] if text else type(error).__name__).removeprefix("Error: ")
+
+
+def _lowest_points(mj, model, data) -> dict[int, float]:
+    """geom -> the z of its lowest point (the root at the origin, every joint at 0)."""
+    lowest = {}
+    for g in range(model.ngeom):
+        if model.geom_bodyid[g] == 0:
+            continue
+        centre, rot = data.geom_xpos[g], data.geom_xmat[g].reshape(3, 3)
+        size = model.geom_size[g]
+        kind = mj.mjtGeom(int(model.geom_type[g]))  # (a numpy int is never `in` enum tuples)
+        up = abs(rot[2])  # |z component| of each local axis
+        if kind == mj.mjtGeom.mjGEOM_SPHERE:
+            drop = size[0]
+        elif kind == mj.mjtGeom.mjGEOM_CYLINDER:
+            drop = size[0] * np.sqrt(max(0.0, 1 - up[2] ** 2)) + size[1] * up[2]
+        elif kind == mj.mjtGeom.mjGEOM_CAPSULE:
+            drop = size[0] + size[1] * up[2]
+        elif kind in (mj.mjtGeom.mjGEOM_BOX, mj.mjtGeom.mjGEOM_ELLIPSOID):
+            drop = float(up @ size) if kind == mj.mjtGeom.mjGEOM_BOX else float(
+                np.sqrt((up ** 2) @ (size ** 2)))
+        elif kind == mj.mjtGeom.mjGEOM_MESH:
+            mesh = model.geom_dataid[g]
+            start, count = model.mesh_vertadr[mesh], model.mesh_vertnum[mesh]
+            verts = model.mesh_vert[start:start + count] @ rot.T
+            drop = -float(verts[:, 2].min())
+        else:
+            drop = model.geom_rbound[g]
+        lowest[g] = float(centre[2] - drop)
+    return lowest
+
+
+def _find_wheels(mj, model, data, joints, left, right):
+    """([left, right], None), or ([], why not): named by --left/--right, else the
+    continuous joints whose links have collision geometry, one on each side."""
+    def wheel(name):
+        element = joints[name]
+        joint_id = model.joint(name).id
+        body = int(model.jnt_bodyid[joint_id])
+        geoms = [g for g in range(model.ngeom) if model.geom_bodyid[g] == body]
+        limit = element.find("limit")
+        def number(key):
+            return (parse_number(limit.get(key)) if limit is not None else None)
+        radius = max((_rolling_radius(mj, model, g) for g in geoms), default=0.0)
+        return Wheel(name, model.body(body).name, joint_id, body, geoms, radius,
+                     float(data.xpos[body][1]), number("effort"), number("velocity"))
+
+    if left or right:
+        if not (left and right):
+            raise UsageError("--left and --right go together: name both drive joints")
+        for name in (left, right):
+            if name not in joints:
+                raise UsageError(f"--left/--right {name}: the robot has no joint of that name")
+            if joints[name].get("type") not in ("continuous", "revolute"):
+                raise UsageError(f"--left/--right {name}: a {joints[name].get('type')} joint "
+                                 "cannot drive a wheel")
+        pair = [wheel(left), wheel(right)]
+        for w in pair:
+            if not w.geom_ids:
+                raise UsageError(f"--left/--right {w.joint}: link {w.link} has no <collision> "
+                                 "geometry to roll on")
+        return pair, None
+    found = [wheel(name) for name, j in joints.items() if j.get("type") == "continuous"
+             and name in _model_joints(model)]
+    found = [w for w in found if w.geom_ids]
+    lefts = [w for w in found if w.y > 1e-6]
+    rights = [w for w in found if w.y < -1e-6]
+    if not found:
+        return [], "no drive wheels: no continuous joint moves a link with collision geometry"
+    if not lefts or not rights:
+        side = "left (+y)" if not lefts else "right (-y)"
+        names = ", ".join(w.joint for w in found)
+        return [], f"no drive wheels: none on the {side} side (continuous joints: {names})"
+    if len(lefts) > 1 or len(rights) > 1:
+        names = ", ".join(w.joint for w in found)
+        raise UsageError(f"several continuous joints could drive ({names}): name the drive "
+                         "wheels with --left JOINT --right JOINT")
+    return [lefts[0], rights[0]], None
+
+
+def _model_joints(model) -> set[str]:
+    return {model.joint(j).name for j in range(model.njnt)}
+
+
+def _rolling_radius(mj, model, g) -> float:
+    kind, size = mj.mjtGeom(int(model.geom_type[g])), model.geom_size[g]
+    if kind in (mj.mjtGeom.mjGEOM_CYLINDER, mj.mjtGeom.mjGEOM_SPHERE,
+                mj.mjtGeom.mjGEOM_CAPSULE):
+        return float(size[0])
+    return float(model.geom_rbound[g])
+
+
+def _round_tyre(spec, model, wheel: Wheel, mj) -> None:
+    """The wheel's cylinders touch the floor through a sphere of the same radius."""
+    for geom in spec.geoms:
+        if geom.parent.name == wheel.link and geom.type == mj.mjtGeom.mjGEOM_CYLINDER:
+            geom.type = mj.mjtGeom.mjGEOM_SPHERE
+            geom.size = [geom.size[0], 0, 0]
+

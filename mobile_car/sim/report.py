@@ -1,0 +1,199 @@
+"""One robot's simulation, start to end (lint, model, scenarios), and its three spellings:
+a text table, JSON, JUnit. The library builds the strings; the command line prints them."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from xml.etree import ElementTree as ET
+
+from ..errors import EXIT_OK, EXIT_PROBLEMS
+from .lint import SimDiagnostic, link_mass, lint, moving_links_without_mass
+from .scenarios import ScenarioResult, command_speed, run_scenarios, show_bound, show_value
+
+
+@dataclass
+class SimReport:
+    file: str
+    robot: str | None
+    drive: dict | None = None            # left, right, radius, track, command speed
+    why_no_drive: str | None = None
+    diagnostics: list[SimDiagnostic] = field(default_factory=list)
+    scenarios: list[ScenarioResult] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    error: str | None = None             # the model could not be made
+    seconds: float = 0.0                 # wall clock
+    recording: bytes | None = None       # the GIF, with record=True
+    simulated: bool = True               # False: no drive wheels and only_if_drives
+
+    @property
+    def lint_errors(self) -> list[SimDiagnostic]:
+        return [d for d in self.diagnostics if d.is_error]
+
+    @property
+    def exit_code(self) -> int:
+        if self.error or self.lint_errors or any(s.status == "failed" for s in self.scenarios):
+            return EXIT_PROBLEMS
+        return EXIT_OK
+
+
+def simulate(checked, names, left=None, right=None, record: bool = False,
+             only_if_drives: bool = False) -> SimReport:
+    """Lint and run ``names`` on a robot that passed ``mcar check`` (a CheckResult);
+    ``record``: keep a GIF of the runs; ``only_if_drives``: a robot without drive wheels
+    is not simulated (``simulated`` False), as for the files of a package."""
+    from .model import SimModelError, build_model
+
+    started = time.perf_counter()
+    loaded = checked.loaded
+    report = SimReport(checked.file, checked.robot.name)
+    if only_if_drives and _drive_candidates(checked.robot) < 2:
+        report.simulated, report.why_no_drive = False, _no_drive(checked.robot)
+        return report
+    unsimulable = _unsimulable(checked.robot)
+    if unsimulable:
+        report.why_no_drive = _no_drive(checked.robot)
+        if only_if_drives:
+            report.simulated = False
+            return report
+        report.scenarios = [ScenarioResult(name, problems=unsimulable) if name == "drop" else
+                            ScenarioResult(name, skipped=report.why_no_drive)
+                            for name in names]
+        return report
+    report.diagnostics = moving_links_without_mass(checked)
+    if report.diagnostics:
+        report.error = "a link MuJoCo must move has no mass (E305 above)"
+        return report
+    try:
+        sim = build_model(loaded.urdf, checked.file, loaded.base, loaded.search, left, right)
+    except SimModelError as error:
+        report.error = error.message
+        return report
+    if only_if_drives and not sim.drives:
+        report.simulated, report.why_no_drive = False, sim.why_no_drive
+        return report
+    report.notes = list(sim.notes)
+    report.diagnostics = lint(checked, sim)
+    if sim.drives:
+        report.drive = {"left": sim.left.joint, "right": sim.right.joint,
+                        "wheel_radius": round(sim.left.radius, 6),
+                        "track": round(sim.track, 6),
+                        "command_speed": round(command_speed(sim), 6)}
+    report.why_no_drive = sim.why_no_drive
+    recorder = None
+    if record:
+        from .record import Recorder
+        from .scenarios import DRIVE_TIME
+
+        reach = sim.left.radius * command_speed(sim) * DRIVE_TIME if sim.drives else 0.3
+        recorder = Recorder(sim, reach)
+    try:
+        report.scenarios = run_scenarios(sim, names, recorder)
+        if recorder is not None:
+            report.recording = recorder.gif()
+    finally:
+        if recorder is not None:
+            recorder.close()
+    report.seconds = time.perf_counter() - started
+    return report
+
+
+def _unsimulable(robot) -> list[str]:
+    """Why the robot cannot even be dropped (the tutorial's visual-only car), or []."""
+    problems = []
+    if not any(link.collisions for link in robot.links):
+        problems.append("no link has <collision> geometry: nothing can rest on the floor, "
+                        "the robot would fall through it")
+    if sum(link_mass(link) for link in robot.links) <= 0:
+        problems.append("no link has mass (<inertial>): there is nothing to simulate")
+    return problems
+
+
+def _drive_candidates(robot) -> int:
+    """Continuous joints that move collision geometry: a car has two or more."""
+    colliding = {link.name for link in robot.links if link.collisions}
+    return sum(1 for j in robot.joints if j.type == "continuous" and j.child in colliding)
+
+
+def _no_drive(robot) -> str:
+    continuous = [j.name for j in robot.joints if j.type == "continuous"]
+    if continuous:
+        return (f"no drive wheels: continuous joints {', '.join(continuous)}, not a pair "
+                "with collision geometry")
+    joints = ", ".join(f"{j.name} ({j.type})" for j in robot.joints[:6])
+    return f"no drive wheels: no continuous joint{': ' + joints if joints else ''}"
+
+
+def as_json(report: SimReport) -> dict:
+    return {"file": report.file, "robot": report.robot, "drive": report.drive,
+            "why_no_drive": report.why_no_drive, "error": report.error,
+            "diagnostics": [d.as_json() for d in report.diagnostics],
+            "scenarios": [s.as_json() for s in report.scenarios],
+            "notes": report.notes, "exit_code": report.exit_code}
+
+
+def text_table(report: SimReport) -> list[str]:
+    """The figures of each scenario against their bounds, one line each."""
+    lines = [f"{report.file} ({report.robot})"]
+    if report.drive:
+        d = report.drive
+        lines.append(f"  drive wheels {d['left']} (left), {d['right']} (right): radius "
+                     f"{d['wheel_radius']:g} m, track {d['track']:g} m, command "
+                     f"{d['command_speed']:g} rad/s")
+    elif report.why_no_drive:
+        lines.append(f"  {report.why_no_drive}: drop only")
+    if report.lint_errors or report.error:
+        lines.append(f"  lint   FAILED  {report.error or ''}" + "; ".join(
+            f"{d.rule} {d.message}" for d in report.lint_errors))
+    for scenario in report.scenarios:
+        lines.append(f"  {scenario.name:<6} {scenario.status.upper()}"
+                     + (f"  {scenario.message()}" if scenario.status != "passed" else ""))
+        for f in scenario.figures:
+            detail = f"  ({f.detail})" if f.detail else ""
+            lines.append(f"    {f.name:<20} {show_value(f.value, f.unit):>14}  {show_bound(f):<14} "
+                         f"{'ok' if f.ok else 'FAIL'}{detail}")
+    return lines
+
+
+def failure_lines(report: SimReport) -> list[str]:
+    """One ``FILE: error: ...`` line per failed scenario (the lint prints its own)."""
+    lines = []
+    if report.error:
+        lines.append(report.error)
+    for scenario in report.scenarios:
+        if scenario.status == "failed":
+            lines.append(f"{scenario.name} failed: {scenario.message()}")
+    return lines
+
+
+def junit(reports: list[SimReport]) -> str:
+    """One ``<testcase>`` per scenario (and one ``lint``) per robot file."""
+    cases = []
+    for report in reports:
+        lint_case = ("lint", "failed" if report.lint_errors or report.error else "passed",
+                     "; ".join([report.error] if report.error else []
+                               + [d.text() for d in report.lint_errors]) or "ok",
+                     "\n".join(d.text() for d in report.diagnostics))
+        cases.append((report, lint_case))
+        for s in report.scenarios:
+            body = "\n".join(f"{f.name}: {f.value:.6g} {f.unit} (bound "
+                             f"{'<=' if f.within == 'max' else '>='} {f.bound:g} {f.unit}) "
+                             f"{'ok' if f.ok else 'FAIL'}" for f in s.figures)
+            cases.append((report, (s.name, s.status, s.message(), body)))
+    failures = sum(1 for _, c in cases if c[1] == "failed")
+    skipped = sum(1 for _, c in cases if c[1] == "skipped")
+    root = ET.Element("testsuites", tests=str(len(cases)), failures=str(failures),
+                      errors="0", skipped=str(skipped))
+    suite = ET.SubElement(root, "testsuite", name="mcar sim", tests=str(len(cases)),
+                          failures=str(failures), errors="0", skipped=str(skipped))
+    for report, (name, status, message, body) in cases:
+        case = ET.SubElement(suite, "testcase", classname=f"mcar.sim.{report.robot}",
+                             name=name, file=report.file)
+        if status == "failed":
+            ET.SubElement(case, "failure", message=message, type=name).text = body or message
+        elif status == "skipped":
+            ET.SubElement(case, "skipped", message=message)
+        if body and status != "failed":
+            ET.SubElement(case, "system-out").text = body
+    ET.indent(root)
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"

@@ -105,6 +105,8 @@ def _color(ctx, param, value):
 
 
 def _joints(ctx, param, value):
+    if not value:
+        return ()
     from mobile_car.render.pose import parse_joint_word
 
     try:

@@ -8,11 +8,12 @@ outside the joint's limits are usage errors naming the robot's file.
 from __future__ import annotations
 
 import difflib
+from typing import TYPE_CHECKING
 
-import yourdfpy
-
-from ..config.units import parse_quantity
 from ..errors import UsageError
+
+if TYPE_CHECKING:
+    import yourdfpy
 
 MOVING = ("revolute", "continuous", "prismatic")
 
@@ -27,6 +28,8 @@ def parse_joint_word(word: str) -> tuple[str, str]:
 
 def joint_positions(robot: yourdfpy.Robot, requests, file: str) -> dict[str, float]:
     """The positions ``requests`` ((name, text) pairs) give, checked against ``robot``."""
+    from ..config.units import parse_quantity
+
     joints = {joint.name: joint for joint in robot.joints}
     positions: dict[str, float] = {}
     for name, text in requests:

@@ -15,6 +15,7 @@ import contextlib
 import io
 import math
 import threading
+import warnings
 from collections.abc import Callable
 
 import numpy as np
@@ -132,7 +133,9 @@ class RobotView:
         with self._lock, self.server.atomic():
             kept = {name: slider.value for name, slider in self.sliders.items()}
             if self._robot is not None:
-                self._robot.remove()
+                with warnings.catch_warnings():  # it removes children its parents took along
+                    warnings.simplefilter("ignore", UserWarning)
+                    self._robot.remove()
             for frame in self.frames.values():
                 frame.remove()
             if self._joints_folder is not None:

@@ -5,7 +5,8 @@
 # the tests compare against); libegl1 libegl-mesa0 libgl1-mesa-dri libgl1 (headless
 # OpenGL through EGL and Mesa's llvmpipe, for mcar render); graphviz (dot, which draws
 # `mcar tree --graphviz x.svg`); libseccomp2 (the seccomp filter of the xacro sandbox);
-# for `make bench` also time (GNU time, which measures the peak memory of each command).
+# for `make bench` also time (GNU time, which measures the peak memory of each command);
+# for `make test` also chromium (the browser tests/view drives through playwright).
 
 PYTHON ?= python3
 VENV   ?= .venv
@@ -20,7 +21,7 @@ $(BIN)/python:
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
 install: $(BIN)/python
-	$(BIN)/pip install --quiet ".[test]"
+	$(BIN)/pip install --quiet ".[test,view]"
 
 system-deps:
 	@missing=""; for p in $(APT_PACKAGES); do \
@@ -36,6 +37,7 @@ demo: install system-deps
 	$(BIN)/mcar check --strict build/mobile_robot.urdf
 	$(BIN)/mcar render
 
+test: APT_PACKAGES += chromium
 test: install system-deps
 	$(BIN)/pytest
 

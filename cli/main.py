@@ -29,6 +29,7 @@ COMMANDS = {
     "tree": ("tree", "Print the kinematic tree with joint types, origins and axes."),
     "init": ("init", "Create a robot description package, ready for mcar ci."),
     "new": ("new", "Add a part to the package you stand in."),
+    "view": ("view", "Show the robot live in a browser: joint sliders, reload on edit."),
 }
 
 EXIT_CODES_HELP = """\b

@@ -104,6 +104,17 @@ def _color(ctx, param, value):
         raise click.BadParameter(error.message.split(" ", 1)[1]) from None
 
 
+def _joints(ctx, param, value):
+    if not value:
+        return ()
+    from mobile_car.render.pose import parse_joint_word
+
+    try:
+        return tuple(parse_joint_word(word) for word in value)
+    except UsageError as error:
+        raise click.BadParameter(error.message.removeprefix("--joint ")) from None
+
+
 def _progress(jobs, quiet: bool):
     """A progress bar on stderr, only on a terminal and not with --quiet."""
     stream = sys.stderr
@@ -132,17 +143,24 @@ def _progress(jobs, quiet: bool):
 @click.option("--renderer", type=click.Choice(RENDERERS), default="auto", show_default=True,
               envvar=RENDERER_ENV, show_envvar=True,
               help="OpenGL (gl), ray casting (raycast), or gl with raycast as fallback (auto).")
+@click.option("--joint", "joints", multiple=True, metavar="NAME=VALUE", callback=_joints,
+              help="Draw a joint turned or shifted: radians or metres, or with a unit "
+                   "(--joint shoulder=30deg, --joint lift=5cm); within the joint's limits. "
+                   "Repeatable; other joints stay at zero. One robot file only.")
 @click.option("--force", is_flag=True, help="Draw every picture, even if unchanged.")
 @click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
 @robot_options
 @handle_errors
-def command(words, output, view, size, collision, background, grid, axes, renderer, force,
-            quiet, package_paths, sets, config_files):
+def command(words, output, view, size, collision, background, grid, axes, renderer, joints,
+            force, quiet, package_paths, sets, config_files):
     started = time.perf_counter()
     options = RenderOptions(view=view, width=size[0], height=size[1], collision=collision,
-                            background=background, grid=grid, axes=axes)
+                            background=background, grid=grid, axes=axes, joints=joints)
     check_pixels(*size, renderer)
     selection, mappings = select_inputs(words, package_paths, sets, config_files)
+    if joints and len(selection.inputs) != 1:
+        raise UsageError(f"--joint poses one robot, and there are {len(selection.inputs)} "
+                         "robot files to draw: name one INPUT file")
     jobs, outdir, sheet = _plan(selection, output)
     basis = input_basis(mappings, package_paths, sets, config_files)
     for job in jobs:

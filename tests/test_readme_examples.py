@@ -31,6 +31,7 @@ NOT_RUN = {
     "make ": "the set-up commands themselves; `make test` runs this test",
     ". .venv/bin/activate": "the tests run with the venv's mcar on PATH already",
     ".venv/bin/python bench/": "benchmarks take minutes; `make bench` runs them",
+    "mcar view": "serves until Ctrl-C; tests/view/test_cli_view.py runs it",
 }
 PACKAGE_COPIES = ("path/to/package", "path/to/other_description")
 _COMMENT = re.compile(r"\s+#(?:\s.*)?$")

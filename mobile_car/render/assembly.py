@@ -3,7 +3,7 @@
 yourdfpy can build a trimesh.Scene for the robot, but trimesh's scene graph rehashes all its
 edges on many operations, so building and reading it costs O(links²): a 2,000-link robot
 took 18 s, a 10,000-link one minutes. Here the links' world poses are composed once, each
-from its parent's, with numpy 4x4 matrices (joints at zero, as yourdfpy poses them), and
+from its parent's, with numpy 4x4 matrices (joints at zero, or where `--joint` puts them), and
 each geometry becomes a :class:`Piece`.
 
 Boxes, cylinders and spheres are the same unit primitive with the size folded into the
@@ -41,19 +41,33 @@ class Piece:
     rgba: tuple | None = None
 
 
-def joint_matrix(joint: yourdfpy.Joint) -> np.ndarray:
-    """The child's pose in the parent's frame with every joint at zero, as yourdfpy has it."""
+def joint_position(joint: yourdfpy.Joint, positions: dict[str, float] | None) -> float:
+    """The joint's position: as given (default zero), or for a mimic joint, the position
+    of the joint it follows times its multiplier plus its offset (yourdfpy's rule)."""
+    positions = positions or {}
+    if joint.mimic is None:
+        return positions.get(joint.name, 0.0)
+    multiplier = 1.0 if joint.mimic.multiplier is None else joint.mimic.multiplier
+    return positions.get(joint.mimic.joint, 0.0) * multiplier + (joint.mimic.offset or 0.0)
+
+
+def joint_matrix(joint: yourdfpy.Joint, positions: dict[str, float] | None = None) -> np.ndarray:
+    """The child's pose in the parent's frame with the joints at ``positions`` (joint name
+    -> radians or metres; default every joint at zero), as yourdfpy has it."""
     origin = np.eye(4) if joint.origin is None else joint.origin
-    if joint.mimic is None or joint.type not in _MOVING:
+    if joint.type not in _MOVING:
+        return origin
+    q = joint_position(joint, positions)
+    if q == 0.0:
         return origin  # origin @ (a rotation or shift by 0) is exactly the origin
-    q = joint.mimic.offset or 0.0
     axis = np.asarray(joint.axis if joint.axis is not None else (1.0, 0.0, 0.0), dtype=float)
     if joint.type == "prismatic":
         return origin @ trimesh.transformations.translation_matrix(q * axis)
     return origin @ trimesh.transformations.rotation_matrix(q, axis)
 
 
-def link_poses(robot: yourdfpy.Robot) -> dict[str, np.ndarray]:
+def link_poses(robot: yourdfpy.Robot,
+               positions: dict[str, float] | None = None) -> dict[str, np.ndarray]:
     """Every link's world pose: the tree walked once from its roots. A link no joint
     reaches (a second root) stays at the origin, where yourdfpy puts it too. A joint
     naming an undefined link is a ValueError (``mcar check`` reports it first: E122)."""
@@ -76,7 +90,7 @@ def link_poses(robot: yourdfpy.Robot) -> dict[str, np.ndarray]:
         parent = queue.popleft()
         for joint in children.get(parent, ()):
             if joint.child not in poses:  # a second parent or a cycle: first one wins
-                poses[joint.child] = poses[parent] @ joint_matrix(joint)
+                poses[joint.child] = poses[parent] @ joint_matrix(joint, positions)
                 queue.append(joint.child)
     for link in robot.links:  # links only on a cycle: check reports those
         poses.setdefault(link.name, np.eye(4))
@@ -127,10 +141,11 @@ def _mesh_scene(geometry, filename: Callable[[str], str], skip_materials: bool):
 
 
 def pieces(robot: yourdfpy.Robot, filename: Callable[[str], str],
-           collision: bool) -> Iterator[Piece]:
-    """Every visual (or collision) geometry of ``robot``, placed in the world and, for a
-    visual, coloured with its URDF material as yourdfpy colours it."""
-    poses = link_poses(robot)
+           collision: bool, positions: dict[str, float] | None = None) -> Iterator[Piece]:
+    """Every visual (or collision) geometry of ``robot``, placed in the world with the
+    joints at ``positions`` (default zero) and, for a visual, coloured with its URDF
+    material as yourdfpy colours it."""
+    poses = link_poses(robot, positions)
     materials = {material.name: material for material in robot.materials}
     for link in robot.links:
         pose = poses[link.name]

@@ -43,6 +43,7 @@ class RenderOptions:
     background: tuple[int, int, int] = DEFAULT_BACKGROUND
     grid: bool = True
     axes: bool = True
+    joints: tuple = ()  # --joint: (name, value text) pairs; the rest stay at zero
 
     def __post_init__(self):
         if self.view not in VIEW_CHOICES:
@@ -55,7 +56,10 @@ class RenderOptions:
 
     def fingerprint(self) -> dict:
         """The options as plain data, for the skip-unchanged manifest."""
-        return asdict(self)
+        data = asdict(self)
+        if not self.joints:  # pictures at joint zero keep the key they had before --joint
+            del data["joints"]
+        return data
 
 
 def parse_size(text: str) -> tuple[int, int]:

@@ -35,6 +35,7 @@ from ..errors import McarError, RenderError
 from ..expand.xacro_build import display_path
 from ..packages.search import PackageSearch
 from .assembly import Piece, pieces, unit_primitive
+from .pose import joint_positions
 
 # Faces meeting at less than this angle are shaded as one smooth surface (cylinder
 # sides, spheres); sharper edges (box corners, cylinder rims) stay crisp.
@@ -170,17 +171,19 @@ def _unpack_compressed(root, source: ModelSource, search: PackageSearch, collisi
     return unpacked
 
 
-def load_scene(source: ModelSource, search: PackageSearch, collision: bool = False) -> Scene:
-    """Pose the robot at zero joint positions and flatten its geometry into triangles."""
+def load_scene(source: ModelSource, search: PackageSearch, collision: bool = False,
+               joints=()) -> Scene:
+    """Pose the robot (joints at zero, or as ``joints``, (name, value text) pairs of
+    ``--joint``) and flatten its geometry into triangles."""
     root = parse_urdf(source)
     mesh_files(root, source, search, collision)  # report a missing mesh before yourdfpy hides it
     with tempfile.TemporaryDirectory(prefix="mcar-meshes-") as folder:
         unpacked = _unpack_compressed(root, source, search, collision, Path(folder))
-        return _load_model(source, search, collision, unpacked)
+        return _load_model(source, search, collision, unpacked, joints)
 
 
 def _load_model(source: ModelSource, search: PackageSearch, collision: bool,
-                unpacked: dict[str, str]) -> Scene:
+                unpacked: dict[str, str], joints=()) -> Scene:
     def resolve(fname: str) -> str:
         if fname.strip() in unpacked:
             return unpacked[fname.strip()]
@@ -196,9 +199,10 @@ def _load_model(source: ModelSource, search: PackageSearch, collision: bool,
             io.BytesIO(source.xml), filename_handler=resolve, build_scene_graph=False,
             load_meshes=False, build_collision_scene_graph=False,
             load_collision_meshes=False)
+        positions = joint_positions(model.robot, joints, display_path(source.path))
         link_colors = _link_colors(model) if collision else {}
         with np.errstate(all="ignore"):  # an overflow is reported below, not as a warning
-            scene = _flatten(pieces(model.robot, resolve, collision), link_colors)
+            scene = _flatten(pieces(model.robot, resolve, collision, positions), link_colors)
     except McarError:
         raise
     except Exception as exc:  # yourdfpy and trimesh raise anything from KeyError to ValueError

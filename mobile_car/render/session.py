@@ -192,7 +192,8 @@ class RenderSession:
                                    diagnostics_data(warnings))
                 return JobResult(job, "unchanged", warnings=warnings,
                                  seconds=time.perf_counter() - started)
-            scene = load_scene(source, result.loaded.search, collision=self.options.collision)
+            scene = load_scene(source, result.loaded.search, collision=self.options.collision,
+                               joints=self.options.joints)
             if not scene.triangle_count:
                 warnings.append(f"no {kind} geometry to draw")
             renderer = self._renderer()

@@ -1,0 +1,139 @@
+"""``mcar view``: the robot live in a browser, with joint sliders, reloading as you edit."""
+
+from __future__ import annotations
+
+import sys
+import time
+
+import click
+
+from mobile_car.errors import McarError, UsageError
+
+from . import signals, streams
+from .common import INPUT_HELP, handle_errors, load_inputs, report, robot_options, stdin_for
+
+HELP = f"""Show a robot in the browser: turn its joints, see every edit at once.
+
+\b
+  mcar view                          the package's robot (its one top-level robot
+                                     file, else name one), else the bundled car
+  mcar view robot.urdf.xacro [N:=V]  one file (same options as mcar build)
+  mcar view --port 8081 --no-browser serve only; open the printed URL yourself
+
+The robot is checked first, as by `mcar check`: one with errors is reported with
+check's diagnostics (exit 1) and not served. The page has a slider for every movable
+joint (the URDF's limits; continuous joints -pi..pi; mimic joints follow), a reset
+button, and switches for visual and collision geometry and link frames.
+
+Live reload: whenever a file the robot was built from changes (the xacro files it
+includes, its meshes), it is built and checked again and the page shows the new
+robot. An edit that does not build is shown in the page and on stderr, and the last
+good robot stays on screen.
+
+Unlike `mcar render` (still pictures at joint zero, for files and CI), view is for a
+person at a browser. It serves on 127.0.0.1 only, unless --host says otherwise; Ctrl-C
+stops it. It needs the optional extra: pip install "mcar[view]".
+
+{INPUT_HELP}
+
+\b
+Exit codes:
+  0  not used: view serves until it is stopped
+  1  the robot has problems (check's errors, a missing mesh): not served
+  2  usage, I/O or environment error: bad option, missing file, port in use,
+     the view extra not installed
+  130  interrupted (Ctrl-C); 143 terminated
+"""
+
+# How often the robot's files are looked at for edits.
+POLL_SECONDS = 0.3
+
+
+def _require_viser() -> None:
+    try:
+        import viser  # noqa: F401
+    except ImportError:
+        raise UsageError('mcar view needs viser, which is not installed: '
+                         'pip install "mcar[view]"') from None
+
+
+def _choose(selection):
+    """The one robot to show: the named file, or a package's one top-level robot file."""
+    inputs = selection.inputs
+    if len(inputs) == 1:
+        return inputs[0]
+    if selection.kind == "files":
+        raise UsageError(f"mcar view shows one robot; {len(inputs)} files were named")
+    depth = min(len(inp.relative.parts) for inp in inputs)
+    top = [inp for inp in inputs if len(inp.relative.parts) == depth]
+    if len(top) == 1:
+        return top[0]
+    names = ", ".join(str(inp.relative) for inp in top)
+    raise UsageError(f"{len(top)} robot files here ({names}): name the one to view")
+
+
+@click.command("view", help=HELP, short_help="Show the robot in a browser, live.")
+@click.argument("words", nargs=-1, metavar="[INPUT] [NAME:=VALUE]...")
+@click.option("--host", default="127.0.0.1", show_default=True,
+              help="Address to serve on; 0.0.0.0 lets other machines connect.")
+@click.option("--port", type=click.IntRange(0, 65535), default=8080, show_default=True,
+              help="Port to serve on (0: any free port).")
+@click.option("--no-browser", is_flag=True, help="Do not open a browser; only print the URL.")
+@robot_options
+@handle_errors
+def command(words, host, port, no_browser, package_paths, sets, config_files):
+    _require_viser()
+    with load_inputs(words, package_paths, sets, config_files) as (selection, options):
+        inp = _choose(selection)
+        from mobile_car.view.model import load_model
+
+        signals.raise_if_received()  # trimesh's import guards swallow Ctrl-C and SIGTERM
+        model = load_model(inp, options, stdin=stdin_for(selection))
+        for warning in model.warnings:
+            click.echo(warning.text(), err=True)
+        view = _serve(model, lambda: load_model(inp, options), host, port)
+        try:
+            with streams.stdout_writes():
+                click.echo(f"mcar view: {inp.label} at {view.url} (Ctrl-C stops)")
+                sys.stdout.flush()
+            if not no_browser:
+                import webbrowser
+
+                webbrowser.open(view.url)
+            _watch(view)
+        finally:
+            view.stop()
+
+
+def _serve(model, reload, host: str, port: int):
+    from mobile_car.view.server import RobotView
+
+    try:
+        view = RobotView(model, reload, host=host, port=port)
+    except OSError as error:  # a host that is no address of this machine
+        raise UsageError(f"cannot serve on {host}:{port}: {error.strerror or error}") from None
+    if port and view.port != port:  # viser moves on to the next free port: say it is taken
+        view.stop()
+        raise UsageError(f"port {port} is in use; choose another with --port (0: any)")
+    return view
+
+
+def _watch(view) -> None:
+    """Rebuild on every edit until Ctrl-C (which raises KeyboardInterrupt here)."""
+    while True:
+        time.sleep(POLL_SECONDS)
+        changed, error = view.reload_if_changed()
+        if not changed:
+            continue
+        if error is not None:
+            _report_kept(error)
+        else:
+            from mobile_car.load.inputs import display_path
+
+            click.echo(f"mcar view: reloaded ({display_path(changed[0])} changed)", err=True)
+
+
+def _report_kept(error: McarError) -> None:
+    report(error)
+    click.echo("mcar view: the last good robot stays on the page", err=True)
+

@@ -1,0 +1,114 @@
+"""One robot input, loaded and checked as ``mcar render`` does, as a yourdfpy model for viser.
+
+A robot that ``mcar check`` rejects (any error, or a missing visual mesh) is refused with
+:class:`~mobile_car.errors.CheckFailed`, carrying check's diagnostics, so the viewer shows
+what the command line would print, and never a half-built robot.
+"""
+
+from __future__ import annotations
+
+import io
+import logging
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import yourdfpy
+
+from ..check.checker import check_input
+from ..errors import CheckFailed, McarError, RenderError
+from ..load.inputs import RobotInput
+from ..load.robot import LoadOptions
+from ..render.session import blocking_diagnostics, model_source
+
+# The joint types a slider moves (and ``mcar render --joint`` poses).
+MOVING = ("revolute", "continuous", "prismatic")
+
+
+@dataclass
+class JointRange:
+    """A movable joint's slider: ``lower``..``upper`` (radians or metres), ``home`` is
+    where the robot is drawn at start and after reset (zero, or the nearer limit)."""
+
+    name: str
+    kind: str  # revolute, continuous or prismatic
+    lower: float
+    upper: float
+
+    @property
+    def home(self) -> float:
+        return min(max(0.0, self.lower), self.upper)
+
+
+@dataclass
+class ViewModel:
+    """A checked robot ready to show: the yourdfpy model (both scene graphs built), the
+    joints a slider moves, and every file it was made from (to watch for edits)."""
+
+    urdf: yourdfpy.URDF
+    joints: list[JointRange]
+    files: list[Path] = field(default_factory=list)
+    warnings: list = field(default_factory=list)  # check's diagnostics worth showing
+
+    @property
+    def has_collision(self) -> bool:
+        return any(link.collisions for link in self.urdf.robot.links)
+
+
+def load_model(inp: RobotInput, options: LoadOptions, stdin=None) -> ViewModel:
+    """Load, check and parse one input; McarError (CheckFailed for check's findings)."""
+    result = check_input(inp, options, stdin=stdin)
+    blocking = blocking_diagnostics(result, collision=False)
+    if blocking:
+        raise CheckFailed(inp.label, blocking)
+    loaded = result.loaded
+    source = model_source(loaded)
+    meshes = [mesh.path for mesh in result.mesh_files if mesh.path is not None]
+    generated = options.overrides.path if options.overrides is not None else None
+    files = [path for path in dict.fromkeys([*loaded.deps, *meshes]) if path != generated]
+
+    def resolve(fname: str) -> str:
+        return str(loaded.search.resolve_uri(fname, base=source.path.parent))
+
+    # yourdfpy logs what it cannot load; a library must not print, and mcar check has
+    # reported every real problem above.
+    logging.getLogger("yourdfpy").addHandler(logging.NullHandler())
+    logging.getLogger("yourdfpy").propagate = False
+    try:
+        urdf = yourdfpy.URDF.load(io.BytesIO(source.xml), filename_handler=resolve,
+                                  build_scene_graph=True, load_meshes=True,
+                                  build_collision_scene_graph=True,
+                                  load_collision_meshes=True)
+    except McarError:
+        raise
+    except Exception as exc:  # yourdfpy and trimesh raise anything from KeyError to ValueError
+        raise RenderError(f"cannot build the model: {type(exc).__name__}: {exc}",
+                          file=inp.label) from None
+    warnings = [d for d in result.diagnostics if d.rule == "W220"]
+    return ViewModel(urdf, joint_ranges(urdf), files, warnings)
+
+
+def joint_ranges(urdf: yourdfpy.URDF) -> list[JointRange]:
+    """A slider range for every joint that moves on its own (mimic joints follow theirs):
+    the URDF's limits; a continuous joint turns a full circle, -pi..pi."""
+    ranges = []
+    for joint in urdf.actuated_joints:
+        if joint.type not in MOVING:  # floating, planar: no one slider moves them
+            continue
+        limit = joint.limit
+        lower = None if limit is None else limit.lower
+        upper = None if limit is None else limit.upper
+        if joint.type == "continuous" or lower is None or upper is None:
+            lower, upper = -math.pi, math.pi
+        ranges.append(JointRange(joint.name, joint.type, float(lower), float(upper)))
+    return ranges
+
+
+def error_lines(error: McarError) -> list[str]:
+    """The lines ``mcar`` prints for an error (uncoloured), for the page."""
+    diagnostics = getattr(error, "diagnostics", None)
+    if diagnostics:
+        return [diagnostic.text() for diagnostic in diagnostics]
+    where = error.location()
+    return [f"{where + ': ' if where else ''}error: {error.message}",
+            *(f"  {line}" for line in error.details)]

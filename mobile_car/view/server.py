@@ -1,0 +1,277 @@
+"""The robot in a browser: a viser server with the robot, joint sliders and display toggles.
+
+viser serves the page and keeps every open page in step with the Python objects here;
+:class:`viser.extras.ViserUrdf` draws the yourdfpy model and moves its links. Link frames
+are drawn as separate nodes at the links' world poses so that they can be shown while
+the geometry is hidden.
+
+Threads: viser calls the GUI callbacks on its own threads, while the command's main
+thread rebuilds the robot when a file changes; one lock keeps them apart.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import math
+import threading
+import warnings
+from collections.abc import Callable
+
+import numpy as np
+import viser
+import viser.transforms as vtf
+from viser.extras import ViserUrdf
+
+from ..errors import McarError
+from .model import ViewModel, error_lines
+from .watch import FileWatch
+
+ROBOT_NODE = "/robot"
+FRAMES_NODE = "/frames"
+# Collision geometry has no colour in URDF: a see-through orange tells it from the visual.
+COLLISION_RGBA = (0.95, 0.55, 0.15, 0.6)
+# Where the camera looks from at start, as rviz's default view does: front-left-above.
+CAMERA_DIRECTION = np.array([1.0, 0.8, 0.7])
+CAMERA_FOV = math.radians(50)
+
+# Rows of the control panel, top to bottom.
+_ORDER = {"status": 0, "visual": 1, "collision": 2, "frames": 3, "reset": 4, "joints": 10}
+
+
+def url_of(host: str, port: int) -> str:
+    shown = f"[{host}]" if ":" in host else host
+    return f"http://{shown}:{port}/"
+
+
+class RobotView:
+    """Serves ``model`` at ``host``:``port`` (0: any free port) until :meth:`stop`;
+    ``reload`` builds the robot anew when :meth:`reload_if_changed` sees an edit."""
+
+    def __init__(self, model: ViewModel, reload: Callable[[], ViewModel],
+                 host: str = "127.0.0.1", port: int = 8080):
+        self._reload = reload
+        self._lock = threading.RLock()
+        self.model: ViewModel | None = None
+        self.errors: list[str] = []  # the last failed rebuild's lines; empty when current
+        self.reloads = 0  # rebuilds shown (for the tests and the status line)
+        self.sliders: dict[str, viser.GuiSliderHandle] = {}
+        self.frames: dict[str, viser.FrameHandle] = {}
+        self._robot: ViserUrdf | None = None
+        self._joints_folder = None
+        self.watch = FileWatch()
+        with _quiet():  # viser prints a banner whatever verbose says; the command prints
+            self.server = viser.ViserServer(host=host, port=port, verbose=False)
+        # viser's share button opens a tunnel through a server on the internet: this page
+        # is served to this machine only unless --host says otherwise, and stays so.
+        self.server.request_share_url = _no_share_url
+        try:
+            self.server.gui.configure_theme(show_share_button=False)
+            self._build_panel()
+            self._add_ground(model)
+            self.show(model)
+            self._frame_camera(model)
+        except BaseException:
+            self.stop()
+            raise
+
+    @property
+    def port(self) -> int:
+        return self.server.get_port()
+
+    @property
+    def url(self) -> str:
+        return url_of(self.server.get_host(), self.port)
+
+    def stop(self) -> None:
+        with _quiet():  # ("Server stopped", printed by viser's server thread)
+            self.server.stop()
+
+    # -- the control panel -------------------------------------------------------------
+
+    def _build_panel(self) -> None:
+        gui = self.server.gui
+        self.status = gui.add_markdown("", order=_ORDER["status"])
+        self.show_visual = gui.add_checkbox("Visual geometry", True, order=_ORDER["visual"])
+        self.show_collision = gui.add_checkbox("Collision geometry", False,
+                                               order=_ORDER["collision"])
+        self.show_frames = gui.add_checkbox("Link frames", False, order=_ORDER["frames"],
+                                            hint="x/y/z axes (red/green/blue) of every link")
+        self.reset = gui.add_button("Reset joints", order=_ORDER["reset"],
+                                    hint="Every joint back to zero (or its nearer limit)")
+        self.show_visual.on_update(lambda _: self._apply_visibility())
+        self.show_collision.on_update(lambda _: self._apply_visibility())
+        self.show_frames.on_update(lambda _: self._apply_visibility())
+        self.reset.on_click(lambda _: self.reset_joints())
+
+    def _apply_visibility(self) -> None:
+        with self._lock:
+            if self._robot is not None:
+                self._robot.show_visual = self.show_visual.value
+                if self.model.has_collision:  # (else ViserUrdf loaded none: nothing to show)
+                    self._robot.show_collision = self.show_collision.value
+            for frame in self.frames.values():
+                frame.visible = self.show_frames.value
+
+    def _set_status(self) -> None:
+        model = self.model
+        name = model.urdf.robot.name if model is not None else "?"
+        lines = [f"**{name}**: {len(model.urdf.robot.links)} links, "
+                 f"{len(model.joints)} movable joints"]
+        if self.reloads:
+            lines[0] += f"; reloaded {self.reloads}×"
+        if self.errors:
+            lines.append("**The last edit does not build; showing the last good model:**")
+            lines.append("```\n" + "\n".join(self.errors) + "\n```")
+        self.status.content = "\n\n".join(lines)
+
+    # -- the robot ---------------------------------------------------------------------
+
+    def show(self, model: ViewModel) -> None:
+        """Put ``model`` on the page in place of the one shown, keeping the joint values
+        of joints it still has (within their new limits)."""
+        with self._lock, self.server.atomic():
+            kept = {name: slider.value for name, slider in self.sliders.items()}
+            if self._robot is not None:
+                with warnings.catch_warnings():  # it removes children its parents took along
+                    warnings.simplefilter("ignore", UserWarning)
+                    self._robot.remove()
+            for frame in self.frames.values():
+                frame.remove()
+            if self._joints_folder is not None:
+                self._joints_folder.remove()
+            self.model = model
+            self.errors = []
+            self._robot = ViserUrdf(self.server, model.urdf, root_node_name=ROBOT_NODE,
+                                    load_meshes=True, load_collision_meshes=model.has_collision,
+                                    collision_mesh_color_override=COLLISION_RGBA)
+            self._add_frames(model)
+            self._add_sliders(model, kept)
+            self._pose()
+            self._apply_visibility()
+            self.watch.watch(model.files)
+            self._set_status()
+
+    def _add_frames(self, model: ViewModel) -> None:
+        size = _robot_size(model)
+        self.frames = {}
+        for index, link in enumerate(model.urdf.robot.links):
+            # Node names are paths: a link's name may hold a slash, its index cannot.
+            self.frames[link.name] = self.server.scene.add_frame(
+                f"{FRAMES_NODE}/{index}", axes_length=0.15 * size, axes_radius=0.006 * size,
+                visible=False)
+
+    def _add_sliders(self, model: ViewModel, kept: dict[str, float]) -> None:
+        self.sliders = {}
+        self._joints_folder = self.server.gui.add_folder("Joints", order=_ORDER["joints"])
+        with self._joints_folder:
+            for joint in model.joints:
+                unit = "m" if joint.kind == "prismatic" else "rad"
+                value = min(max(kept.get(joint.name, joint.home), joint.lower), joint.upper)
+                slider = self.server.gui.add_slider(
+                    joint.name, min=joint.lower, max=joint.upper,
+                    step=(joint.upper - joint.lower) / 1000 or 0.001, initial_value=value,
+                    hint=f"{joint.kind}, {joint.lower:g} to {joint.upper:g} {unit}")
+                slider.on_update(lambda _: self._pose())
+                self.sliders[joint.name] = slider
+
+    def joint_values(self) -> dict[str, float]:
+        return {name: float(slider.value) for name, slider in self.sliders.items()}
+
+    def reset_joints(self) -> None:
+        with self._lock:
+            for joint in self.model.joints:
+                self.sliders[joint.name].value = joint.home
+
+    def _pose(self) -> None:
+        """Move the links to the sliders' values (mimic joints follow, by yourdfpy)."""
+        with self._lock:
+            if self._robot is None:
+                return
+            values = self.joint_values()
+            if values:
+                self._robot.update_cfg(values)  # yourdfpy takes {joint name: value} too
+            urdf = self.model.urdf
+            for name, frame in self.frames.items():
+                pose = urdf.get_transform(name, urdf.base_link)
+                frame.wxyz = vtf.SO3.from_matrix(pose[:3, :3]).wxyz
+                frame.position = pose[:3, 3]
+
+    def _add_ground(self, model: ViewModel) -> None:
+        """A grid under the robot at start, with round spacing, for scale."""
+        size = _robot_size(model)
+        bounds = _bounds(model)
+        cell = 10 ** math.floor(math.log10(size / 4))
+        self.server.scene.add_grid("/ground", width=8 * size, height=8 * size, cell_size=cell,
+                                   section_size=10 * cell,
+                                   position=(0.0, 0.0, 0.0 if bounds is None else bounds[0][2]))
+
+    def _frame_camera(self, model: ViewModel) -> None:
+        """Start every page looking at the whole robot (viser's default camera stands
+        metres away, where a 30 cm robot is a speck)."""
+        centre, size = _robot_centre(model), _robot_size(model)
+        distance = 0.75 * size / math.tan(CAMERA_FOV / 2)
+        direction = CAMERA_DIRECTION / np.linalg.norm(CAMERA_DIRECTION)
+        camera = self.server.initial_camera
+        camera.fov = CAMERA_FOV
+        camera.near = size / 1000
+        camera.far = size * 1000
+        camera.look_at = centre
+        camera.position = centre + distance * direction
+        camera.up = (0.0, 0.0, 1.0)
+
+    # -- live reload -------------------------------------------------------------------
+
+    def reload_if_changed(self) -> tuple[list, McarError | None]:
+        """Rebuild if a file of the robot changed: (the changed files, the error that
+        kept the last good model on the page, or None)."""
+        changed = self.watch.changed()
+        if not changed:
+            return [], None
+        return changed, self.rebuild()
+
+    def rebuild(self) -> McarError | None:
+        """Build the robot anew and show it; on failure, keep the model shown and show
+        the error above it. Returns that error."""
+        try:
+            model = self._reload()
+        except McarError as error:
+            with self._lock:
+                self.errors = error_lines(error)
+                self._set_status()
+            return error
+        with self._lock:
+            self.reloads += 1
+            self.show(model)
+        return None
+
+
+def _no_share_url(*args, **kwargs) -> None:
+    return None
+
+
+@contextlib.contextmanager
+def _quiet():
+    with contextlib.redirect_stdout(io.StringIO()):
+        yield
+
+
+def _bounds(model: ViewModel) -> np.ndarray | None:
+    for scene in (model.urdf.scene, model.urdf.collision_scene):
+        if scene is not None and scene.geometry:
+            bounds = scene.bounds
+            if bounds is not None and np.isfinite(bounds).all():
+                return bounds
+    return None
+
+
+def _robot_size(model: ViewModel) -> float:
+    """The robot's bounding box diagonal in metres (1 m when it has no geometry)."""
+    bounds = _bounds(model)
+    size = float(np.linalg.norm(bounds[1] - bounds[0])) if bounds is not None else 0.0
+    return size if size > 1e-6 else 1.0
+
+
+def _robot_centre(model: ViewModel) -> np.ndarray:
+    bounds = _bounds(model)
+    return np.zeros(3) if bounds is None else (bounds[0] + bounds[1]) / 2

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import click
 
-from mobile_car.errors import McarError
+from mobile_car.errors import McarError, UsageError
 from mobile_car.load.inputs import display_path
 from mobile_car.packages.bundled import PACKAGE_NAME
 
@@ -43,6 +43,12 @@ that file's later steps; the other files go on. A summary table ends the run.
 
 Exit 0 only if every step of every file passed; 1 if any file has problems; 2 if the
 run could not be made (no package, no renderer: --no-render skips drawing).
+
+--against REV compares each robot file with the same file at the git revision REV, as
+`mcar diff REV FILE` does: the JUnit report gets a property mcar.diff on each of its
+testcases ("3 changes", "no change", "added since REV"), --diff-report FILE.md gets the
+markdown report (for a pull request's job summary). A change is not a failure: the exit
+code is the build's, check's and render's.
 
 {INPUT_HELP}
 
@@ -107,11 +113,15 @@ def _problems(item) -> list:
               show_default=True, help="As for mcar render.")
 @click.option("--junit-xml", metavar="FILE", type=click.Path(dir_okay=False),
               help="Also write the JUnit XML report to FILE (whatever --format is).")
+@click.option("--against", metavar="REV",
+              help="Compare every robot file with the same file at this git revision.")
+@click.option("--diff-report", metavar="FILE.md", type=click.Path(dir_okay=False),
+              help="With --against: write the comparison as markdown to FILE.md.")
 @click.option("-q", "--quiet", is_flag=True, help="text format: print only problems.")
 @robot_options
 @handle_errors
 def command(words, output_format, build_dir, render_dir, no_render, strict, renderer,
-            junit_xml, quiet, sets, config_files, package_paths):
+            junit_xml, against, diff_report, quiet, sets, config_files, package_paths):
     from mobile_car.ci import pipeline
     from mobile_car.ci.cache import CiCache
 
@@ -120,11 +130,19 @@ def command(words, output_format, build_dir, render_dir, no_render, strict, rend
     selection, mappings = select_inputs(words, package_paths, sets, config_files)
     build_dir = Path(build_dir) if build_dir else selection.output_root / "build"
     render_dir = Path(render_dir) if render_dir else selection.output_root / "renders"
-    if junit_xml:  # the inputs now, the files they include once they are read
-        from mobile_car.load.outputs import refuse_overwriting
+    if diff_report and not against:
+        raise UsageError("--diff-report FILE needs --against REV (the revision to compare with)")
+    for report_file in (junit_xml, diff_report):
+        if report_file:  # the inputs now, the files they include once they are read
+            from mobile_car.load.outputs import refuse_overwriting
 
-        refuse_overwriting(junit_xml, [inp.path for inp in selection.inputs])
+            refuse_overwriting(report_file, [inp.path for inp in selection.inputs])
     items = pipeline.plan(selection, build_dir, None if no_render else render_dir)
+    revision = None
+    if against:  # a wrong REV is a usage error before anything is built
+        from mobile_car.ci.against import resolve_revision
+
+        revision = resolve_revision(against, items[0].source.parent)
     # Items whose inputs, outputs and picture are unchanged are replayed from the record.
     basis = input_basis(mappings, package_paths, sets, config_files)
     cache = CiCache(build_dir)
@@ -136,14 +154,19 @@ def command(words, output_format, build_dir, render_dir, no_render, strict, rend
     todo = [item for item in items
             if not cache.replay(item, basis, strict, _picture_fresh(manifest, basis, renderer))]
     checked = []
+    compared = []
     try:
-        if todo:
+        if todo or revision is not None:
             with prepared_load(selection, mappings, package_paths, sets,
                                config_files) as options:
                 for item in todo:
                     if pipeline.build_and_check(item, options, strict):
                         checked.append(item)
                     cache.record(item, basis, strict)
+                if revision is not None:
+                    from mobile_car.ci.against import diff_items
+
+                    compared = diff_items(items, revision, options)
         else:
             say_which_package(selection)
     finally:
@@ -161,8 +184,25 @@ def command(words, output_format, build_dir, render_dir, no_render, strict, rend
         refuse_overwriting(junit_xml, read)
 
         atomic_write(junit_xml, junit_report(items))
+    if diff_report:
+        _write_diff_report(diff_report, compared, revision, items)
     _emit(items, output_format, quiet, time.perf_counter() - started, no_render)
+    if revision is not None:
+        changed = sum(1 for entry in compared if entry.diff is not None and entry.diff.changed
+                      or entry.summary.startswith("added"))
+        click.echo(f"mcar ci: against {revision.name}: {changed} of {len(compared)} robot "
+                   "files changed", err=True)
     sys.exit(code)
+
+
+def _write_diff_report(path: str, compared, revision, items) -> None:
+    from mobile_car.atomic import atomic_write
+    from mobile_car.ci.against import markdown_report
+    from mobile_car.load.outputs import refuse_overwriting
+
+    refuse_overwriting(path, [item.source for item in items]
+                       + [dep for item in items for dep in item.deps])
+    atomic_write(path, markdown_report(compared, revision))
 
 
 def _picture_fresh(manifest, basis, renderer: str):

@@ -10,9 +10,17 @@ from pathlib import Path
 import click
 
 from mobile_car.errors import EXIT_PROBLEMS, EXIT_USAGE, InputError, McarError, UsageError
+from mobile_car.render.options import RENDERER_ENV, RENDERERS
 
 from . import streams
-from .common import INPUT_HELP, handle_errors, prepared_load, robot_options, stdin_for
+from .common import (
+    INPUT_HELP,
+    handle_errors,
+    prepared_load,
+    print_warning,
+    robot_options,
+    stdin_for,
+)
 
 HELP = f"""Compare two robots by what they are, not by their text: for code review.
 
@@ -21,6 +29,7 @@ HELP = f"""Compare two robots by what they are, not by their text: for code revi
   mcar diff HEAD~1                           the package at HEAD~1 against the working tree
   mcar diff main urdf/mobile_robot.xacro     one robot file, at main and now
   mcar diff v1.0 HEAD --format markdown      two revisions, as a pull-request comment
+  mcar diff HEAD~1 urdf/robot.xacro --picture diff.png   and a picture of both
 
 Links and joints are matched by name: added, removed, renamed (same content under a
 new name). Per joint: type, parent, child, origin (mm, degrees), axis, limits; per
@@ -30,6 +39,11 @@ macro shows at every frame it moves; totals: mass, centre of mass, bounding box 
 footprint of the visuals; the dimensions of config.xacro when both robots have one.
 Numbers within --tolerance (SI units) are equal: attribute order and number spelling
 never count. Both robots must pass `mcar check`.
+
+--picture FILE.png draws OLD (left) and NEW (right) side by side from one camera, the
+links that changed (or were added, removed or renamed) in magenta and the others faded;
+it draws one robot pair, so with a revision name one robot file. The renderer is chosen
+as for mcar render.
 
 OLD and NEW are files, or git revisions of the repository you stand in: each
 revision is built from its own sources, unpacked into a temporary folder (nothing in
@@ -58,12 +72,18 @@ WORKING_TREE = "working tree"
               help="text for a terminal, markdown for a pull-request comment, json for scripts.")
 @click.option("--tolerance", type=click.FloatRange(min=0.0), default=1e-9, show_default=True,
               help="Numbers closer than this (in m, rad, kg) are equal.")
+@click.option("--picture", metavar="FILE.png", type=click.Path(dir_okay=False),
+              help="Also draw OLD and NEW side by side, the changed links highlighted.")
+@click.option("--renderer", type=click.Choice(RENDERERS), default="auto", show_default=True,
+              envvar=RENDERER_ENV, show_envvar=True, help="For --picture: as for mcar render.")
 @robot_options
 @handle_errors
-def command(words, fmt, tolerance, package_paths, sets, config_files):
+def command(words, fmt, tolerance, picture, renderer, package_paths, sets, config_files):
+    if picture:
+        _refuse_other_formats(picture)
     try:
         diffs, only_old, only_new = _compare(words, tolerance, package_paths, sets,
-                                             config_files)
+                                             config_files, picture, renderer)
     except McarError as error:
         error.exit_code = EXIT_USAGE  # 1 means "the robots differ": any failure is 2
         raise
@@ -88,7 +108,16 @@ def command(words, fmt, tolerance, package_paths, sets, config_files):
         sys.exit(EXIT_PROBLEMS)
 
 
-def _compare(words, tolerance, package_paths, sets, config_files):
+def _refuse_other_formats(picture: str) -> None:
+    suffix = Path(picture).suffix
+    if suffix.lower() != ".png":
+        shown = suffix or "a name without .png"
+        raise UsageError(f"--picture {picture}: mcar diff draws PNG pictures, not {shown}; "
+                         f"name it {Path(picture).with_suffix('.png')}")
+
+
+def _compare(words, tolerance, package_paths, sets, config_files, picture=None,
+             renderer="auto"):
     from mobile_car.diff import compare, describe
     from mobile_car.diff.revisions import is_revision
     from mobile_car.load.inputs import split_words
@@ -112,19 +141,50 @@ def _compare(words, tolerance, package_paths, sets, config_files):
         refuse_unused_arguments(inputs, LoadOptions(mappings),
                                 overriding=bool(sets or config_files))
         selection = Selection("files", inputs, output_root=cwd)
+        pairs = [key for key in new_side if key in old_side]
+        if picture and len(pairs) != 1:
+            raise UsageError(f"--picture draws one robot, but {len(pairs)} robot files are "
+                             "compared; name one robot file")
+        probe = _start_probe(stack, renderer) if picture else None
         diffs = []
         with prepared_load(selection, mappings, package_paths, sets, config_files) as options:
             dimension_args = options.overrides.mappings if options.overrides else {}
             stdin = stdin_for(selection)
-            for key in [*new_side, *(k for k in old_side if k not in new_side)]:
-                if key not in old_side or key not in new_side:
-                    continue
-                facts = [describe(load_robot(inp, options, stdin), label, dimension_args)
-                         for inp, label in (old_side[key], new_side[key])]
+            for key in pairs:
+                loaded = [load_robot(inp, options, stdin) for inp, _ in (old_side[key],
+                                                                          new_side[key])]
+                facts = [describe(robot, label, dimension_args) for robot, (_, label)
+                         in zip(loaded, (old_side[key], new_side[key]), strict=True)]
                 diffs.append(compare(*facts, tolerance))
+                if picture:
+                    _draw(picture, loaded, diffs[-1], renderer, probe)
     only_old = [str(k) for k in old_side if k not in new_side]
     only_new = [str(k) for k in new_side if k not in old_side]
     return diffs, only_old, only_new
+
+
+def _start_probe(stack, renderer: str):
+    """Try OpenGL in a child process while the robots load (see mcar render)."""
+    if renderer == "raycast":
+        return None
+    from mobile_car.render.backend import GLProbe
+
+    probe = GLProbe()
+    stack.callback(probe.cancel)
+    return probe
+
+
+def _draw(picture: str, loaded, diff, renderer: str, probe) -> None:
+    from mobile_car.atomic import atomic_write
+    from mobile_car.diff.picture import diff_picture
+    from mobile_car.load.outputs import refuse_overwriting
+
+    for robot in loaded:
+        refuse_overwriting(picture, [robot.input.path, *robot.deps])
+    png, notes = diff_picture(*loaded, diff, renderer, probe)
+    for note in notes:
+        print_warning("mcar", note)
+    atomic_write(picture, png)
 
 
 def _file_sides(names, package_paths):

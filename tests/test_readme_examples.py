@@ -127,8 +127,26 @@ def test_readme_examples_run_as_written(tmp_path):
     assert not failures, "\n".join(failures)
 
 
+# A pull request's base branch, as actions/checkout with fetch-depth: 0 leaves it.
+BASE_REF = ("${{ github.base_ref }}", "main")
+
+
+def _git_clone_with_base_branch(folder: Path) -> None:
+    """``folder`` as a git clone whose origin/main is its one commit (for --against)."""
+    import pytest
+
+    if shutil.which("git") is None:
+        pytest.skip("git is not installed: the examples compare with a git revision")
+    env = dict(os.environ, GIT_AUTHOR_NAME="t", GIT_AUTHOR_EMAIL="t@example.com",
+               GIT_COMMITTER_NAME="t", GIT_COMMITTER_EMAIL="t@example.com")
+    for args in (["init", "-q"], ["add", "."], ["commit", "-qm", "base"],
+                 ["update-ref", "refs/remotes/origin/main", "HEAD"]):
+        subprocess.run(["git", *args], cwd=folder, env=env, check=True, capture_output=True)
+
+
 def test_examples_mcar_steps_run_as_written(run_mcar, tmp_path):
-    """examples/github-actions.yml's `mcar` steps, in a package made by `mcar init`."""
+    """examples/github-actions.yml's `mcar` steps, in a package made by `mcar init`, in a
+    git repository whose origin/main is the pull request's base branch."""
     steps = []
     for example in sorted((REPO / "examples").glob("*.yml")):
         for line in example.read_text(encoding="utf-8").splitlines():
@@ -137,6 +155,7 @@ def test_examples_mcar_steps_run_as_written(run_mcar, tmp_path):
                 steps.append((example.name, match.group(1)))
     assert steps
     assert run_mcar("init", "my_robot_description", cwd=tmp_path).returncode == 0
+    _git_clone_with_base_branch(tmp_path)
     for name, command in steps:
-        result = run_mcar(*command.split()[1:], cwd=tmp_path)
+        result = run_mcar(*command.replace(*BASE_REF).split()[1:], cwd=tmp_path)
         assert result.returncode == 0, f"{name}: {command}\n{result.stderr}"

@@ -3,6 +3,8 @@
 One ``<testcase>`` per file and step: classname ``mcar.<step>``, name the file; a failed
 step has a ``<failure>`` whose message is its first problem and whose text lists every
 problem as ``FILE:LINE: severity: message [RULE]``; a skipped step has ``<skipped>``.
+With ``mcar ci --against REV`` every testcase of a file has the property ``mcar.diff``:
+what changed in that robot since REV ("3 changes", "no change", ...).
 """
 
 from __future__ import annotations
@@ -25,6 +27,9 @@ def junit_report(items: list[CiItem], suite: str = "mcar ci") -> str:
     for item, step in cases:
         case = ET.SubElement(testsuite, "testcase", classname=f"mcar.{step.name}",
                              name=item.label, file=str(item.source), time=f"{step.seconds:.3f}")
+        if item.diff is not None:
+            properties = ET.SubElement(case, "properties")
+            ET.SubElement(properties, "property", name="mcar.diff", value=item.diff)
         if step.status == "failed":
             failure = ET.SubElement(case, "failure", message=step.message, type=step.name)
             failure.text = "\n".join(d.text() for d in step.diagnostics) or step.message

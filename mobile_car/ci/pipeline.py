@@ -50,6 +50,7 @@ class CiItem:
     checked: object = None  # the CheckResult of a passed check step, which render draws
     deps: list[Path] = field(default_factory=list)  # the files its build read
     generated: tuple[Path, ...] = ()  # files written for its build (overrides): no inputs
+    diff: str | None = None  # with --against: what changed since then ("3 changes")
 
     @property
     def source(self) -> Path:

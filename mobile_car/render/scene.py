@@ -58,6 +58,10 @@ class Scene:
     positions: np.ndarray
     normals: np.ndarray
     colors: np.ndarray
+    # With load_scene(with_links=True): the link each corner belongs to, as an index
+    # into ``link_names`` (mcar diff recolours the changed links).
+    link_of: np.ndarray | None = None
+    link_names: tuple[str, ...] = ()
 
     @property
     def triangle_count(self) -> int:
@@ -172,18 +176,19 @@ def _unpack_compressed(root, source: ModelSource, search: PackageSearch, collisi
 
 
 def load_scene(source: ModelSource, search: PackageSearch, collision: bool = False,
-               joints=()) -> Scene:
+               joints=(), with_links: bool = False) -> Scene:
     """Pose the robot (joints at zero, or as ``joints``, (name, value text) pairs of
-    ``--joint``) and flatten its geometry into triangles."""
+    ``--joint``) and flatten its geometry into triangles; ``with_links`` also notes which
+    link each corner belongs to."""
     root = parse_urdf(source)
     mesh_files(root, source, search, collision)  # report a missing mesh before yourdfpy hides it
     with tempfile.TemporaryDirectory(prefix="mcar-meshes-") as folder:
         unpacked = _unpack_compressed(root, source, search, collision, Path(folder))
-        return _load_model(source, search, collision, unpacked, joints)
+        return _load_model(source, search, collision, unpacked, joints, with_links)
 
 
 def _load_model(source: ModelSource, search: PackageSearch, collision: bool,
-                unpacked: dict[str, str], joints=()) -> Scene:
+                unpacked: dict[str, str], joints=(), with_links: bool = False) -> Scene:
     def resolve(fname: str) -> str:
         if fname.strip() in unpacked:
             return unpacked[fname.strip()]
@@ -202,7 +207,8 @@ def _load_model(source: ModelSource, search: PackageSearch, collision: bool,
         positions = joint_positions(model.robot, joints, display_path(source.path))
         link_colors = _link_colors(model) if collision else {}
         with np.errstate(all="ignore"):  # an overflow is reported below, not as a warning
-            scene = _flatten(pieces(model.robot, resolve, collision, positions), link_colors)
+            scene = _flatten(pieces(model.robot, resolve, collision, positions), link_colors,
+                             with_links)
     except McarError:
         raise
     except Exception as exc:  # yourdfpy and trimesh raise anything from KeyError to ValueError
@@ -320,7 +326,8 @@ def _mesh_corners(piece: Piece, link_colors: dict[str, tuple]) -> tuple | None:
     return _smooth_corners(mesh)
 
 
-def _flatten(placed: Iterator[Piece], link_colors: dict[str, tuple]) -> Scene:
+def _flatten(placed: Iterator[Piece], link_colors: dict[str, tuple],
+             with_links: bool = False) -> Scene:
     placed = list(placed)
     shaped = []
     # Where two faces lie in one plane, the one drawn first shows. Pictures keep the order
@@ -333,15 +340,17 @@ def _flatten(placed: Iterator[Piece], link_colors: dict[str, tuple]) -> Scene:
         else:
             corners = _mesh_corners(piece, link_colors)
         if corners is not None:
-            shaped.append((piece.transform, corners))
+            shaped.append((piece.transform, corners, piece.link))
     # Written straight into the float32 arrays the renderer takes: a robot of 10,000
     # links has millions of corners, and lists of float64 parts would triple the memory.
-    count = sum(len(corners[0]) for _, corners in shaped)
+    count = sum(len(corners[0]) for _, corners, _ in shaped)
     positions = np.empty((count, 3), np.float32)
     normals = np.empty((count, 3), np.float32)
     colors = np.empty((count, 4), np.float32)
+    names: dict[str, int] = {}
+    link_of = np.empty(count, np.int32) if with_links else None
     start = 0
-    for transform, (local_positions, local_normals, corner_colors) in shaped:
+    for transform, (local_positions, local_normals, corner_colors), link in shaped:
         end = start + len(local_positions)
         linear, offset = transform[:3, :3], transform[:3, 3]
         positions[start:end] = local_positions @ linear.T + offset
@@ -350,5 +359,7 @@ def _flatten(placed: Iterator[Piece], link_colors: dict[str, tuple]) -> Scene:
         normals[start:end] = turned / np.maximum(
             np.linalg.norm(turned, axis=1, keepdims=True), 1e-12)
         colors[start:end] = corner_colors
+        if link_of is not None:
+            link_of[start:end] = names.setdefault(link, len(names))
         start = end
-    return Scene(positions, normals, colors)
+    return Scene(positions, normals, colors, link_of, tuple(names))

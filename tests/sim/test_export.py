@@ -3,8 +3,13 @@ from wherever it was written, the car driving off when its motors turn."""
 
 from __future__ import annotations
 
-import mujoco
 import numpy as np
+
+from mobile_car.sim.engine import mujoco as engine
+
+# Through mcar's import, which picks EGL first: a bare `import mujoco` here would fix GLFW
+# as the renderer for every later test in this process (test_record.py).
+mujoco = engine()
 
 ROBOT = "urdf/mobile_robot.xacro"
 # One link, its collision a mesh of the bundled package: the mesh must resolve from the

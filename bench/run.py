@@ -235,7 +235,7 @@ def versions() -> str:
             parts.append(f"check_urdf (liburdfdom-tools) {urdfdom}")
     except (OSError, subprocess.TimeoutExpired):
         pass
-    for name in ("mcar", "xacro", "lxml", "click"):
+    for name in ("mcar", "xacro", "lxml", "click", "mujoco"):
         try:
             parts.append(f"{name} {importlib.metadata.version(name)}")
         except importlib.metadata.PackageNotFoundError:
@@ -551,8 +551,40 @@ def section_noop(rows: list[str], work: Path, quick: bool) -> None:
     progress("no-op measured")
 
 
+def section_sim(rows: list[str], work: Path, quick: bool) -> None:
+    """A cold `mcar sim` of the car (a fresh process: MuJoCo imported, the model made,
+    drop, drive and spin run), against `mcar --version` and the bare MuJoCo import."""
+    runs = 5 if quick else 11
+    robot = str(REPO / "urdf" / "mobile_robot.xacro")
+    version = measure([MCAR, "--version"], runs)
+    cases = [
+        ("`mcar --version`", version, None),
+        ("`python -c 'import mujoco'`", measure([sys.executable, "-c", "import mujoco"], runs),
+         None),
+        ("`mcar sim mobile_robot.xacro` (drop, drive, spin)",
+         measure([MCAR, "sim", robot], runs, cwd=work), 1.5),
+        ("`mcar sim mobile_robot.xacro --scenario drop`",
+         measure([MCAR, "sim", robot, "--scenario", "drop"], runs, cwd=work), None),
+    ]
+    rows += ["## `mcar sim`", "",
+             "The complete car simulated in MuJoCo, headless, each run a fresh process. "
+             "Target: `mcar sim` of the car under 1.5 s. *x --version*: the time over "
+             f"`mcar --version` in this run ({fmt_time(version.wall)}).", "",
+             "| command | median | peak memory | x --version | exit | target |",
+             "|---|---:|---:|---:|---|---|"]
+    for label, result, limit in cases:
+        met = None if limit is None else (result.ok and result.wall < limit)
+        rows.append(f"| {label} | {time_cell(result)} | {fmt_peak(result)} | "
+                    f"{result.wall / version.wall:.1f} | {exit_text(result.codes)} | "
+                    f"{verdict(met)} |")
+    rows.append("")
+    rows += notes_for("sim")
+    progress("sim measured")
+
+
 SECTIONS = {"check": section_check, "build": section_build, "startup": section_startup,
-            "batch": section_batch, "render": section_render, "noop": section_noop}
+            "batch": section_batch, "render": section_render, "noop": section_noop,
+            "sim": section_sim}
 NEEDS_CHECK_URDF = {"check", "startup", "batch"}
 
 

@@ -23,7 +23,7 @@ from .common import (
     stdin_for,
 )
 
-HELP = f"""Expand xacro into URDF.
+HELP = f"""Expand xacro into URDF (or into MuJoCo's MJCF, --format mjcf).
 
 \b
   mcar build FILE.xacro [NAME:=VALUE ...]      URDF on stdout
@@ -34,6 +34,7 @@ HELP = f"""Expand xacro into URDF.
   mcar build wheel chassis                     the robot files of those parts
   mcar build                                   every robot file of the package you
                                                stand in, into its build/
+  mcar build FILE.xacro --format mjcf -o R.xml the MuJoCo model `mcar sim` runs
 
 A robot file is a .xacro whose root is <robot name="...">; macro files (a <robot>
 with no name) are only included. Built files mirror the urdf/ tree:
@@ -54,6 +55,13 @@ Outputs are written atomically: a failed build leaves an earlier output untouche
 and a rebuilt file keeps its permissions. -o ending in / is a folder; -o OUT.urdf
 needs exactly one robot to build.
 
+--format mjcf writes the model `mcar sim` simulates: the robot on a free joint, a
+floor, velocity motors on the drive wheels (limited to their effort) and sim's contact
+choices (README, "mcar sim"); built files are named .xml. Collision meshes are
+referenced by absolute path, so the file loads from wherever it is written (move the
+meshes with it to use it on another machine). A robot MuJoCo cannot simulate (a root
+or moving link without mass) is an error (exit 1).
+
 --deps prints the files the expansion reads (the input first, then includes and
 loaded YAML), relative to the current folder (--absolute: absolute). Alone it builds
 nothing; with -o it writes the outputs too, so one run both builds and tells Make
@@ -65,7 +73,8 @@ Errors are printed as FILE:LINE: error: message, then xacro's macro/include stac
 \b
 Exit codes:
   0  every input was built
-  1  xacro could not expand an input (its error is printed, located)
+  1  xacro could not expand an input (its error is printed, located); with
+     --format mjcf, MuJoCo cannot make a model of it
   2  usage or I/O error: bad option or argument, missing or unreadable file, a macro
      file given as a robot, overrides the input cannot take, unknown package
   130  interrupted (Ctrl-C); 143 terminated
@@ -79,7 +88,17 @@ def _print_deps(deps: list[Path], absolute: bool) -> None:
         streams.echo(dep)
 
 
-def _build_one(inp, options, stdin, output: str | None, deps: str | None) -> None:
+def _output(loaded, output_format: str) -> bytes:
+    """What is written of a loaded robot: its URDF, or the MJCF of its simulation."""
+    if output_format == "mjcf":
+        from mobile_car.sim.export import mjcf
+
+        return mjcf(loaded).encode()
+    return loaded.urdf
+
+
+def _build_one(inp, options, stdin, output: str | None, deps: str | None,
+               output_format: str) -> None:
     """One file (or stdin) to stdout or to ``-o OUT``; ``deps`` None, "relative" or
     "absolute": print the files read (and, with -o, write the output too)."""
     from mobile_car.load.robot import load_robot
@@ -87,25 +106,29 @@ def _build_one(inp, options, stdin, output: str | None, deps: str | None) -> Non
     loaded = load_robot(inp, options, stdin)
     for warning in loaded.warnings:
         print_warning(inp.label, warning)
+    writes = deps is None or (output is not None and output != "-")
+    written = _output(loaded, output_format) if writes else b""
     if output is not None and output != "-":
         from mobile_car.load.outputs import refuse_overwriting
 
         refuse_overwriting(output, [inp.path, *loaded.deps])
-        atomic_write(output, loaded.urdf)
+        atomic_write(output, written)
     if deps:
         _print_deps(loaded.deps, deps == "absolute")
     elif output is None or output == "-":
-        streams.write(loaded.urdf)
+        streams.write(written)
 
 
-def _build_many(inputs, options, outdir: Path | None, deps: str | None, quiet: bool) -> int:
+def _build_many(inputs, options, outdir: Path | None, deps: str | None, quiet: bool,
+                output_format: str) -> int:
     """Build every input into outdir, mirrored below its folder; go on past failures."""
     from mobile_car.load.outputs import refuse_clashes, refuse_overwriting
     from mobile_car.load.robot import load_robot
 
     deps_only = outdir is None  # --deps without -o: print, build nothing
+    suffix = ".xml" if output_format == "mjcf" else ".urdf"
     targets = [(outdir or Path()) / output_name(inp.path, inp.base or inp.path.parent)
-               for inp in inputs]
+               .with_suffix(suffix) for inp in inputs]
     if not deps_only:
         refuse_clashes(zip(targets, (inp.path for inp in inputs), strict=True))
         for target in targets:
@@ -114,6 +137,7 @@ def _build_many(inputs, options, outdir: Path | None, deps: str | None, quiet: b
     for inp, target in zip(inputs, targets, strict=True):
         try:
             loaded = load_robot(inp, options)
+            written = b"" if deps_only else _output(loaded, output_format)
         except UsageError:
             raise  # the command line is wrong for every file alike
         except McarError as error:
@@ -124,7 +148,7 @@ def _build_many(inputs, options, outdir: Path | None, deps: str | None, quiet: b
             print_warning(inp.label, warning)
         if not deps_only:
             refuse_overwriting(target, loaded.deps)
-            atomic_write(target, loaded.urdf)
+            atomic_write(target, written)
         if deps:
             _print_deps(loaded.deps, deps == "absolute")
         if deps_only:
@@ -148,10 +172,15 @@ def _build_many(inputs, options, outdir: Path | None, deps: str | None, quiet: b
                    "-o build nothing, with -o write the outputs too.")
 @click.option("--absolute", is_flag=True, help="--deps prints absolute paths (default: "
                                                 "relative to the current folder).")
+@click.option("--format", "output_format", type=click.Choice(("urdf", "mjcf")),
+              default="urdf", show_default=True,
+              help="urdf: the expanded URDF; mjcf: the MuJoCo model `mcar sim` runs "
+                   "(built files named .xml).")
 @click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
 @robot_options
 @handle_errors
-def command(words, output, deps, absolute, quiet, package_paths, sets, config_files):
+def command(words, output, deps, absolute, output_format, quiet, package_paths, sets,
+            config_files):
     from mobile_car.load.outputs import names_folder
 
     if absolute and not deps:
@@ -165,7 +194,7 @@ def command(words, output, deps, absolute, quiet, package_paths, sets, config_fi
         names_file = bool(output) and output.endswith((".urdf", ".xml"))
         if len(inputs) == 1 and (selection.kind == "files" or names_file) and not (
                 output and names_folder(output)):
-            _build_one(inputs[0], options, stdin_for(selection), output, deps)
+            _build_one(inputs[0], options, stdin_for(selection), output, deps, output_format)
             return
         if selection.reads_stdin:
             raise UsageError("- (stdin) is built alone, to stdout or to -o FILE")
@@ -175,4 +204,4 @@ def command(words, output, deps, absolute, quiet, package_paths, sets, config_fi
             raise UsageError(f"-o {output} is one file, but there are {len(inputs)} robot "
                              "files to build; name one INPUT file, or give -o a folder")
         outdir = Path(output) if output else None if deps else selection.output_root / "build"
-        sys.exit(_build_many(inputs, options, outdir, deps, quiet))
+        sys.exit(_build_many(inputs, options, outdir, deps, quiet, output_format))

@@ -24,9 +24,11 @@ from .common import (
     robot_options,
     say_which_package,
     select_inputs,
+    severity_label,
 )
 
-HELP = f"""Build, check (strict) and render every robot file of a description package.
+HELP = f"""Build, check (strict), simulate and render every robot file of a description
+package.
 
 \b
   mcar ci                               the package you stand in (else the
@@ -36,10 +38,16 @@ HELP = f"""Build, check (strict) and render every robot file of a description pa
   mcar ci --format github               annotations on the pull request's lines
 
 Every robot file (.xacro with <robot name=...>: parts, steps, complete robots) is built
-into --build-dir, checked with `mcar check --strict` (a warning fails it too) and drawn
-into --render-dir, mirroring urdf/; each variant urdf/variants/NAME.yaml is applied to
-the top-level robot files (built into build/variants/NAME/...). One step failing skips
-that file's later steps; the other files go on. A summary table ends the run.
+into --build-dir, checked with `mcar check --strict` (a warning fails it too), simulated
+as by `mcar sim` (drop, drive, spin; --no-sim skips it) and drawn into --render-dir,
+mirroring urdf/; each variant urdf/variants/NAME.yaml is applied to
+the top-level robot files (built into build/variants/NAME/...). A failed build or check
+skips that file's later steps; the other files go on. A summary table ends the run.
+
+Only vehicles are simulated: robots with a pair of drive wheels (continuous joints moving
+collision geometry) and another link with collision geometry to stand on (a castor, a
+body). Any other robot file (a part's test file, the tutorial) is reported "not
+simulated: WHY", which does not fail the run.
 
 Exit 0 only if every step of every file passed; 1 if any file has problems; 2 if the
 run could not be made (no package, no renderer: --no-render skips drawing).
@@ -55,7 +63,8 @@ code is the build's, check's and render's.
 \b
 Exit codes:
   0  every step of every file passed
-  1  problems found: a build error, a check error or warning, a robot not drawn
+  1  problems found: a build error, a check error or warning, a failed sim scenario
+     or sim rule, a robot not drawn
   2  usage, I/O or environment error: no such package, a macro file given as a robot,
      no renderer (--no-render skips drawing)
   130  interrupted (Ctrl-C); 143 terminated
@@ -89,12 +98,17 @@ def _problems(item) -> list:
         if step.status != "failed":
             lines += step.diagnostics  # warnings of a passed step
             continue
+        if step.problems:  # sim: its rules' diagnostics, then each failed scenario
+            lines += step.diagnostics
+            lines += [f"{item.label}: {severity_label('error')} {step.name} {problem}"
+                      for problem in step.problems]
+            continue
         lines += step.diagnostics or [step.error or f"{item.label}: {step.name} failed: "
                                       f"{step.message}"]
     return lines
 
 
-@click.command("ci", help=HELP, short_help="Build, check and render a whole package.")
+@click.command("ci", help=HELP, short_help="Build, check, simulate and render a package.")
 @click.argument("words", nargs=-1, metavar="[INPUT]... [NAME:=VALUE]...")
 @click.option("--format", "output_format", type=click.Choice(["text", "junit", "github"]),
               default="text", show_default=True,
@@ -105,7 +119,8 @@ def _problems(item) -> list:
 @click.option("--render-dir", type=click.Path(),
               help="Where the PNGs and the contact sheet index.png are written (default: "
                    "renders/ under the package's root).")
-@click.option("--no-render", is_flag=True, help="Build and check only; draw nothing.")
+@click.option("--no-render", is_flag=True, help="Draw nothing.")
+@click.option("--no-sim", is_flag=True, help="Simulate nothing.")
 @click.option("--strict/--no-strict", default=True, show_default=True,
               help="A warning fails its file too, as `mcar check --strict`; --no-strict: "
                    "only errors do.")
@@ -120,7 +135,7 @@ def _problems(item) -> list:
 @click.option("-q", "--quiet", is_flag=True, help="text format: print only problems.")
 @robot_options
 @handle_errors
-def command(words, output_format, build_dir, render_dir, no_render, strict, renderer,
+def command(words, output_format, build_dir, render_dir, no_render, no_sim, strict, renderer,
             junit_xml, against, diff_report, quiet, sets, config_files, package_paths):
     from mobile_car.ci import pipeline
     from mobile_car.ci.cache import CiCache
@@ -151,8 +166,9 @@ def command(words, output_format, build_dir, render_dir, no_render, strict, rend
         from mobile_car.render.manifest import Manifest
 
         manifest = Manifest(render_dir)
+    fresh = _picture_fresh(manifest, basis, renderer)
     todo = [item for item in items
-            if not cache.replay(item, basis, strict, _picture_fresh(manifest, basis, renderer))]
+            if not cache.replay(item, basis, strict, fresh, sim=not no_sim)]
     checked = []
     compared = []
     try:
@@ -162,6 +178,8 @@ def command(words, output_format, build_dir, render_dir, no_render, strict, rend
                 for item in todo:
                     if pipeline.build_and_check(item, options, strict):
                         checked.append(item)
+                        if not no_sim:
+                            pipeline.sim_step(item)
                     cache.record(item, basis, strict)
                 if revision is not None:
                     from mobile_car.ci.against import diff_items
@@ -186,7 +204,7 @@ def command(words, output_format, build_dir, render_dir, no_render, strict, rend
         atomic_write(junit_xml, junit_report(items))
     if diff_report:
         _write_diff_report(diff_report, compared, revision, items)
-    _emit(items, output_format, quiet, time.perf_counter() - started, no_render)
+    _emit(items, output_format, quiet, time.perf_counter() - started, no_render, no_sim)
     if revision is not None:
         changed = sum(1 for entry in compared if entry.diff is not None and entry.diff.changed
                       or entry.summary.startswith("added"))
@@ -244,7 +262,8 @@ def _render(checked, items, manifest, renderer: str, basis) -> None:
             print_warning("mcar", note)
 
 
-def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: bool) -> None:
+def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: bool,
+          no_sim: bool) -> None:
     if output_format == "junit":
         from mobile_car.ci.junit import junit_report
 
@@ -255,13 +274,19 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
             for step in item.steps:
                 for diagnostic in step.diagnostics:
                     streams.echo(diagnostic.github())
-                if step.status == "failed" and not step.diagnostics:
+                failed = step.problems if step.problems else [step.message] if \
+                    step.status == "failed" and not step.diagnostics else []
+                for message in failed:
                     from mobile_car.check.diagnostics import github_annotation
 
                     streams.echo(github_annotation("error", str(item.source), None,
-                                                 f"mcar ci {step.name}", step.message))
+                                                 f"mcar ci {step.name}", message))
     else:
         for item in items:
+            if not quiet:  # a robot that is not a vehicle: why it was not simulated
+                for step in item.steps:
+                    if step.name == "sim" and step.message.startswith("not simulated"):
+                        click.echo(f"mcar: {item.label}: {step.message}", err=True)
             for line in _problems(item):
                 if isinstance(line, str):
                     click.echo(line, err=True)
@@ -272,6 +297,7 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
     if not quiet or output_format == "github":
         streams.echo("\n".join(_table(items)))
     passed = sum(item.ok for item in items)
-    steps = "build, check --strict" + ("" if no_render else ", render")
+    steps = "build, check --strict" + ("" if no_sim else ", sim") + \
+        ("" if no_render else ", render")
     click.echo(f"mcar ci: {passed} of {len(items)} files passed ({steps}) in {seconds:.1f} s",
                err=True)

@@ -33,3 +33,18 @@ def test_quick_build_section_writes_a_table_of_real_runs(tmp_path, mcar_bin):
         assert re.fullmatch(r"\d+\.\d\d", cells[3])
         assert cells[6] == "yes"
         assert cells[7] in ("met", "**missed**")
+
+
+def test_quick_sim_section_times_a_passing_simulation(tmp_path, mcar_bin):
+    output = tmp_path / "bench.md"
+    done = subprocess.run([sys.executable, str(REPO / "bench" / "run.py"), "--quick", "sim",
+                           "-o", str(output)], capture_output=True, text=True, timeout=180)
+    assert done.returncode == 0, done.stderr
+    text = output.read_text(encoding="utf-8")
+    row = next(line for line in text.splitlines()
+               if line.startswith("| `mcar sim mobile_robot.xacro` (drop, drive, spin)"))
+    cells = row.strip("| ").split(" | ")
+    # It ran and exited 0 every time, with a peak memory and a ratio to --version.
+    assert re.fullmatch(r"[\d.]+ ms", cells[1]) and re.fullmatch(r"\d+ MiB|-", cells[2])
+    assert re.fullmatch(r"\d+\.\d", cells[3]) and cells[4] == "0"
+    assert cells[5] in ("met", "**missed**")

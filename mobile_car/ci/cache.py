@@ -2,12 +2,14 @@
 
 The record (``.mcar-ci.json`` in the build folder) holds per built file the key of its
 settings and the stamps of every file it was made from (see :mod:`mobile_car.freshness`),
-the stamp of the URDF written, and the check's verdict, counts and diagnostics. An item
+the stamp of the URDF written, the check's verdict, counts and diagnostics, and the sim
+step's outcome (status, message, testcases, error lines and diagnostics). An item
 whose key, inputs and output are unchanged, and whose picture the render manifest finds
 current, is *replayed*: its steps are made from the record, so the report (text, JUnit,
 exit code) is the one a full run prints, without expanding or checking anything. An item
 whose URDF or picture was deleted or edited since is built again. Build failures are not
-recorded: they are built again every time.
+recorded: they are built again every time, and so is an item whose sim could not run
+(exit 2: no engine), or which is now to be simulated and was recorded without.
 """
 
 from __future__ import annotations
@@ -64,9 +66,11 @@ class CiCache:
     def _key(item: CiItem, basis: Basis, strict: bool) -> str:
         return key_of("ci", item_basis(item, basis).settings, strict)
 
-    def replay(self, item: CiItem, basis: Basis, strict: bool, picture_fresh) -> bool:
+    def replay(self, item: CiItem, basis: Basis, strict: bool, picture_fresh,
+               sim: bool = True) -> bool:
         """Fill in the item's steps from the record if nothing it depends on changed;
-        ``picture_fresh(item)`` says whether its picture (if it has one) is current."""
+        ``picture_fresh(item)`` says whether its picture (if it has one) is current;
+        ``sim``: the run simulates (not --no-sim)."""
         entry = self.entries.get(self._name(item))
         if not entry or entry.get("key") != self._key(item, basis, strict):
             return False
@@ -82,6 +86,9 @@ class CiCache:
         passed = check.get("passed") is True
         if passed and item.png is not None and not picture_fresh(item):
             return False
+        simulated = entry.get("sim")
+        if passed and sim and not isinstance(simulated, dict):
+            return False
         item.links, item.joints = entry.get("links"), entry.get("joints")
         item.deps = [Path(p) for p in entry.get("deps") or []]
         item.steps.append(Step("build", message=f"wrote {display_path(item.urdf)}"))
@@ -89,6 +96,8 @@ class CiCache:
             fail(item, "check", diagnostics[0].text(), diagnostics)
             return True
         item.steps.append(Step("check", diagnostics=diagnostics))
+        if sim:
+            item.steps.append(_sim_step(simulated))
         if item.png is not None:
             item.steps.append(Step("render", message=f"unchanged {display_path(item.png)}"))
         return True
@@ -116,9 +125,32 @@ class CiCache:
             "links": item.links, "joints": item.joints,
             "check": {"passed": check.status == "passed",
                       "diagnostics": diagnostics_data(check.diagnostics)}}
+        simulated = next((step for step in item.steps if step.name == "sim"), None)
+        if check.status == "passed" and simulated is not None:  # it ran (or was declined)
+            if simulated.exit_code > 1:  # the engine could not run: try again next time
+                self.entries.pop(name, None)
+                return
+            self.entries[name]["sim"] = {
+                "status": simulated.status, "message": simulated.message,
+                "exit_code": simulated.exit_code, "cases": simulated.cases,
+                "problems": simulated.problems,
+                "diagnostics": diagnostics_data(simulated.diagnostics)}
 
     def save(self) -> None:
         if self._changed:
             text = json.dumps({"items": dict(sorted(self.entries.items()))}, indent=1)
             atomic_write(self.path, text + "\n")
             self._changed = False
+
+
+def _sim_step(data: dict) -> Step:
+    """The sim step a run recorded (see :meth:`CiCache.record`)."""
+    from ..load.inputs import display_path
+    from ..sim.diagnostics import SimDiagnostic
+
+    diagnostics = [SimDiagnostic(d["rule"], display_path(d["file"]) if os.path.isabs(d["file"])
+                                 else d["file"], d["line"], d["message"])
+                   for d in data.get("diagnostics") or []]
+    return Step("sim", data.get("status", "failed"), data.get("message", ""), diagnostics,
+                exit_code=data.get("exit_code", 1), cases=list(data.get("cases") or []),
+                problems=list(data.get("problems") or []))

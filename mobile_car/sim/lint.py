@@ -2,33 +2,19 @@
 ``<gazebo>`` DiffDrive parameters against the geometry, and links whose mass the engine
 would have to invent. Diagnostics are ``FILE:LINE: error: message [E301]``, as check's.
 
-Rule ids are their own series (E3xx, W3xx) so that check's table stays check_urdf's.
+Rule ids are their own series (E3xx, W3xx, in .diagnostics) so that check's table stays
+check_urdf's.
 """
 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 
 from ..check.urdf_model import parse_number
 from ..load.bounded import read_text_quietly
 from ..load.inputs import display_path
+from .diagnostics import SimDiagnostic
 
-ERROR, WARNING = "error", "warning"
-# id -> (name, summary), for the README and --format json.
-SIM_RULES = {
-    "E301": ("diffdrive-separation", "the DiffDrive plugin's wheel separation differs from "
-             "the distance between the drive wheels by more than 1%"),
-    "E302": ("diffdrive-radius", "the DiffDrive plugin's wheel radius (or diameter) differs "
-             "from the drive wheels' collision radius by more than 1%"),
-    "E303": ("diffdrive-joint", "the DiffDrive plugin names a joint that is not a drive "
-             "wheel of the robot, or puts the left wheel on the right"),
-    "E305": ("moving-link-massless", "a moving link without mass: MuJoCo refuses to "
-             "simulate it, Gazebo gives it 1 kg"),
-    "W304": ("mass-invented", "a link with collision geometry and no `<inertial>`: Gazebo "
-             "gives it 1 kg and a unit inertia, MuJoCo a mass from its volume; mcar sim "
-             "keeps it massless, as URDF says"),
-}
 RELATIVE_TOLERANCE = 0.01
 # The tags gz-sim's DiffDrive, gazebo_ros (ROS 2) and gazebo_ros (ROS 1) plugins read.
 SEPARATION_TAGS = ("wheel_separation", "wheelSeparation")
@@ -36,34 +22,6 @@ RADIUS_TAGS = ("wheel_radius",)
 DIAMETER_TAGS = ("wheel_diameter", "wheelDiameter")
 LEFT_TAGS = ("left_joint", "leftJoint")
 RIGHT_TAGS = ("right_joint", "rightJoint")
-
-
-@dataclass(frozen=True)
-class SimDiagnostic:
-    """A sim rule broken at FILE:LINE; prints like check's Diagnostic."""
-
-    rule: str
-    file: str
-    line: int | None
-    message: str
-
-    @property
-    def severity(self) -> str:
-        return ERROR if self.rule.startswith("E") else WARNING
-
-    @property
-    def is_error(self) -> bool:
-        return self.severity == ERROR
-
-    def location(self) -> str:
-        return f"{self.file}:{self.line}" if self.line else self.file
-
-    def text(self) -> str:
-        return f"{self.location()}: {self.severity}: {self.message} [{self.rule}]"
-
-    def as_json(self) -> dict:
-        return {"rule": self.rule, "severity": self.severity, "file": self.file,
-                "line": self.line, "message": self.message}
 
 
 class Locator:

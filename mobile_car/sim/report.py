@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 from xml.etree import ElementTree as ET
 
 from ..errors import EXIT_OK, EXIT_PROBLEMS
+from .junit import junit_case
 from .lint import SimDiagnostic, link_mass, lint, moving_links_without_mass
 from .scenarios import ScenarioResult, command_speed, run_scenarios, show_bound, show_value
 
@@ -40,16 +41,19 @@ class SimReport:
 def simulate(checked, names, left=None, right=None, record: bool = False,
              only_if_drives: bool = False) -> SimReport:
     """Lint and run ``names`` on a robot that passed ``mcar check`` (a CheckResult);
-    ``record``: keep a GIF of the runs; ``only_if_drives``: a robot without drive wheels
-    is not simulated (``simulated`` False), as for the files of a package."""
+    ``record``: keep a GIF of the runs; ``only_if_drives``: a robot that is not a vehicle
+    (:func:`not_a_vehicle`, or no drive wheel on a side) is not simulated (``simulated``
+    False), as for the files of a package and in ``mcar ci``."""
     from .model import SimModelError, build_model
 
     started = time.perf_counter()
     loaded = checked.loaded
     report = SimReport(checked.file, checked.robot.name)
-    if only_if_drives and _drive_candidates(checked.robot) < 2:
-        report.simulated, report.why_no_drive = False, _no_drive(checked.robot)
-        return report
+    if only_if_drives:
+        why_not = not_a_vehicle(checked.robot)
+        if why_not:
+            report.simulated, report.why_no_drive = False, why_not
+            return report
     unsimulable = _unsimulable(checked.robot)
     if unsimulable:
         report.why_no_drive = _no_drive(checked.robot)
@@ -109,10 +113,21 @@ def _unsimulable(robot) -> list[str]:
     return problems
 
 
-def _drive_candidates(robot) -> int:
-    """Continuous joints that move collision geometry: a car has two or more."""
+def not_a_vehicle(robot) -> str | None:
+    """Why a robot of a package is not simulated, or None: a vehicle has two or more
+    continuous joints moving collision geometry (drive wheels) and a third link with
+    collision geometry to stand on (a castor, a body). A part's test file (the wheel pair
+    on a bare base_link) is not one; a car whose castor is set too high still is, so that
+    drop fails it. Mass is not asked for here: a car that lost an <inertial> must fail
+    (E305), not go unsimulated."""
     colliding = {link.name for link in robot.links if link.collisions}
-    return sum(1 for j in robot.joints if j.type == "continuous" and j.child in colliding)
+    wheels = {j.child for j in robot.joints if j.type == "continuous" and j.child in colliding}
+    if len(wheels) < 2:
+        return _no_drive(robot)
+    if not colliding - wheels:
+        return (f"not a vehicle: nothing but the wheels ({', '.join(sorted(wheels))}) has "
+                "collision geometry, no castor or body to stand on")
+    return None
 
 
 def _no_drive(robot) -> str:
@@ -166,34 +181,34 @@ def failure_lines(report: SimReport) -> list[str]:
     return lines
 
 
+def junit_cases(report: SimReport) -> list[dict]:
+    """The robot's testcases: ``lint``, then one per scenario, each a dict of name, status
+    (passed, failed, skipped), message and text (the figures against their bounds)."""
+    lint_status = "failed" if report.lint_errors or report.error else "passed"
+    lint_message = "; ".join([report.error] if report.error else []
+                             + [d.text() for d in report.lint_errors]) or "ok"
+    cases = [{"name": "lint", "status": lint_status, "message": lint_message,
+              "text": "\n".join(d.text() for d in report.diagnostics)}]
+    for s in report.scenarios:
+        body = "\n".join(f"{f.name}: {f.value:.6g} {f.unit} (bound "
+                         f"{'<=' if f.within == 'max' else '>='} {f.bound:g} {f.unit}) "
+                         f"{'ok' if f.ok else 'FAIL'}" for f in s.figures)
+        cases.append({"name": s.name, "status": s.status, "message": s.message(),
+                      "text": body})
+    return cases
+
+
 def junit(reports: list[SimReport]) -> str:
     """One ``<testcase>`` per scenario (and one ``lint``) per robot file."""
-    cases = []
-    for report in reports:
-        lint_case = ("lint", "failed" if report.lint_errors or report.error else "passed",
-                     "; ".join([report.error] if report.error else []
-                               + [d.text() for d in report.lint_errors]) or "ok",
-                     "\n".join(d.text() for d in report.diagnostics))
-        cases.append((report, lint_case))
-        for s in report.scenarios:
-            body = "\n".join(f"{f.name}: {f.value:.6g} {f.unit} (bound "
-                             f"{'<=' if f.within == 'max' else '>='} {f.bound:g} {f.unit}) "
-                             f"{'ok' if f.ok else 'FAIL'}" for f in s.figures)
-            cases.append((report, (s.name, s.status, s.message(), body)))
-    failures = sum(1 for _, c in cases if c[1] == "failed")
-    skipped = sum(1 for _, c in cases if c[1] == "skipped")
+    cases = [(report, case) for report in reports for case in junit_cases(report)]
+    failures = sum(1 for _, c in cases if c["status"] == "failed")
+    skipped = sum(1 for _, c in cases if c["status"] == "skipped")
     root = ET.Element("testsuites", tests=str(len(cases)), failures=str(failures),
                       errors="0", skipped=str(skipped))
     suite = ET.SubElement(root, "testsuite", name="mcar sim", tests=str(len(cases)),
                           failures=str(failures), errors="0", skipped=str(skipped))
-    for report, (name, status, message, body) in cases:
-        case = ET.SubElement(suite, "testcase", classname=f"mcar.sim.{report.robot}",
-                             name=name, file=report.file)
-        if status == "failed":
-            ET.SubElement(case, "failure", message=message, type=name).text = body or message
-        elif status == "skipped":
-            ET.SubElement(case, "skipped", message=message)
-        if body and status != "failed":
-            ET.SubElement(case, "system-out").text = body
+    for report, case in cases:
+        junit_case(suite, case, classname=f"mcar.sim.{report.robot}", name=case["name"],
+                   file=report.file)
     ET.indent(root)
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"

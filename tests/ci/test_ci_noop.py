@@ -10,8 +10,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-HEAVY = ("xacro", "lxml", "numpy", "trimesh", "moderngl", "yourdfpy", "PIL")
+HEAVY = ("xacro", "lxml", "numpy", "trimesh", "moderngl", "yourdfpy", "PIL", "mujoco")
 MAIN = "import sys; from mobile_car.cli.main import main; sys.argv[0] = 'mcar'; main()"
+EFFORT = ('effort="${motor_stall_torque}"', 'effort="0"')  # the drive's motors, none
 USES_MOTOR = {"motor/test_motor.urdf", "mobile_robot.urdf", "variants/large/mobile_robot.urdf",
               "variants/small/mobile_robot.urdf"}
 
@@ -83,3 +84,21 @@ def test_deleted_outputs_and_an_edited_part_are_built_again_and_only_they(packag
     after = mtimes(out)
     assert {name for name in after if after[name] != before.get(name)} - {".mcar-ci.json"} \
         == USES_MOTOR
+
+
+def test_a_no_op_run_replays_the_sim_step_without_the_engine(package_copy, tmp_path):
+    wheel = package_copy / "urdf/wheel/wheel.xacro"
+    wheel.write_text(wheel.read_text().replace(*EFFORT))
+    first = run_ci(package_copy, tmp_path, "first.xml")
+    assert first.returncode == 1, first.stderr
+    assert "sim drive failed" in first.stderr
+    assert (tmp_path / "first.xml").read_text().count('<failure message="the motors') == 3
+    again = run_ci(package_copy, tmp_path, "again.xml", trace=True)
+    assert report(again, tmp_path, "again.xml") == report(first, tmp_path, "first.xml")
+    modules = {line.split("|")[-1].strip() for line in again.stderr.splitlines()
+               if line.startswith("import time:")}
+    assert not {m for m in modules if m.split(".")[0] in HEAVY}
+    # Repaired, the car is simulated again and passes.
+    wheel.write_text(wheel.read_text().replace(EFFORT[1], EFFORT[0]))
+    repaired = run_ci(package_copy, tmp_path, "repaired.xml")
+    assert repaired.returncode == 0, repaired.stderr

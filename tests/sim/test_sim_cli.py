@@ -150,9 +150,25 @@ def test_a_package_simulates_only_its_robots_with_drive_wheels(cli, repo, monkey
            "wheels: no continuous joint: caster_joint (fixed)" in result.stderr
     assert result.stdout.count("  drop   PASSED") == 1
     assert "urdf/mobile_robot.xacro (mobile_robot)" in result.stdout
-    # The wheel pair's test file has drive wheels on a massless base: MuJoCo cannot move it.
+    # The wheel pair's test file has drive wheels on a bare base_link: a part, not a vehicle.
+    assert "mcar: urdf/wheel/test_wheel.urdf.xacro: not simulated: not a vehicle: nothing but " \
+           "the wheels (wheel_left_link, wheel_right_link) has collision geometry, no castor " \
+           "or body to stand on" in result.stderr
+    assert result.exit_code == 0, result.stderr
+
+
+def test_a_car_whose_castor_is_set_too_high_is_still_simulated_in_a_package(
+        cli, package_copy, monkeypatch):
+    # Its castor is off the floor, but it is a vehicle: drop fails it, it is not skipped.
+    path = package_copy / "urdf/mobile_robot.xacro"
+    old = '<origin xyz="${caster_x} 0 ${caster_z}"/>'
+    assert old in path.read_text()
+    path.write_text(path.read_text().replace(old, old.replace("}\"", " + 0.01}\"")))
+    monkeypatch.chdir(package_copy)
+    result = _sim(cli, "urdf", "--scenario", "drop")
     assert result.exit_code == 1
-    assert "test_wheel.urdf.xacro:9: error: root link base_link" in result.stderr
+    assert _statuses(result.stdout) == {"drop": "FAILED"}
+    assert "mobile_robot.xacro: error: drop failed:" in result.stderr
 
 
 def test_a_root_without_mass_is_reported_at_its_line(cli, repo, monkeypatch):

@@ -15,6 +15,7 @@ from pathlib import Path
 
 from ..config.overrides import applied_overrides
 from ..config.spec import ConfigSpec, Dimension, config_file, load_spec, parse_set_options
+from ..errors import McarError
 from ..load.inputs import RobotInput
 from ..load.robot import LoadOptions
 from ..packages.search import PackageSearch
@@ -98,10 +99,14 @@ def robot_dimensions(inp: RobotInput, options: LoadOptions,
     if inp.path is None or not inp.is_xacro:
         return None
     search = PackageSearch(package_paths=list(options.package_paths), origin=inp.path)
-    path = config_file(search)
-    if path.resolve() not in {Path(file).resolve() for file in model.files}:
+    try:
+        path = config_file(search)
+        if path.resolve() not in {Path(file).resolve() for file in model.files}:
+            return None
+        spec = load_spec(path)
+    except McarError:  # a config.xacro `mcar config` refuses: the robot, without sliders
         return None
-    return Dimensions(inp, options, load_spec(path), search)
+    return Dimensions(inp, options, spec, search)
 
 
 def _default(dimension: Dimension) -> float:

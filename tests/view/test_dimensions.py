@@ -19,23 +19,6 @@ from mobile_car.view.model import load_model  # noqa: E402
 from mobile_car.view.server import RobotView  # noqa: E402
 
 
-def _serve(inp: RobotInput, options: LoadOptions) -> RobotView:
-    model = load_model(inp, options)
-    dimensions = robot_dimensions(inp, options, model)
-    reload = dimensions.load if dimensions else lambda: load_model(inp, options)
-    return RobotView(model, reload, host="127.0.0.1", port=0, dimensions=dimensions)
-
-
-@pytest.fixture
-def car(repo):
-    """The bundled car on 127.0.0.1, any free port; stopped after the test."""
-    view = _serve(RobotInput(repo / "urdf" / "mobile_robot.xacro"), LoadOptions())
-    try:
-        yield view
-    finally:
-        view.stop()
-
-
 def _wheel_radius(view: RobotView) -> float:
     (collision,) = view.model.urdf.link_map["wheel_left_link"].collisions
     return collision.geometry.cylinder.radius
@@ -121,29 +104,23 @@ def test_the_overrides_yaml_round_trips_through_config_and_build(car, run_mcar, 
     assert "<samples>720</samples>" in out.read_text()
 
 
-def test_a_robot_without_a_config_xacro_has_no_panel(arm_copy):
+def test_a_robot_without_a_config_xacro_has_no_panel(arm_copy, serve):
     inp, options = RobotInput(arm_copy), LoadOptions()
     assert robot_dimensions(inp, options, load_model(inp, options)) is None
-    view = _serve(inp, options)
-    try:
-        assert view.dimensions is None and view.dimension_sliders == {}
-        assert view.overrides_yaml is None
-    finally:
-        view.stop()
+    view = serve(inp, options)
+    assert view.dimensions is None and view.dimension_sliders == {}
+    assert view.overrides_yaml is None
 
 
-def test_the_sliders_start_from_the_command_line_s_overrides(repo):
+def test_the_sliders_start_from_the_command_line_s_overrides(repo, serve):
     from mobile_car.config.overrides import prepared_overrides
     from mobile_car.packages.search import PackageSearch
 
     robot = repo / "urdf" / "mobile_robot.xacro"
     with prepared_overrides(PackageSearch(origin=robot), ["wheel_radius=40mm"], []) as given:
-        view = _serve(RobotInput(robot), LoadOptions(overrides=given))
-    try:
-        assert view.dimension_sliders["wheel_radius"].value == 0.04
-        assert _wheel_radius(view) == 0.04
-        assert view.show_overrides_yaml() == "wheel_radius: 0.04\n"
-        view.rebuild()  # as live reload does: the overrides stay applied
-        assert view.errors == [] and _wheel_radius(view) == 0.04
-    finally:
-        view.stop()
+        view = serve(RobotInput(robot), LoadOptions(overrides=given))
+    assert view.dimension_sliders["wheel_radius"].value == 0.04
+    assert _wheel_radius(view) == 0.04
+    assert view.show_overrides_yaml() == "wheel_radius: 0.04\n"
+    view.rebuild()  # as live reload does: the overrides stay applied
+    assert view.errors == [] and _wheel_radius(view) == 0.04

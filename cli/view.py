@@ -23,7 +23,11 @@ HELP = f"""Show a robot in the browser: turn its joints, see every edit at once.
 The robot is checked first, as by `mcar check`: one with errors is reported with
 check's diagnostics (exit 1) and not served. The page has a slider for every movable
 joint (the URDF's limits; continuous joints -pi..pi; mimic joints follow), a reset
-button, and switches for visual and collision geometry and link frames.
+button, and switches for visual and collision geometry and link frames. A robot built
+from a config.xacro also gets a slider per dimension (`mcar config`; the range LO..HI
+of each): moving one rebuilds the robot with that override, checked as --set is (a
+value config.xacro refuses is shown and not applied), and a button shows the
+overrides as a file that --config reads.
 
 Live reload: whenever a file the robot was built from changes (the xacro files it
 includes, its meshes), it is built and checked again and the page shows the new
@@ -85,13 +89,16 @@ def command(words, host, port, no_browser, package_paths, sets, config_files):
     _require_viser()
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
         inp = _choose(selection)
+        from mobile_car.view.dimensions import robot_dimensions
         from mobile_car.view.model import load_model
 
         signals.raise_if_received()  # trimesh's import guards swallow Ctrl-C and SIGTERM
         model = load_model(inp, options, stdin=stdin_for(selection))
         for warning in model.warnings:
             click.echo(warning.text(), err=True)
-        view = _serve(model, lambda: load_model(inp, options), host, port)
+        dimensions = robot_dimensions(inp, options, model)
+        reload = dimensions.load if dimensions is not None else lambda: load_model(inp, options)
+        view = _serve(model, reload, host, port, dimensions)
         try:
             with streams.stdout_writes():
                 click.echo(f"mcar view: {inp.label} at {view.url} (Ctrl-C stops)")
@@ -105,11 +112,11 @@ def command(words, host, port, no_browser, package_paths, sets, config_files):
             view.stop()
 
 
-def _serve(model, reload, host: str, port: int):
+def _serve(model, reload, host: str, port: int, dimensions):
     from mobile_car.view.server import RobotView
 
     try:
-        view = RobotView(model, reload, host=host, port=port)
+        view = RobotView(model, reload, host=host, port=port, dimensions=dimensions)
     except OSError as error:  # a host that is no address of this machine
         raise UsageError(f"cannot serve on {host}:{port}: {error.strerror or error}") from None
     if port and view.port != port:  # viser moves on to the next free port: say it is taken

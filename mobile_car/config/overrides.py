@@ -55,6 +55,15 @@ def prepared_overrides(search: PackageSearch, sets, files) -> Iterator[Overrides
         yield None
         return
     spec, values = read_overrides(search, sets, files)
+    with applied_overrides(spec, values, search) as overrides:
+        yield overrides
+
+
+@contextlib.contextmanager
+def applied_overrides(spec: ConfigSpec, values: dict[str, float],
+                      search: PackageSearch) -> Iterator[Overrides | None]:
+    """Validated ``values`` written and probed (config.xacro's cross-checks refuse what does
+    not fit: UsageError); None when there are none. The file lives as long as the context."""
     if not values:  # a --config file that changes nothing ({}): as if none were given
         yield None
         return

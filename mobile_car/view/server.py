@@ -24,6 +24,7 @@ import viser.transforms as vtf
 from viser.extras import ViserUrdf
 
 from ..errors import McarError
+from .dimensions import Dimensions
 from .model import ViewModel, error_lines
 from .watch import FileWatch
 
@@ -36,7 +37,8 @@ CAMERA_DIRECTION = np.array([1.0, 0.8, 0.7])
 CAMERA_FOV = math.radians(50)
 
 # Rows of the control panel, top to bottom.
-_ORDER = {"status": 0, "visual": 1, "collision": 2, "frames": 3, "reset": 4, "joints": 10}
+_ORDER = {"status": 0, "visual": 1, "collision": 2, "frames": 3, "reset": 4, "joints": 10,
+          "dimensions": 20}
 
 
 def url_of(host: str, port: int) -> str:
@@ -46,12 +48,19 @@ def url_of(host: str, port: int) -> str:
 
 class RobotView:
     """Serves ``model`` at ``host``:``port`` (0: any free port) until :meth:`stop`;
-    ``reload`` builds the robot anew when :meth:`reload_if_changed` sees an edit."""
+    ``reload`` builds the robot anew when :meth:`reload_if_changed` sees an edit;
+    ``dimensions`` (the robot's config.xacro, if it has one) gives a slider per dimension."""
 
     def __init__(self, model: ViewModel, reload: Callable[[], ViewModel],
-                 host: str = "127.0.0.1", port: int = 8080):
+                 host: str = "127.0.0.1", port: int = 8080,
+                 dimensions: Dimensions | None = None):
         self._reload = reload
         self._lock = threading.RLock()
+        # One dimension change at a time, so that each builds on the last one accepted.
+        self._dimension_lock = threading.RLock()  # (putting a slider back re-enters)
+        self.dimensions = dimensions
+        self.dimension_sliders: dict[str, viser.GuiSliderHandle] = {}
+        self.overrides_yaml = None  # the text area the copy button fills
         self.model: ViewModel | None = None
         self.errors: list[str] = []  # the last failed rebuild's lines; empty when current
         self.reloads = 0  # rebuilds shown (for the tests and the status line)
@@ -103,6 +112,8 @@ class RobotView:
         self.show_collision.on_update(lambda _: self._apply_visibility())
         self.show_frames.on_update(lambda _: self._apply_visibility())
         self.reset.on_click(lambda _: self.reset_joints())
+        if self.dimensions is not None and self.dimensions.ranges:
+            self._build_dimension_panel()
 
     def _apply_visibility(self) -> None:
         with self._lock:
@@ -121,7 +132,7 @@ class RobotView:
         if self.reloads:
             lines[0] += f"; reloaded {self.reloads}×"
         if self.errors:
-            lines.append("**The last edit does not build; showing the last good model:**")
+            lines.append("**The last change does not build; showing the last good model:**")
             lines.append("```\n" + "\n".join(self.errors) + "\n```")
         self.status.content = "\n\n".join(lines)
 
@@ -220,6 +231,69 @@ class RobotView:
         camera.position = centre + distance * direction
         camera.up = (0.0, 0.0, 1.0)
 
+    # -- dimensions --------------------------------------------------------------------
+
+    def _build_dimension_panel(self) -> None:
+        gui, dims = self.server.gui, self.dimensions
+        with gui.add_folder("Dimensions", order=_ORDER["dimensions"], expand_by_default=False):
+            copy = gui.add_button("Copy overrides as --config YAML",
+                                  hint="mcar build --config FILE builds this robot")
+            self.overrides_yaml = gui.add_text("--config YAML", "", multiline=True,
+                                               visible=False)
+            copy.on_click(lambda _: self.show_overrides_yaml())
+            for item in dims.ranges:
+                slider = gui.add_slider(
+                    item.label, min=item.low, max=item.high, step=item.step,
+                    initial_value=min(max(dims.value(item.name), item.low), item.high),
+                    hint=f"{item.meaning} (default {item.default:g}, "
+                         f"{item.low:g} to {item.high:g})")
+                slider.on_update(lambda event, name=item.name: self._slid(name, event.target))
+                self.dimension_sliders[item.name] = slider
+
+    def _slid(self, name: str, slider) -> None:
+        # Dragging sends values faster than the robot builds: each callback, once its turn
+        # comes, builds the slider's newest value, and the ones queued behind it see it built.
+        with self._dimension_lock:
+            value = slider.value
+            if value != self.dimensions.value(name):
+                self.set_dimension(name, value)
+
+    def set_dimension(self, name: str, value: float) -> McarError | None:
+        """Rebuild with dimension ``name`` at ``value``, validated as ``--set`` is. A value
+        refused (by its range or config.xacro's cross-checks) leaves the model and the
+        overrides as they were, shows why, and puts the slider back; returns that error."""
+        with self._dimension_lock:
+            dims = self.dimensions
+            try:
+                values = dims.with_value(name, value)
+            except McarError as error:
+                return self._refuse_dimension(name, error)
+            if values == dims.values:  # (as after putting a slider back)
+                return None
+            error = self.rebuild(lambda: dims.load(values))
+            if error is not None:
+                return self._refuse_dimension(name, error)
+            if self.overrides_yaml is not None and self.overrides_yaml.visible:
+                self.show_overrides_yaml()
+            return None
+
+    def _refuse_dimension(self, name: str, error: McarError) -> McarError:
+        with self._lock:
+            self.errors = error_lines(error)
+            self._set_status()
+        slider = self.dimension_sliders.get(name)
+        if slider is not None:
+            slider.value = self.dimensions.value(name)
+        return error
+
+    def show_overrides_yaml(self) -> str:
+        """Show the overrides as a ``--config`` file in the page, to copy from (a page
+        served without https may not write the clipboard)."""
+        text = self.dimensions.yaml()
+        self.overrides_yaml.value = text
+        self.overrides_yaml.visible = True
+        return text
+
     # -- live reload -------------------------------------------------------------------
 
     def reload_if_changed(self) -> tuple[list, McarError | None]:
@@ -230,11 +304,11 @@ class RobotView:
             return [], None
         return changed, self.rebuild()
 
-    def rebuild(self) -> McarError | None:
-        """Build the robot anew and show it; on failure, keep the model shown and show
-        the error above it. Returns that error."""
+    def rebuild(self, build: Callable[[], ViewModel] | None = None) -> McarError | None:
+        """Build the robot anew (by ``build``, else as a reload does) and show it; on
+        failure, keep the model shown and show the error above it. Returns that error."""
         try:
-            model = self._reload()
+            model = (build or self._reload)()
         except McarError as error:
             with self._lock:
                 self.errors = error_lines(error)

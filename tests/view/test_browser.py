@@ -108,3 +108,21 @@ def test_the_page_draws_the_robot_and_a_slider_moves_it(served, page):
     turned = SO3(np.asarray(served.frames["upper_arm"].wxyz)).as_matrix()
     assert np.isclose(turned[0, 0], np.cos(0.75)) and np.isclose(turned[0, 2], np.sin(0.75))
 
+
+
+def test_a_dimension_typed_on_the_page_rebuilds_the_robot_and_its_yaml_shows(car, page):
+    page.goto(car.url, timeout=SECONDS * 1000)
+    page.get_by_text("Dimensions", exact=True).click(timeout=SECONDS * 1000)  # (folded)
+    page.get_by_text("wheel_radius (m)", exact=True).wait_for(timeout=SECONDS * 1000)
+    # The number boxes: the two wheel joints', then the dimensions' from wheel_radius on.
+    box = page.locator(".mantine-NumberInput-input").nth(len(car.sliders))
+    assert box.input_value() == "0.0325"
+    box.fill("0.04")
+    box.press("Enter")
+    _until(lambda: car.dimensions.values == {"wheel_radius": 0.04},
+           "the server rebuilds the car with wheel_radius = 0.04 from the page")
+    assert car.model.urdf.joint_map["base_joint"].origin[2, 3] == 0.04
+    page.get_by_text("Copy overrides as --config YAML").click()
+    area = page.locator("textarea").first
+    _until(lambda: area.is_visible() and area.input_value() == "wheel_radius: 0.04\n",
+           "the page shows the overrides as YAML")

@@ -1,0 +1,126 @@
+"""The viewer's dimension sliders through viser's own API: one per dimension `mcar config`
+gives a range, a moved slider rebuilds the robot as --set would, a value config.xacro
+refuses keeps the last good robot, and the copied YAML is a file --config reads."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+pytest.importorskip("viser", reason='viser is not installed (pip install "mcar[view]"; '
+                                    "`make test` installs it)")
+
+from mobile_car.config.spec import load_spec  # noqa: E402
+from mobile_car.load.inputs import RobotInput  # noqa: E402
+from mobile_car.load.robot import LoadOptions  # noqa: E402
+from mobile_car.view.dimensions import robot_dimensions  # noqa: E402
+from mobile_car.view.model import load_model  # noqa: E402
+from mobile_car.view.server import RobotView  # noqa: E402
+
+
+def _wheel_radius(view: RobotView) -> float:
+    (collision,) = view.model.urdf.link_map["wheel_left_link"].collisions
+    return collision.geometry.cylinder.radius
+
+
+def _base_height(view: RobotView) -> float:
+    return float(view.model.urdf.joint_map["base_joint"].origin[2, 3])
+
+
+def test_the_panel_has_a_slider_per_dimension_config_gives_a_range(car, run_mcar, repo):
+    result = run_mcar("config", "--format", "json", cwd=repo)
+    assert result.returncode == 0, result.stderr
+    table = json.loads(result.stdout)
+    baked = {d.name for d in load_spec(repo / "urdf" / "config.xacro").base() if d.baked}
+    assert baked  # the car has dimensions baked into meshes: they get no slider
+    expected = {name: tuple(item["range"]) for name, item in table["dimensions"].items()
+                if "range" in item and name not in baked}
+    sliders = car.dimension_sliders
+    assert {name: (s.min, s.max) for name, s in sliders.items()} == expected
+    assert not set(sliders) & (set(table["derived"]) | baked)
+    for name, slider in sliders.items():
+        assert slider.value == table["dimensions"][name]["value"]
+    assert sliders["wheel_radius"].step == 0.0005  # 0.5 mm
+    assert sliders["laser_samples"].step == 1
+
+
+def test_a_dimension_slider_rebuilds_the_robot_with_that_override(car):
+    assert (_wheel_radius(car), _base_height(car)) == (0.0325, 0.0325)
+    car.dimension_sliders["wheel_radius"].value = 0.04
+    assert car.errors == [] and car.reloads == 1
+    assert (_wheel_radius(car), _base_height(car)) == (0.04, 0.04)
+    assert car.dimensions.values == {"wheel_radius": 0.04}
+    # Back at its default, the dimension is no override any more.
+    car.dimension_sliders["wheel_radius"].value = 0.0325
+    assert car.dimensions.values == {} and _wheel_radius(car) == 0.0325
+
+
+def test_a_value_config_xacro_refuses_keeps_the_last_good_robot(car):
+    car.dimension_sliders["wheel_radius"].value = 0.04
+    shown = car.model
+    car.dimension_sliders["track_width"].value = 0.3  # the brackets end up off the plate
+    message = ("error: the dimensions do not fit together: the motor brackets stick out "
+               "of the plate: their outer face at y = 0.132 m (from track_width, wheel_width, "
+               "wheel_hub_length, wheel_hub_clearance) must be within plate_width / 2 "
+               "(0.065 m)")
+    assert car.errors == [message]
+    assert message in car.status.content and "showing the last good model" in car.status.content
+    assert car.model is shown and car.reloads == 1
+    assert car.dimensions.values == {"wheel_radius": 0.04}
+    assert car.dimension_sliders["track_width"].value == 0.165  # put back
+    # The next good value builds and clears the message.
+    car.dimension_sliders["track_width"].value = 0.16
+    assert car.errors == [] and car.dimensions.values == {"wheel_radius": 0.04,
+                                                          "track_width": 0.16}
+
+
+def test_a_value_outside_its_range_gets_the_set_message(car):
+    error = car.set_dimension("wheel_radius", 0.6)  # (a slider stops at 0.5)
+    # exactly what `mcar build --set wheel_radius=0.6` says
+    assert car.errors == ["error: --set wheel_radius=0.6: wheel_radius = 0.6 m is outside "
+                          "5 mm..0.5 m; did you mean 0.6cm?"]
+    assert error is not None and car.reloads == 0
+
+
+def test_the_overrides_yaml_round_trips_through_config_and_build(car, run_mcar, repo,
+                                                                  tmp_path):
+    assert car.overrides_yaml.visible is False
+    car.dimension_sliders["wheel_radius"].value = 0.04
+    car.dimension_sliders["laser_samples"].value = 720
+    text = car.show_overrides_yaml()
+    assert car.overrides_yaml.visible is True and car.overrides_yaml.value == text
+    path = tmp_path / "car.yaml"
+    path.write_text(text)
+    result = run_mcar("config", "--config", path, "--format", "json", cwd=repo)
+    assert result.returncode == 0, result.stderr
+    table = json.loads(result.stdout)["dimensions"]
+    overridden = {name: item["value"] for name, item in table.items() if item.get("overridden")}
+    assert overridden == {"wheel_radius": 0.04, "laser_samples": 720}
+    out = tmp_path / "car.urdf"
+    result = run_mcar("build", "urdf/mobile_robot.xacro", "--config", path, "-o", out, cwd=repo)
+    assert result.returncode == 0, result.stderr
+    assert '<cylinder length="0.026" radius="0.04"/>' in out.read_text()
+    assert "<samples>720</samples>" in out.read_text()
+
+
+def test_a_robot_without_a_config_xacro_has_no_panel(arm_copy, serve):
+    inp, options = RobotInput(arm_copy), LoadOptions()
+    assert robot_dimensions(inp, options, load_model(inp, options)) is None
+    view = serve(inp, options)
+    assert view.dimensions is None and view.dimension_sliders == {}
+    assert view.overrides_yaml is None
+
+
+def test_the_sliders_start_from_the_command_line_s_overrides(repo, serve):
+    from mobile_car.config.overrides import prepared_overrides
+    from mobile_car.packages.search import PackageSearch
+
+    robot = repo / "urdf" / "mobile_robot.xacro"
+    with prepared_overrides(PackageSearch(origin=robot), ["wheel_radius=40mm"], []) as given:
+        view = serve(RobotInput(robot), LoadOptions(overrides=given))
+    assert view.dimension_sliders["wheel_radius"].value == 0.04
+    assert _wheel_radius(view) == 0.04
+    assert view.show_overrides_yaml() == "wheel_radius: 0.04\n"
+    view.rebuild()  # as live reload does: the overrides stay applied
+    assert view.errors == [] and _wheel_radius(view) == 0.04

@@ -126,9 +126,11 @@ def fail(item: CiItem, name: str, message: str, diagnostics=(), exit_code: int =
           error: McarError | None = None) -> None:
     item.steps.append(Step(name, "failed", message, list(diagnostics), exit_code=exit_code,
                            error=error))
+    # The steps after this one are skipped; one before it that did not run (sim, left out
+    # with --no-sim, before a failed render) is not reported at all.
     done = {step.name for step in item.steps}
     item.steps += [Step(rest, "skipped", f"skipped: {name} failed")
-                   for rest in STEPS if rest not in done]
+                   for rest in STEPS[STEPS.index(name) + 1:] if rest not in done]
 
 
 @contextlib.contextmanager

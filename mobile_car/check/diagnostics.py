@@ -37,10 +37,13 @@ class Diagnostic:
         """``FILE:LINE: error: message [E104]``, the form compilers and linters use."""
         return f"{self.location()}: {self.severity}: {self.message} [{self.rule}]"
 
+    def rule_name(self) -> str:
+        return RULES[self.rule].name
+
     def github(self) -> str:
         """A GitHub Actions workflow command that annotates the line in the pull request."""
         return github_annotation(self.severity, self.file, self.line,
-                                 f"{self.rule} {RULES[self.rule].name}", self.message)
+                                 f"{self.rule} {self.rule_name()}", self.message)
 
     def as_json(self) -> dict:
         return {"rule": self.rule, "severity": self.severity, "file": self.file,

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..check.diagnostics import Diagnostic
+
 ERROR, WARNING = "error", "warning"
 # id -> (name, summary), for the README and --format json.
 SIM_RULES = {
@@ -23,35 +25,13 @@ SIM_RULES = {
 
 
 @dataclass(frozen=True)
-class SimDiagnostic:
-    """A sim rule broken at FILE:LINE; prints like check's Diagnostic."""
-
-    rule: str
-    file: str
-    line: int | None
-    message: str
+class SimDiagnostic(Diagnostic):
+    """A sim rule broken at FILE:LINE; prints exactly as check's Diagnostic does, from
+    the sim rules' table."""
 
     @property
     def severity(self) -> str:
         return ERROR if self.rule.startswith("E") else WARNING
 
-    @property
-    def is_error(self) -> bool:
-        return self.severity == ERROR
-
-    def location(self) -> str:
-        return f"{self.file}:{self.line}" if self.line else self.file
-
-    def text(self) -> str:
-        return f"{self.location()}: {self.severity}: {self.message} [{self.rule}]"
-
-    def github(self) -> str:
-        """A GitHub Actions annotation on the line, as check's Diagnostic makes it."""
-        from ..check.diagnostics import github_annotation
-
-        return github_annotation(self.severity, self.file, self.line,
-                                 f"{self.rule} {SIM_RULES[self.rule][0]}", self.message)
-
-    def as_json(self) -> dict:
-        return {"rule": self.rule, "severity": self.severity, "file": self.file,
-                "line": self.line, "message": self.message}
+    def rule_name(self) -> str:
+        return SIM_RULES[self.rule][0]

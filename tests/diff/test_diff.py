@@ -190,14 +190,19 @@ def _git(repo: Path, *args: str) -> str:
                           text=True).stdout
 
 
+def commit_the_car(package: Path) -> None:
+    """Make the package a git repository whose one commit is the bundled car."""
+    if shutil.which("git") is None:
+        pytest.skip("git is not installed")
+    _git(package, "init", "-q")
+    _git(package, "add", ".")
+    _git(package, "commit", "-qm", "the car")
+
+
 @pytest.fixture
 def two_commits(package_copy) -> Path:
     """A git clone of the package: the bundled car, then a commit that enlarges the wheels."""
-    if shutil.which("git") is None:
-        pytest.skip("git is not installed")
-    _git(package_copy, "init", "-q")
-    _git(package_copy, "add", ".")
-    _git(package_copy, "commit", "-qm", "the car")
+    commit_the_car(package_copy)
     _set_wheel_radius(package_copy, "0.045")
     _git(package_copy, "commit", "-qam", "bigger wheels")
     return package_copy

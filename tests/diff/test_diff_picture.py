@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
 
 import numpy as np
 import pytest
-from diff.test_diff import _git, _set_wheel_radius, write
+from diff.test_diff import _git, _set_wheel_radius, commit_the_car, write
 from PIL import Image
 
 # A box on two wheels hung at a fixed height: a change of the wheels' radius changes
@@ -92,11 +91,7 @@ def test_identical_robots_give_identical_halves_and_no_highlight(run_mcar, tmp_p
 
 
 def test_a_wheel_radius_commit_highlights_the_new_wheels(run_mcar, package_copy):
-    if shutil.which("git") is None:
-        pytest.skip("git is not installed")
-    _git(package_copy, "init", "-q")
-    _git(package_copy, "add", ".")
-    _git(package_copy, "commit", "-qm", "the car")
+    commit_the_car(package_copy)
     _set_wheel_radius(package_copy, "0.045")
     code, old, new = _draw(run_mcar, "HEAD", "urdf/mobile_robot.xacro", cwd=package_copy)
     assert code == 1
@@ -129,11 +124,7 @@ def test_the_picture_never_overwrites_an_input(run_mcar, tmp_path):
 
 
 def test_a_picture_of_several_robots_is_refused(run_mcar, package_copy):
-    if shutil.which("git") is None:
-        pytest.skip("git is not installed")
-    _git(package_copy, "init", "-q")
-    _git(package_copy, "add", ".")
-    _git(package_copy, "commit", "-qm", "the car")
+    commit_the_car(package_copy)
     result = run_mcar("diff", "HEAD", "--picture", "diff.png", cwd=package_copy)
     assert result.returncode == 2
     assert result.stderr.startswith("mcar: error: --picture draws one robot, but "), result.stderr

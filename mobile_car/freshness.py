@@ -168,3 +168,20 @@ def diagnostics_from(data) -> list:
 
     return [Diagnostic(d["rule"], display_path(d["file"]) if os.path.isabs(d["file"])
                        else d["file"], d["line"], d["message"]) for d in data]
+
+
+def read_record(path: Path, section: str) -> dict[str, dict]:
+    """The entries under ``section`` of a JSON record (the render manifest, the ci
+    record), or none when it is missing, damaged or not a record. Read within the input
+    limit: the record may be a link to /dev/zero, or a FIFO."""
+    from .errors import InputError
+    from .load.bounded import read_input
+
+    try:
+        data = json.loads(read_input(path))
+    except (OSError, ValueError, RecursionError, InputError):
+        return {}
+    entries = data.get(section) if isinstance(data, dict) else None
+    if not isinstance(entries, dict):
+        return {}
+    return {key: value for key, value in entries.items() if isinstance(value, dict)}

@@ -28,6 +28,7 @@ from ..freshness import (
     key_of,
     output_current,
     output_stamp,
+    read_record,
     stamps_current,
 )
 from ..load.inputs import display_path
@@ -45,18 +46,9 @@ class CiCache:
     def __init__(self, build_dir: Path):
         self.folder = Path(build_dir)
         self.path = self.folder / CACHE_NAME
-        self.entries: dict[str, dict] = {}
+        self.entries: dict[str, dict] = read_record(self.path, "items")
         self.stamper = Stamper()
         self._changed = False
-        from ..errors import InputError
-        from ..load.bounded import read_input
-
-        try:  # bounded like every read: a record linked to /dev/zero is just unreadable
-            data = json.loads(read_input(self.path))
-            if isinstance(data, dict) and isinstance(data.get("items"), dict):
-                self.entries = {k: v for k, v in data["items"].items() if isinstance(v, dict)}
-        except (OSError, ValueError, RecursionError, InputError):
-            pass
 
     def _name(self, item: CiItem) -> str:
         return Path(os.path.relpath(os.path.abspath(item.urdf),

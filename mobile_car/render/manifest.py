@@ -26,9 +26,7 @@ import os
 from pathlib import Path
 
 from ..atomic import atomic_write
-from ..errors import InputError
-from ..freshness import Basis, key_of, output_current, output_stamp, stamps_current
-from ..load.bounded import read_input
+from ..freshness import Basis, key_of, output_current, output_stamp, read_record, stamps_current
 
 MANIFEST_NAME = ".mcar-render.json"
 CONTACT_SHEET = "index.png"
@@ -63,14 +61,8 @@ class Manifest:
     def __init__(self, folder: Path):
         self.folder = Path(folder)
         self.path = self.folder / MANIFEST_NAME
-        self.entries: dict[str, dict] = {}
+        self.entries: dict[str, dict] = read_record(self.path, "outputs")
         self._changed = False
-        try:  # within the input limit: it may be a link to /dev/zero, or a FIFO
-            data = json.loads(read_input(self.path))
-            if isinstance(data, dict) and isinstance(data.get("outputs"), dict):
-                self.entries = {k: v for k, v in data["outputs"].items() if isinstance(v, dict)}
-        except (OSError, ValueError, RecursionError, InputError):
-            pass
 
     def key(self, target: Path) -> str:
         """The output's name in the manifest: its path relative to the folder."""

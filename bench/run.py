@@ -496,6 +496,19 @@ def _big_robot_rows(work: Path, quick: bool) -> list[str]:
     return [*rows, ""]
 
 
+def rows_over_version(cases, version: Result, peak: bool = False) -> list[str]:
+    """Table rows of (label, result, target seconds or None): the median (and peak
+    memory), the ratio to `mcar --version` measured in the same run, exit, verdict."""
+    rows = []
+    for label, result, limit in cases:
+        met = None if limit is None else (result.ok and result.wall < limit)
+        memory = f" {fmt_peak(result)} |" if peak else ""
+        rows.append(f"| {label} | {time_cell(result)} |{memory} "
+                    f"{result.wall / version.wall:.1f} | {exit_text(result.codes)} | "
+                    f"{verdict(met)} |")
+    return rows
+
+
 def section_noop(rows: list[str], work: Path, quick: bool) -> None:
     """`mcar render` and `mcar ci` of the bundled package with nothing changed (the
     pre-commit hook's case), and with one part file edited (only its pictures redrawn)."""
@@ -541,11 +554,7 @@ def section_noop(rows: list[str], work: Path, quick: bool) -> None:
              "under 300 ms (before: 1.5-2.4 s). *x --version*: the time over `mcar --version` "
              f"in this run ({fmt_time(version.wall)}).", "",
              "| what | median | x --version | exit | target |", "|---|---:|---:|---|---|"]
-    for label, result, limit in cases:
-        met = None if limit is None else (result.ok and result.wall < limit)
-        rows.append(f"| {label} | {time_cell(result)} | "
-                    f"{result.wall / version.wall:.1f} | {exit_text(result.codes)} | "
-                    f"{verdict(met)} |")
+    rows += rows_over_version(cases, version)
     rows.append("")
     rows += notes_for("noop")
     progress("no-op measured")
@@ -572,11 +581,7 @@ def section_sim(rows: list[str], work: Path, quick: bool) -> None:
              f"`mcar --version` in this run ({fmt_time(version.wall)}).", "",
              "| command | median | peak memory | x --version | exit | target |",
              "|---|---:|---:|---:|---|---|"]
-    for label, result, limit in cases:
-        met = None if limit is None else (result.ok and result.wall < limit)
-        rows.append(f"| {label} | {time_cell(result)} | {fmt_peak(result)} | "
-                    f"{result.wall / version.wall:.1f} | {exit_text(result.codes)} | "
-                    f"{verdict(met)} |")
+    rows += rows_over_version(cases, version, peak=True)
     rows.append("")
     rows += notes_for("sim")
     progress("sim measured")

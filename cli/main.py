@@ -26,6 +26,7 @@ COMMANDS = {
     "sim": ("sim", "Simulate the robot in MuJoCo: it stands, drives and turns."),
     "ci": ("ci", "Build, check --strict and render a whole package: the CI job."),
     "diff": ("diff", "Show what a change does to the robot: kinematics, masses, dimensions."),
+    "sweep": ("sweep", "Sweep dimensions: build, check and simulate every variant."),
     "tree": ("tree", "Print the kinematic tree with joint types, origins and axes."),
     "init": ("init", "Create a robot description package, ready for mcar ci."),
     "new": ("new", "Add a part to the package you stand in."),

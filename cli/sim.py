@@ -65,7 +65,8 @@ Exit codes:
 """
 
 
-def _scenarios(ctx, param, value):
+def scenario_list(ctx, param, value):
+    """--scenario LIST: known names, in the order drop, drive, spin."""
     names = [n.strip() for n in value.split(",") if n.strip()]
     unknown = [n for n in names if n not in SCENARIO_NAMES]
     if unknown or not names:
@@ -77,7 +78,7 @@ def _scenarios(ctx, param, value):
 @click.command("sim", help=HELP, short_help="Simulate the robot: drop, drive, spin.")
 @click.argument("words", nargs=-1, metavar="[INPUT]... [NAME:=VALUE]...")
 @click.option("--scenario", "scenarios", default=",".join(SCENARIO_NAMES), show_default=True,
-              callback=_scenarios, metavar="LIST", help="Scenarios to run, comma-separated.")
+              callback=scenario_list, metavar="LIST", help="Scenarios to run, comma-separated.")
 @click.option("--format", "output_format", type=click.Choice(("text", "json", "junit")),
               default="text", show_default=True,
               help="text: a table on stdout, problems on stderr; json: one document; "

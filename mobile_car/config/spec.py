@@ -140,7 +140,7 @@ def _range_of(prop, match, path: Path) -> Range | None:
     return plausible
 
 
-def _check_bound(dimension: Dimension, value: float, origin: str) -> None:
+def check_bound(dimension: Dimension, value: float, origin: str) -> None:
     kind = _KIND.get(dimension.unit, "the value")
     if dimension.bound == ">0" and value <= 0:
         raise UsageError(f"{origin}: {dimension.name} = {value:g} {dimension.unit}: "
@@ -171,7 +171,7 @@ def _override(spec: ConfigSpec, name: str, raw, origin: str) -> float:
         raise UsageError(f"{origin}: {name} is baked into a mesh (scripts/make_meshes.py); "
                          "change it in config.xacro and regenerate the meshes instead")
     if dimension.range is None:
-        _check_bound(dimension, value, origin)
+        check_bound(dimension, value, origin)
     elif value not in dimension.range:
         raise UsageError(f"{origin}: "
                          f"{outside_message(name, raw, value, dimension.unit, dimension.range)}")

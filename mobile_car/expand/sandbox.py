@@ -129,7 +129,7 @@ def prepare(read_roots: list[Path]) -> list[Path] | None:
 def confine(read_roots: list[Path], keep_fd: int) -> None:
     """In the forked child: confine this process for good. Raises nothing it can avoid:
     a layer the kernel refuses is left out (``support()`` already said so)."""
-    _die_with_parent()
+    die_with_parent()
     _only_fds(keep_fd)
     info = support()
     if info.landlock_abi:
@@ -139,7 +139,7 @@ def confine(read_roots: list[Path], keep_fd: int) -> None:
     sys.addaudithook(_refuse_audited)
 
 
-def _die_with_parent() -> None:
+def die_with_parent() -> None:
     parent = os.getppid()
     try:
         import ctypes

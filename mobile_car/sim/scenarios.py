@@ -62,6 +62,9 @@ class ScenarioResult:
     skipped: str | None = None   # why it did not run
     problems: list[str] = field(default_factory=list)  # what is wrong, for people
     seconds: float = 0.0         # simulated
+    # Raw measurements behind the figures (SI units, degrees for angles), for mcar sweep's
+    # rows: rest_height_m, speed_ratio, yaw_ratio, ...
+    measured: dict[str, float] = field(default_factory=dict)
 
     @property
     def passed(self) -> bool:
@@ -185,6 +188,9 @@ def run_drop(sim: SimModel, frame=None) -> ScenarioResult:
         elif gap < -REST_HEIGHT_BOUND:
             result.problems.append(f"{link} reaches {-1000 * gap:.2f} mm below the drive "
                                    "wheels (geometry): the wheels cannot both touch")
+    result.measured = {"rest_height_m": height,
+                       "height_error_m": float(abs(height - sim.rest_height)),
+                       "tilt_deg": max(abs(math.degrees(roll)), abs(math.degrees(pitch)))}
     touching = run.on_floor()
     expected = {w.link: w.body_id for w in (sim.left, sim.right) if w is not None}
     expected.update(sim.ground_parts)
@@ -255,6 +261,10 @@ def run_drive(sim: SimModel, frame=None) -> ScenarioResult:
         Figure("wheel speed reached", 100 * reached, 100 * (1 - WHEEL_SPEED_BOUND), "%",
                within="min", detail=f"command {omega:.4g} rad/s"),
     ]
+    result.measured = {"speed_ratio": along / ideal,
+                       "speed_m_s": along / (DRIVE_TIME - RAMP_TIME / 2),
+                       "lateral_drift_m": lateral,
+                       "heading_change_deg": abs(math.degrees(_wrap(yaw - yaw0)))}
     if reached < 1 - WHEEL_SPEED_BOUND:
         efforts = ", ".join(f"{w.joint} {w.effort if w.effort is not None else 0:g} N·m"
                             for w in (sim.left, sim.right))
@@ -296,6 +306,8 @@ def run_spin(sim: SimModel, frame=None) -> ScenarioResult:
                       f"(track {sim.track:.4f} m)"),
         Figure("centre moved", state["centre"], CENTRE_BOUND, "m"),
     ]
+    result.measured = {"yaw_ratio": rate / ideal, "yaw_rate_rad_s": rate,
+                       "centre_moved_m": state["centre"]}
     return result
 
 

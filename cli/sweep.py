@@ -55,7 +55,7 @@ Exit codes:
   1  a point could not be evaluated (an error building it, a worker that died twice)
   2  usage, I/O or environment error: bad --vary, unknown dimension, unreachable
      scheduler, workers without mcar, a results file that is not this sweep's
-  130  interrupted (Ctrl-C); 143 terminated: the finished rows are kept
+  130  interrupted (Ctrl-C); 143 terminated
 """
 
 
@@ -167,27 +167,32 @@ def _run(session, todo, jobs, scheduler) -> str:
     from mobile_car.sweep.execute import default_jobs, run_dask, run_local
 
     workers = f"Dask scheduler {scheduler}" if scheduler else \
-        f"{min(jobs or default_jobs(), max(1, len(todo)))} local workers"
+        _workers(min(jobs or default_jobs(), max(1, len(todo))))
     if not todo:
         return workers
-    with click.progressbar(length=len(todo), label="mcar sweep", file=sys.stderr,
-                           show_pos=True, show_eta=True) as bar:
-        def on_row(row):
-            session.add(row)
+    # A bar on a terminal only: in a CI log it would be one line per redraw.
+    bar = click.progressbar(length=len(todo), label="mcar sweep", file=sys.stderr,
+                            show_pos=True, show_eta=True) if sys.stderr.isatty() else None
+
+    def on_row(row):
+        session.add(row)
+        if bar is not None:
             bar.update(1)
 
-        try:
-            if scheduler:
-                run_dask(session.job, todo, scheduler, on_row)
-            else:
-                run_local(session.job, todo, jobs or default_jobs(), on_row)
-        except BaseException:
-            if session.output and session.rows:
-                session.save()
-                click.echo(f"mcar sweep: {len(session.rows)} of {len(session.points)} "
-                           f"points kept in {session.output}; --resume runs the rest",
-                           err=True)
-            raise
+    try:
+        if scheduler:
+            run_dask(session.job, todo, scheduler, on_row)
+        else:
+            run_local(session.job, todo, jobs or default_jobs(), on_row)
+    except BaseException:
+        if session.output and session.rows:
+            session.save()
+            click.echo(f"mcar sweep: {len(session.rows)} of {len(session.points)} points "
+                       f"kept in {session.output}; --resume runs the rest", err=True)
+        raise
+    finally:
+        if bar is not None:
+            bar.render_finish()
     return workers
 
 
@@ -210,3 +215,7 @@ def _draw(session, path, axes, colour) -> None:
     from mobile_car.sweep.plot import plot_sweep
 
     plot_sweep(session.table(), axes[0], axes[1], colour, session.units, path)
+
+
+def _workers(count: int) -> str:
+    return f"{count} local worker{'s' * (count != 1)}"

@@ -24,7 +24,7 @@ def _cases():
 def test_edge(run_mcar, tmp_path, words, code, first):
     shutil.copytree(HERE / "files", tmp_path, dirs_exist_ok=True)
     words = shlex.split(words.replace("{HERE}", str(tmp_path)))
-    first = first.replace("{HERE}", str(tmp_path))
+    first = first.replace("{HERE}", str(tmp_path)).replace("{REPO}", str(REPO))
     result = run_mcar(*words, cwd=tmp_path)
     lines = [line for line in result.stderr.splitlines() if not line.startswith("mcar: package")]
     assert (result.returncode, lines[0] if lines else "") == (code, first), result.stderr

@@ -1,0 +1,238 @@
+"""`mcar sweep` end to end, as a user runs it: the installed command over the bundled car,
+results read back with pandas and compared with what config.xacro and `mcar sim` say."""
+
+from __future__ import annotations
+
+import itertools
+import json
+import math
+import os
+import signal
+import subprocess
+import time
+from pathlib import Path
+
+import pytest
+from conftest import MCAR, REPO
+
+pd = pytest.importorskip("pandas", reason="the sweep extra (pip install 'mcar[sweep]')")
+
+ROBOT = str(REPO / "urdf" / "mobile_robot.xacro")
+# The issue's 60 points: 12 wheel radii by 5 track widths.
+GRID = ["--vary", "wheel_radius=25mm..45mm:12", "--vary", "track_width=0.15..0.17:5"]
+RADII = [0.025 + 0.02 * i / 11 for i in range(12)]
+TRACKS = [0.15, 0.155, 0.16, 0.165, 0.17]
+# Columns that say when and where a row was made, not what it found.
+RUN_COLUMNS = ["worker", "validate_s", "build_s", "check_s", "sim_s", "total_s"]
+KILL_WORKER = Path(__file__).parent / "kill_worker"
+
+
+def sweep(*args, cwd, env=None, timeout=300):
+    full_env = {k: v for k, v in os.environ.items()
+                if k not in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")}
+    full_env.update(env or {})
+    return subprocess.run([str(MCAR), "sweep", *map(str, args)], cwd=cwd, env=full_env,
+                          capture_output=True, text=True, timeout=timeout)
+
+
+def findings(frame):
+    """What a row found: everything but where and when it ran."""
+    return frame.drop(columns=RUN_COLUMNS).reset_index(drop=True)
+
+
+@pytest.fixture(scope="module")
+def grid_run(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("sweep")
+    done = sweep(ROBOT, *GRID, "--jobs", "2", "-o", "results.parquet", cwd=folder)
+    return done, pd.read_parquet(folder / "results.parquet"), folder
+
+
+@pytest.fixture(scope="module")
+def dimensions():
+    done = subprocess.run([str(MCAR), "config", ROBOT, "--format", "json"],
+                          capture_output=True, text=True, check=True)
+    table = json.loads(done.stdout)
+    return {name: entry["value"] for part in ("dimensions", "derived")
+            for name, entry in table[part].items()}
+
+
+def test_sixty_points_make_sixty_rows_in_grid_order(grid_run):
+    done, frame, _ = grid_run
+    assert done.returncode == 0, done.stderr
+    assert list(frame["point"]) == list(range(60))
+    expected = list(itertools.product(RADII, TRACKS))
+    assert [(r, t) for r, t in zip(frame["wheel_radius"], frame["track_width"], strict=True)] \
+        == [pytest.approx(pair, abs=1e-12) for pair in expected]
+    assert set(frame["status"]) <= {"ok", "rejected"}
+
+
+def test_rejections_name_the_constraint_config_xacro_states(grid_run, dimensions):
+    """Which points config.xacro's checks refuse, worked out here from its numbers."""
+    _, frame, _ = grid_run
+    d = dimensions
+    for row in frame.to_dict("records"):
+        wheel_y = row["track_width"] / 2
+        bracket_outer = wheel_y - d["wheel_width"] / 2 - d["wheel_hub_length"] - \
+            d["wheel_hub_clearance"]
+        if bracket_outer > d["plate_width"] / 2 + 1e-12:
+            expected = "the motor brackets stick out of the plate"
+        elif wheel_y - d["wheel_width"] / 2 <= d["plate_width"] / 2 + 1e-12:
+            expected = "the wheels overlap the chassis"
+        else:
+            expected = ""
+        assert (row["constraint"], row["valid"]) == (expected, not expected), row
+        if expected:
+            assert row["status"] == "rejected" and row["reason"].startswith(expected + ": ")
+            assert math.isnan(row["speed_ratio"]) and math.isnan(row["build_s"])
+    counts = frame["constraint"].value_counts().to_dict()
+    assert counts == {"the wheels overlap the chassis": 24,
+                      "the motor brackets stick out of the plate": 12, "": 24}
+
+
+def test_valid_points_are_simulated_with_figures_that_follow_the_geometry(grid_run):
+    _, frame, _ = grid_run
+    ok = frame[frame["status"] == "ok"]
+    assert len(ok) == 24
+    assert (ok["speed_ratio"] - 1).abs().max() < 0.02
+    assert (ok["yaw_ratio"] - 1).abs().max() < 0.05
+    assert ok["tilt_deg"].max() < 1.0 and ok["height_error_m"].max() < 0.001
+    for _, same_track in ok.groupby("track_width"):  # bigger wheels, faster car
+        assert list(same_track["speed_m_s"]) == sorted(same_track["speed_m_s"])
+    for column in ("build_s", "check_s", "sim_s", "validate_s", "mass_kg"):
+        assert (ok[column] > 0).all()
+    assert (ok["check_errors"] == 0).all() and (ok["check_warnings"] == 0).all()
+
+
+def test_a_row_says_what_mcar_sim_says_of_that_point(grid_run):
+    _, frame, _ = grid_run
+    row = frame[frame["status"] == "ok"].iloc[3]
+    done = subprocess.run(
+        [str(MCAR), "sim", ROBOT, "--format", "json", "--set",
+         f"wheel_radius={float(row['wheel_radius'])!r}", "--set",
+         f"track_width={float(row['track_width'])!r}"],
+        capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    scenarios = {s["name"]: {f["name"]: f["value"] for f in s["figures"]}
+                 for s in json.loads(done.stdout)["files"][0]["scenarios"]}
+    assert scenarios["drive"]["distance error"] == pytest.approx(
+        100 * abs(row["speed_ratio"] - 1), rel=1e-5)
+    assert scenarios["spin"]["yaw rate error"] == pytest.approx(
+        100 * abs(row["yaw_ratio"] - 1), rel=1e-5)
+    assert scenarios["drop"]["height error"] == pytest.approx(row["height_error_m"], rel=1e-5)
+
+
+def test_the_summary_counts_the_rows(grid_run):
+    done, _, _ = grid_run
+    lines = done.stderr.splitlines()
+    assert lines[0].startswith("mcar sweep: 60 points in ")
+    assert lines[0].endswith("(2 local workers): 24 ok, 36 rejected")
+    assert lines[1:] == ["  rejected 24x: the wheels overlap the chassis",
+                         "  rejected 12x: the motor brackets stick out of the plate",
+                         "mcar sweep: results in results.parquet"]
+
+
+def test_a_dask_local_cluster_gives_the_same_rows(grid_run, tmp_path):
+    distributed = pytest.importorskip("distributed", reason="the sweep extra installs Dask")
+    _, local, _ = grid_run
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  host="127.0.0.1", dashboard_address=None) as cluster:
+        assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
+        done = sweep(ROBOT, *GRID, "--scheduler", cluster.scheduler_address,
+                     "-o", "dask.parquet", cwd=tmp_path)
+        worker_pids = {w.pid for w in cluster.workers.values() if hasattr(w, "pid")}
+    assert done.returncode == 0, done.stderr
+    assert f"(Dask scheduler {cluster.scheduler_address}): 24 ok, 36 rejected" in done.stderr
+    remote = pd.read_parquet(tmp_path / "dask.parquet")
+    pd.testing.assert_frame_equal(findings(remote), findings(local))
+    ran_on = {int(w.rsplit(":", 1)[1]) for w in remote["worker"] if w}
+    assert ran_on and (not worker_pids or ran_on <= worker_pids)
+    assert os.getpid() not in ran_on
+
+
+def test_csv_and_stdout_hold_what_parquet_holds(grid_run, tmp_path):
+    _, parquet, _ = grid_run
+    words = [ROBOT, "--vary", "wheel_radius=25mm..45mm:12", "--vary", "track_width=0.16",
+             "--jobs", "1"]
+    to_file = sweep(*words, "-o", "r.csv", cwd=tmp_path)
+    to_stdout = sweep(*words, "-o", "-", cwd=tmp_path)
+    assert to_file.returncode == to_stdout.returncode == 0, to_file.stderr + to_stdout.stderr
+    csv = pd.read_csv(tmp_path / "r.csv", keep_default_na=False, na_values=[""])
+    assert to_stdout.stdout.splitlines()[0] == (tmp_path / "r.csv").read_text().splitlines()[0]
+    subset = parquet[parquet["track_width"] == 0.16]
+    assert list(csv["point"]) == list(range(12))
+    for column in ("wheel_radius", "speed_ratio", "yaw_ratio", "mass_kg"):
+        assert list(csv[column]) == pytest.approx(list(subset[column]), rel=1e-12)
+    assert list(csv["status"]) == list(subset["status"])
+
+
+def test_resume_keeps_finished_rows_and_runs_only_the_missing_points(tmp_path):
+    words = [ROBOT, "--vary", "wheel_radius=25mm..45mm:6", "--vary", "track_width=0.16,0.165",
+             "--jobs", "2", "-o", "r.csv"]
+    assert sweep(*words, cwd=tmp_path).returncode == 0
+    full = (tmp_path / "r.csv").read_text().splitlines()
+    header, rows = full[0], full[1:]
+    # Keep 5 rows, and mark one so that a re-run of it would show.
+    marked = rows[2].split(",")
+    marked[header.split(",").index("total_s")] = "999.0"
+    (tmp_path / "r.csv").write_text("\n".join([header, *rows[:2], ",".join(marked),
+                                               *rows[3:5]]) + "\n")
+    done = sweep(*words, "--resume", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert "12 points in" in done.stderr and "5 from the earlier run" in done.stderr
+    frame = pd.read_csv(tmp_path / "r.csv")
+    assert list(frame["point"]) == list(range(12))
+    assert frame.loc[2, "total_s"] == 999.0  # kept, not run again
+    assert (frame["total_s"] < 999).sum() == 11
+
+
+def test_ctrl_c_keeps_the_finished_rows_and_resume_finishes(tmp_path):
+    words = [ROBOT, "--vary", "wheel_radius=25mm..45mm:30", "--vary", "track_width=0.16",
+             "--jobs", "1", "-o", "r.parquet"]
+    process = subprocess.Popen([str(MCAR), "sweep", *words], cwd=tmp_path,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not (tmp_path / "r.parquet").exists() and time.monotonic() < deadline:
+        time.sleep(0.2)  # the file is first saved after some rows are done
+    process.send_signal(signal.SIGINT)
+    _, stderr = process.communicate(timeout=60)
+    assert process.returncode == 130, stderr
+    kept = pd.read_parquet(tmp_path / "r.parquet")
+    assert 0 < len(kept) < 30
+    assert stderr.splitlines()[-2:] == [
+        f"mcar sweep: {len(kept)} of 30 points kept in r.parquet; --resume runs the rest",
+        "mcar: interrupted"]
+    assert set(kept["status"]) == {"ok"} and kept["speed_ratio"].notna().all()
+    done = sweep(*words, "--resume", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    frame = pd.read_parquet(tmp_path / "r.parquet")
+    assert list(frame["point"]) == list(range(30)) and set(frame["status"]) == {"ok"}
+    pd.testing.assert_frame_equal(frame.iloc[:len(kept)].reset_index(drop=True), kept)
+
+
+def test_a_killed_worker_loses_only_its_point_which_runs_again(tmp_path, grid_run):
+    _, parquet, _ = grid_run
+    env = {"PYTHONPATH": str(KILL_WORKER), "SWEEP_TEST_KILL_POINT": "3",
+           "SWEEP_TEST_KILL_ONCE": str(tmp_path / "killed-once")}
+    words = [ROBOT, "--vary", "wheel_radius=25mm..45mm:12", "--vary", "track_width=0.16",
+             "--jobs", "2", "-o", "r.parquet"]
+    done = sweep(*words, cwd=tmp_path, env=env)
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "killed-once").exists()  # the worker was killed
+    frame = pd.read_parquet(tmp_path / "r.parquet")
+    assert list(frame["point"]) == list(range(12)) and set(frame["status"]) == {"ok"}
+    assert frame.loc[3, "attempts"] == 2
+    subset = parquet[parquet["track_width"] == 0.16].reset_index(drop=True)
+    assert list(frame["speed_ratio"]) == pytest.approx(list(subset["speed_ratio"]), rel=1e-12)
+
+
+def test_a_point_that_always_kills_its_worker_is_reported(tmp_path):
+    env = {"PYTHONPATH": str(KILL_WORKER), "SWEEP_TEST_KILL_POINT": "1"}
+    words = [ROBOT, "--vary", "wheel_radius=25mm..45mm:4", "--vary", "track_width=0.16",
+             "--jobs", "2", "-o", "r.csv"]
+    done = sweep(*words, cwd=tmp_path, env=env)
+    assert done.returncode == 1, done.stderr
+    frame = pd.read_csv(tmp_path / "r.csv", keep_default_na=False)
+    assert list(frame["status"]) == ["ok", "crashed", "ok", "ok"]
+    assert frame.loc[1, "attempts"] == 2
+    assert ("  point 1 crashed: its worker process died twice (killed, or crashed in native "
+            "code): the point was retried once, alone") in done.stderr.splitlines()

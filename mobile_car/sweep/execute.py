@@ -53,9 +53,10 @@ def _pool(workers: int):
     from concurrent.futures import ProcessPoolExecutor
 
     # forkserver: each worker starts from a small clean process, not a fork of this one
-    # (its threads and open files), and without re-running mcar's command line.
+    # (its threads and open files). Nothing is preloaded: the server runs with the working
+    # directory first on sys.path, where a source checkout's mobile_car/ would shadow the
+    # installed one; a worker imports mcar after taking this process's sys.path.
     context = multiprocessing.get_context("forkserver")
-    context.set_forkserver_preload(["mobile_car.sweep.point"])
     return ProcessPoolExecutor(max_workers=workers, mp_context=context,
                                initializer=_worker_started)
 

@@ -185,7 +185,9 @@ def test_resume_keeps_finished_rows_and_runs_only_the_missing_points(tmp_path):
     assert (frame["total_s"] < 999).sum() == 11
 
 
-def test_ctrl_c_keeps_the_finished_rows_and_resume_finishes(tmp_path):
+@pytest.mark.parametrize("signum, code, said", [(signal.SIGINT, 130, "mcar: interrupted"),
+                                               (signal.SIGTERM, 143, "mcar: terminated")])
+def test_a_signal_keeps_the_finished_rows_and_resume_finishes(tmp_path, signum, code, said):
     words = [ROBOT, "--vary", "wheel_radius=25mm..45mm:30", "--vary", "track_width=0.16",
              "--jobs", "1", "-o", "r.parquet"]
     process = subprocess.Popen([str(MCAR), "sweep", *words], cwd=tmp_path,
@@ -193,14 +195,14 @@ def test_ctrl_c_keeps_the_finished_rows_and_resume_finishes(tmp_path):
     deadline = time.monotonic() + 120
     while not (tmp_path / "r.parquet").exists() and time.monotonic() < deadline:
         time.sleep(0.2)  # the file is first saved after some rows are done
-    process.send_signal(signal.SIGINT)
+    process.send_signal(signum)
     _, stderr = process.communicate(timeout=60)
-    assert process.returncode == 130, stderr
+    assert process.returncode == code, stderr
     kept = pd.read_parquet(tmp_path / "r.parquet")
     assert 0 < len(kept) < 30
     assert stderr.splitlines()[-2:] == [
         f"mcar sweep: {len(kept)} of 30 points kept in r.parquet; --resume runs the rest",
-        "mcar: interrupted"]
+        said]
     assert set(kept["status"]) == {"ok"} and kept["speed_ratio"].notna().all()
     done = sweep(*words, "--resume", cwd=tmp_path)
     assert done.returncode == 0, done.stderr
@@ -236,3 +238,13 @@ def test_a_point_that_always_kills_its_worker_is_reported(tmp_path):
     assert frame.loc[1, "attempts"] == 2
     assert ("  point 1 crashed: its worker process died twice (killed, or crashed in native "
             "code): the point was retried once, alone") in done.stderr.splitlines()
+
+
+def test_runs_from_inside_a_source_checkout(tmp_path):
+    """The workers import the installed mcar, not the checkout's mobile_car/ folder that
+    the working directory would put first on their path."""
+    done = sweep("--vary", "wheel_radius=25mm,30mm", "-o", tmp_path / "r.csv", cwd=REPO)
+    assert done.returncode == 0, done.stderr
+    assert done.stderr.splitlines()[0] == f"mcar: package mobile_car_description ({REPO})"
+    frame = pd.read_csv(tmp_path / "r.csv")
+    assert list(frame["status"]) == ["ok", "ok"]

@@ -248,3 +248,23 @@ def test_runs_from_inside_a_source_checkout(tmp_path):
     assert done.stderr.splitlines()[0] == f"mcar: package mobile_car_description ({REPO})"
     frame = pd.read_csv(tmp_path / "r.csv")
     assert list(frame["status"]) == ["ok", "ok"]
+
+
+def test_on_dask_a_point_that_kills_its_workers_is_reported(tmp_path, monkeypatch):
+    """Dask reschedules the point of a dead worker itself; when the scheduler gives up
+    (allowed-failures, here 1), the point is a crashed row and the others are done."""
+    distributed = pytest.importorskip("distributed", reason="the sweep extra installs Dask")
+    import dask
+
+    monkeypatch.setenv("PYTHONPATH", str(KILL_WORKER))  # the worker processes load it
+    monkeypatch.setenv("SWEEP_TEST_KILL_POINT", "2")
+    with dask.config.set({"distributed.scheduler.allowed-failures": 1}), \
+            distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                     host="127.0.0.1", dashboard_address=None) as cluster:
+        done = sweep(ROBOT, "--vary", "wheel_radius=25mm..45mm:4", "--vary", "track_width=0.16",
+                     "--scheduler", cluster.scheduler_address, "-o", "r.csv", cwd=tmp_path)
+    assert done.returncode == 1, done.stderr
+    frame = pd.read_csv(tmp_path / "r.csv", keep_default_na=False)
+    assert list(frame["status"]) == ["ok", "ok", "crashed", "ok"]
+    assert ("  point 2 crashed: the Dask workers running it died; the scheduler retried it "
+            "and gave up (allowed-failures)") in done.stderr.splitlines()

@@ -108,7 +108,7 @@ def command(words, varies, samples, seed, scenarios, jobs, scheduler, output, re
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
         session = _session(selection, options, varies, samples, seed, scenarios, left,
                            right, output)
-    axes = _plot_axes(session.names, plot_x, plot_y) if plot else None
+    axes = _plot_axes(session.names, plot_x, plot_y, colour) if plot else None
     from pathlib import Path
 
     todo = session.points
@@ -202,12 +202,24 @@ def _csv(session) -> bytes:
     return encode(session.table(), ".csv")
 
 
-def _plot_axes(names, plot_x, plot_y):
-    x = plot_x or names[0]
-    y = plot_y or (names[1] if len(names) > 1 else None)
-    if y is None:
-        raise UsageError("--plot draws over two columns: vary two dimensions, or name the "
-                         "y axis with --plot-y (a figure such as speed_m_s)")
+def _plot_axes(names, plot_x, plot_y, colour):
+    """The plot's x and y (two varied dimensions), checked with its colour before the
+    sweep runs: a typo must not cost the whole sweep its plot."""
+    from mobile_car.sweep.point import FIGURES, TIMINGS
+
+    if len(names) < 2 and not (plot_x and plot_y):
+        raise UsageError("--plot draws the points over two dimensions: give two --vary")
+    x, y = plot_x or names[0], plot_y or names[1]
+    for option, name in (("--plot-x", x), ("--plot-y", y)):
+        if name not in names:
+            raise UsageError(f"{option} {name}: not a varied dimension; the sweep varies "
+                             f"{', '.join(names)}")
+    if x == y:
+        raise UsageError(f"--plot-x and --plot-y are both {x}: choose two of "
+                         f"{', '.join(names)}")
+    numbers = (*FIGURES, *TIMINGS, "check_errors", "check_warnings", "attempts")
+    if colour not in numbers:
+        raise UsageError(f"--colour {colour}: not a figure; choose one of {', '.join(numbers)}")
     return x, y
 
 

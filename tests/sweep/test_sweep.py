@@ -43,7 +43,8 @@ def findings(frame):
 @pytest.fixture(scope="module")
 def grid_run(tmp_path_factory):
     folder = tmp_path_factory.mktemp("sweep")
-    done = sweep(ROBOT, *GRID, "--jobs", "2", "-o", "results.parquet", cwd=folder)
+    done = sweep(ROBOT, *GRID, "--jobs", "2", "-o", "results.parquet", "--plot", "plot.png",
+                 cwd=folder)
     return done, pd.read_parquet(folder / "results.parquet"), folder
 
 
@@ -128,7 +129,34 @@ def test_the_summary_counts_the_rows(grid_run):
     assert lines[0].endswith("(2 local workers): 24 ok, 36 rejected")
     assert lines[1:] == ["  rejected 24x: the wheels overlap the chassis",
                          "  rejected 12x: the motor brackets stick out of the plate",
-                         "mcar sweep: results in results.parquet"]
+                         "mcar sweep: results in results.parquet, plot in plot.png"]
+
+
+def test_the_plot_shows_the_sixty_points_over_the_two_dimensions(grid_run, tmp_path):
+    """The PNG is the figure of the results table: drawn again from the file, it has the
+    same bytes, and that figure's axes and points are what the sweep was."""
+    from PIL import Image
+
+    from mobile_car.sweep.plot import draw_sweep, plot_sweep
+
+    _, frame, folder = grid_run
+    units = {"wheel_radius": "m", "track_width": "m"}
+    with Image.open(folder / "plot.png") as picture:
+        assert picture.format == "PNG" and picture.size == (1080, 648)
+    plot_sweep(frame, "wheel_radius", "track_width", "speed_m_s", units, tmp_path / "again.png")
+    assert (tmp_path / "again.png").read_bytes() == (folder / "plot.png").read_bytes()
+    figure = draw_sweep(frame, "wheel_radius", "track_width", "speed_m_s", units)
+    axes = figure.axes[0]
+    assert (axes.get_xlabel(), axes.get_ylabel()) == ("wheel_radius (mm)", "track_width (mm)")
+    assert axes.get_title() == "60 points: 24 valid, 36 rejected"
+    drawn = {c.get_gid(): c.get_offsets() for c in axes.collections}
+    assert {gid: len(points) for gid, points in drawn.items()} == {
+        "valid": 24, "rejected:the wheels overlap the chassis": 24,
+        "rejected:the motor brackets stick out of the plate": 12}
+    every = sorted((round(x, 6), round(y, 6)) for points in drawn.values() for x, y in points)
+    assert every == sorted((round(1000 * r, 6), round(1000 * t, 6))
+                           for r, t in itertools.product(RADII, TRACKS))
+    assert figure.axes[1].get_ylabel() == "speed (m/s)"
 
 
 def test_a_dask_local_cluster_gives_the_same_rows(grid_run, tmp_path):

@@ -169,6 +169,8 @@ def run_dask(job: SweepJob, points: list[Point], address: str,
             except KilledWorker:
                 row = crashed_row(point, "the Dask workers running it died; the scheduler "
                                          "retried it and gave up (allowed-failures)")
+            except McarError:  # the sweep's own error (see evaluate_point)
+                raise
             except Exception as error:  # noqa: BLE001 - the cluster, not the point, failed
                 raise ClusterError(f"a Dask worker could not run point {point.index}: "
                                    f"{type(error).__name__}: {error}") from None

@@ -56,8 +56,10 @@ def empty_row(index: int, values: dict[str, float]) -> dict:
 
 
 def evaluate_point(job: SweepJob, index: int, values: dict[str, float]) -> dict:
-    """The row of one point (see the module's docstring)."""
-    from ..errors import McarError
+    """The row of one point (see the module's docstring). A usage or input error (the
+    robot does not take overrides, a file is missing) is the sweep's, not the point's:
+    every point would fail alike, so it is raised, and ends the sweep."""
+    from ..errors import InputError, McarError, UsageError
 
     started = time.perf_counter()
     row = empty_row(index, values)
@@ -67,6 +69,8 @@ def evaluate_point(job: SweepJob, index: int, values: dict[str, float]) -> dict:
         trust_inputs()
     try:
         _evaluate(job, values, row)
+    except (UsageError, InputError):
+        raise
     except McarError as error:
         row["status"], row["reason"] = "error", str(error)
     except Exception as error:  # noqa: BLE001 - one point's fault must not end the sweep

@@ -296,3 +296,26 @@ def test_on_dask_a_point_that_kills_its_workers_is_reported(tmp_path, monkeypatc
     assert list(frame["status"]) == ["ok", "ok", "crashed", "ok"]
     assert ("  point 2 crashed: the Dask workers running it died; the scheduler retried it "
             "and gave up (allowed-failures)") in done.stderr.splitlines()
+
+
+def test_on_dask_ctrl_c_keeps_the_finished_rows_and_resume_finishes(tmp_path):
+    distributed = pytest.importorskip("distributed", reason="the sweep extra installs Dask")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  host="127.0.0.1", dashboard_address=None) as cluster:
+        words = [ROBOT, "--vary", "wheel_radius=25mm..45mm:60", "--vary", "track_width=0.16",
+                 "--scheduler", cluster.scheduler_address, "-o", "r.parquet"]
+        process = subprocess.Popen([str(MCAR), "sweep", *words], cwd=tmp_path,
+                                   stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 120
+        while not (tmp_path / "r.parquet").exists() and time.monotonic() < deadline:
+            time.sleep(0.2)
+        process.send_signal(signal.SIGINT)
+        _, stderr = process.communicate(timeout=60)
+        assert process.returncode == 130, stderr
+        kept = pd.read_parquet(tmp_path / "r.parquet")
+        assert 0 < len(kept) < 60 and set(kept["status"]) == {"ok"}
+        done = sweep(*words, "--resume", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert f"{len(kept)} from the earlier run" in done.stderr
+    frame = pd.read_parquet(tmp_path / "r.parquet")
+    assert list(frame["point"]) == list(range(60)) and set(frame["status"]) == {"ok"}

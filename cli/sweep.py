@@ -17,7 +17,7 @@ point in a Parquet or CSV file, and a plot of where the dimensions work.
 
 \b
   mcar sweep --vary wheel_radius=25mm..45mm:9 --vary track_width=0.15..0.17:5
-  mcar sweep --vary wheel_radius=25mm,35mm,45mm --set plate_width=0.14
+  mcar sweep --vary wheel_radius=25mm,35mm,45mm --set wheel_mass=60g
   mcar sweep --vary track_width=0.15..0.17 --samples 200 --seed 7
   mcar sweep ... -o results.csv --plot results.png --colour yaw_rate_rad_s
   mcar sweep ... --scheduler tcp://10.0.0.5:8786        on a Dask cluster
@@ -46,6 +46,9 @@ extra, and the package at the same path; the README says how to start them). The
 results file is saved every few seconds: Ctrl-C keeps the finished rows, and --resume
 runs only the points it lacks. A point whose worker dies is retried once, alone, then
 reported as "crashed".
+
+A sweep varies one robot: the file named, or the one robot file directly in the
+package's urdf/ folder.
 
 {INPUT_HELP}
 

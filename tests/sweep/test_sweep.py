@@ -319,3 +319,28 @@ def test_on_dask_ctrl_c_keeps_the_finished_rows_and_resume_finishes(tmp_path):
     assert f"{len(kept)} from the earlier run" in done.stderr
     frame = pd.read_parquet(tmp_path / "r.parquet")
     assert list(frame["point"]) == list(range(60)) and set(frame["status"]) == {"ok"}
+
+
+def test_a_terminal_sees_a_progress_bar_and_a_log_does_not(tmp_path):
+    import pty
+
+    words = [ROBOT, "--vary", "wheel_radius=25mm..45mm:6", "--jobs", "2"]
+    leader, follower = pty.openpty()
+    with os.fdopen(leader, "rb", buffering=0) as terminal:
+        process = subprocess.Popen([str(MCAR), "sweep", *words, "-o", "tty.csv"], cwd=tmp_path,
+                                   stdout=subprocess.DEVNULL, stderr=follower)
+        os.close(follower)
+        seen = b""
+        while True:
+            try:
+                chunk = terminal.read(4096)
+            except OSError:  # the process closed the terminal's other end
+                break
+            if not chunk:
+                break
+            seen += chunk
+        assert process.wait(timeout=120) == 0
+    text = seen.decode()
+    assert "mcar sweep  [" in text and "6/6" in text, text
+    logged = sweep(*words, "-o", "log.csv", cwd=tmp_path)
+    assert logged.returncode == 0 and "[" not in logged.stderr and "6/6" not in logged.stderr

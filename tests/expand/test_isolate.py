@@ -56,3 +56,26 @@ def test_runaway_xacro_is_a_build_error(run_mcar, tmp_path, expression, env, mes
         assert result.returncode == 1, result.stderr
         assert message in result.stderr
         assert result.stderr.startswith(str(source))
+
+
+def test_the_embedding_programs_gc_hooks_stay_out_of_the_child(repo):
+    """A Dask worker measures memory through psutil at every garbage collection; in the
+    sandboxed child that fails, and Python printed the failure among xacro's warnings, so
+    a --strict check failed a good robot (W220). The child runs without such hooks."""
+    import gc
+    import sys
+
+    from mobile_car.load.inputs import RobotInput
+    from mobile_car.load.robot import LoadOptions, load_robot
+
+    def noisy(phase, info):
+        if phase == "start":
+            print("a hook of the embedding program ran", file=sys.stderr)
+
+    gc.callbacks.append(noisy)
+    try:
+        loaded = load_robot(RobotInput(repo / "urdf" / "mobile_robot.xacro"), LoadOptions())
+        in_parent = run_isolated(lambda: list(gc.callbacks))
+    finally:
+        gc.callbacks.remove(noisy)
+    assert loaded.warnings == [] and in_parent == []

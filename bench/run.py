@@ -146,6 +146,22 @@ def measure(cmd: list[str], runs: int, env=None, cwd=None, budget_s: float = 60)
     return result
 
 
+def measure_rounds(commands: dict, runs: int, cwd=None) -> dict:
+    """Like measure() for several commands, interleaved: one watched run of each, then
+    ``runs`` rounds that run each command once, so that a change in the load of a shared
+    machine falls on every command alike, not on whichever ran while it lasted."""
+    results = {key: Result() for key in commands}
+    for key, cmd in commands.items():
+        results[key].peak_mib, code, results[key].digest = run_watched(cmd, cwd=cwd)
+        results[key].codes.append(code)
+    for _ in range(runs):
+        for key, cmd in commands.items():
+            wall, code = run_timed(cmd, cwd=cwd)
+            results[key].walls.append(wall)
+            results[key].codes.append(code)
+    return results
+
+
 def _gnu_time_works() -> bool:
     try:
         return subprocess.run([GNU_TIME, "-f", "%M", "true"], capture_output=True,
@@ -595,31 +611,34 @@ def section_sweep(rows: list[str], work: Path, quick: bool) -> None:
     robot = str(REPO / "urdf" / "mobile_robot.xacro")
     runs = 1 if quick else 5
     load_before = os.getloadavg()[0]
-    results: dict = {}  # (sweep label, runner) -> (Result, rows of its last run, workers)
-
-    def run_sweep(sweep, runner: str, extra: list[str], workers: int) -> None:
-        out = work / f"{len(results)}.csv"
-        result = measure([MCAR, "sweep", robot, *sweep.args(), *extra, "-o", str(out)],
-                         runs, cwd=work, budget_s=90)
-        results[sweep.label, runner] = (result, sweep_bench.read_rows(out), workers)
-        progress(f"sweep {sweep.label} {runner}: {fmt_time(result.wall)}")
-
     plan = sweep_bench.sweeps(quick)
-    for sweep in plan:
-        run_sweep(sweep, "jobs 1", ["--jobs", "1"], 1)
-        run_sweep(sweep, "jobs 2", ["--jobs", "2"], 2)
-        if sweep.loop:
-            loop = sweep_bench.loop_script(work / "loop.sh", MCAR, robot,
-                                           results[sweep.label, "jobs 1"][1])
-            peer = measure(loop, 1 if quick else 3, cwd=work, budget_s=120)
-            results[sweep.label, "loop"] = (peer, [], 1)
-            progress(f"sweep {sweep.label} loop: {fmt_time(peer.wall)}")
+    workers = {"jobs 1": 1, "jobs 2": 2, "dask": 2, "loop": 1}
+    outputs, commands = {}, {}
     with sweep_bench.dask_cluster() as (scheduler, why_not):
-        if scheduler:
-            for sweep in plan:
-                run_sweep(sweep, "dask", ["--scheduler", scheduler], 2)
-    alone, together = (measure(cmd, 3 if quick else 7)
-                       for cmd in sweep_bench.burn_commands(sys.executable))
+        for sweep in plan:
+            runners = [("jobs 1", ["--jobs", "1"]), ("jobs 2", ["--jobs", "2"])]
+            runners += [("dask", ["--scheduler", scheduler])] if scheduler else []
+            for runner, extra in runners:
+                out = outputs[sweep.label, runner] = work / f"{len(outputs)}.csv"
+                commands[sweep.label, runner] = [MCAR, "sweep", robot, *sweep.args(), *extra,
+                                                 "-o", str(out)]
+            if sweep.loop:  # the loop runs the points a first sweep reports, values as is
+                subprocess.run(commands[sweep.label, "jobs 1"], capture_output=True,
+                               cwd=work, timeout=RUN_TIMEOUT_S)
+                commands[sweep.label, "loop"] = sweep_bench.loop_script(
+                    work / "loop.sh", MCAR, robot,
+                    sweep_bench.read_rows(outputs[sweep.label, "jobs 1"]))
+        one, two = sweep_bench.burn_commands(sys.executable)
+        commands["machine", "one"], commands["machine", "two"] = one, two
+        progress(f"sweep: {runs} rounds of {len(commands)} commands")
+        timed = measure_rounds(commands, runs, cwd=work)
+    results: dict = {}  # (sweep label, runner) -> (Result, rows of its last run, workers)
+    for key, result in timed.items():
+        if key[0] != "machine":
+            rows_out = sweep_bench.read_rows(outputs[key]) if key in outputs else []
+            results[key] = (result, rows_out, workers[key[1]])
+            progress(f"sweep {key[0]} {key[1]}: {fmt_time(result.wall)}")
+    alone, together = timed["machine", "one"], timed["machine", "two"]
     load_after = os.getloadavg()[0]
 
     first, mixed = plan[0], plan[-1]
@@ -634,6 +653,10 @@ def section_sweep(rows: list[str], work: Path, quick: bool) -> None:
              "the values the sweep's results file has). *Dask*: `--scheduler` on a "
              "LocalCluster of 2 single-thread worker processes on 127.0.0.1, started by the "
              "bench and kept up across the runs, so its workers are warm after the first. "
+             "The commands run in rounds, each command once a round (medians over "
+             f"{runs} rounds, after one untimed run each), so that a change in the load "
+             "of this shared machine falls on all of them alike. *Points*: what the results "
+             "file of the last run holds (in bold where it differs from `--jobs 1`'s). "
              "*Outside the points*: wall - (sum of the points' total_s) / workers: start-up, "
              "starting the workers, the wait for the last point, writing the results. "
              "Target: 2 workers at least 1.6x the points/s of 1 (the `--jobs 2` rows). "
@@ -659,6 +682,8 @@ def section_sweep(rows: list[str], work: Path, quick: bool) -> None:
                             f"{exit_text(result.codes)} | - |")
                 continue
             counted = sweep_bench.statuses(points)
+            if counted != sweep_bench.statuses(results[sweep.label, "jobs 1"][1]):
+                counted = f"**{counted}**"
             if len(points) != sweep.points:
                 counted = f"**{len(points)} rows of {sweep.points}**: {counted}"
             over_one = speedup(result, one) if runner != "jobs 1" else None

@@ -251,7 +251,7 @@ def versions() -> str:
             parts.append(f"check_urdf (liburdfdom-tools) {urdfdom}")
     except (OSError, subprocess.TimeoutExpired):
         pass
-    for name in ("mcar", "xacro", "lxml", "click", "mujoco"):
+    for name in ("mcar", "xacro", "lxml", "click", "mujoco", "distributed", "pandas"):
         try:
             parts.append(f"{name} {importlib.metadata.version(name)}")
         except importlib.metadata.PackageNotFoundError:

@@ -10,6 +10,7 @@ import re
 import subprocess
 import sys
 
+import pytest
 from conftest import REPO
 
 
@@ -48,3 +49,48 @@ def test_quick_sim_section_times_a_passing_simulation(tmp_path, mcar_bin):
     assert re.fullmatch(r"[\d.]+ ms", cells[1]) and re.fullmatch(r"\d+ MiB|-", cells[2])
     assert re.fullmatch(r"\d+\.\d", cells[3]) and cells[4] == "0"
     assert cells[5] in ("met", "**missed**")
+
+
+def test_quick_sweep_section_times_sweeps_whose_points_all_ran(tmp_path, mcar_bin):
+    pytest.importorskip("distributed", reason="the sweep extra (pip install '.[sweep]')")
+    output = tmp_path / "bench.md"
+    done = subprocess.run([sys.executable, str(REPO / "bench" / "run.py"), "--quick", "sweep",
+                           "-o", str(output)], capture_output=True, text=True, timeout=400)
+    assert done.returncode == 0, done.stderr
+    text = output.read_text(encoding="utf-8")
+    assert "## `mcar sweep`" in text
+    table = {tuple(cells[:2]): cells for cells in
+             (line.strip("| ").split(" | ") for line in text.splitlines()
+              if line.startswith("| all valid |") or line.startswith("| mixed |"))}
+    runners = ["`--jobs 1`", "`--jobs 2`", "`--scheduler`, Dask (2 workers)"]
+    assert sorted(table) == sorted([*((sweep, runner) for sweep in ("all valid", "mixed")
+                                      for runner in runners),
+                                    ("all valid", "shell loop of `mcar sim`, one per point")])
+    for (sweep, runner), cells in table.items():
+        # Every run exited 0 (a failure shows "(exit N)" next to the time, and no rate).
+        assert re.fullmatch(r"[\d.]+ m?s", cells[3]) and cells[9] == "0", cells
+        assert re.fullmatch(r"\d+\.\d\d", cells[4]), cells  # points per second
+        if runner.startswith("shell loop"):
+            continue
+        # The results file of the timed run had one row per point, with what they came to:
+        # the all-valid sweep's 6 points were all built, checked and simulated.
+        assert cells[2] == ("6 ok" if sweep == "all valid" else "6 rejected, 4 ok"), cells
+        assert re.fullmatch(r"[\d.]+ ms", cells[7]), cells  # median of the ok points
+        assert re.fullmatch(r"[\d.]+ m?s \(\d+%\)", cells[8]), cells  # outside the points
+        if runner != "`--jobs 1`":
+            assert re.fullmatch(r"\d+\.\d\dx", cells[5]), cells  # over 1 worker
+        if sweep == "all valid":
+            assert re.fullmatch(r"\d+\.\d\dx", cells[6]), cells  # loop / this sweep
+        assert cells[10] in (("met", "**missed**") if runner == "`--jobs 2`" else ("-",))
+    # The per-point split of the --jobs 1 run: every stage timed, the shares add up.
+    split = re.search(r"\| stage \| median per point \| share \|\n\|---\|---:\|---:\|\n"
+                      r"((?:\|.*\n)+)", text)
+    assert split, text
+    stages = [line.strip("| ").split(" | ") for line in split.group(1).splitlines()]
+    assert [cells[0].split(" ")[0] for cells in stages] == [
+        "validate", "build", "check", "sim", "other", "**total**"]
+    for cells in stages:
+        assert re.fullmatch(r"\d+\.\d ms", cells[1]) and re.fullmatch(r"-?\d+%", cells[2])
+    assert stages[-1][2] == "100%"
+    assert 98 <= sum(int(cells[2].rstrip("%")) for cells in stages[:-1]) <= 102
+    assert re.search(r"two busy processes get \d+\.\d\dx the throughput of one", text)

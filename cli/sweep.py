@@ -111,7 +111,7 @@ def command(words, varies, samples, seed, scenarios, jobs, scheduler, output, re
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
         session = _session(selection, options, varies, samples, seed, scenarios, left,
                            right, output)
-    axes = _plot_axes(session.names, plot_x, plot_y, colour) if plot else None
+    axes = _plot_axes(session, plot_x, plot_y, colour) if plot else None
     from pathlib import Path
 
     todo = session.points
@@ -205,24 +205,16 @@ def _csv(session) -> bytes:
     return encode(session.table(), ".csv")
 
 
-def _plot_axes(names, plot_x, plot_y, colour):
-    """The plot's x and y (two varied dimensions), checked with its colour before the
-    sweep runs: a typo must not cost the whole sweep its plot."""
-    from mobile_car.sweep.point import FIGURES, TIMINGS
+def _plot_axes(session, plot_x, plot_y, colour):
+    """The plot's x and y (default: the first two --vary), checked with its colour by the
+    plot's own rules on the empty table, before the sweep runs: a typo must not cost the
+    whole sweep its plot."""
+    from mobile_car.sweep.plot import check_columns
 
-    if len(names) < 2 and not (plot_x and plot_y):
-        raise UsageError("--plot draws the points over two dimensions: give two --vary")
-    x, y = plot_x or names[0], plot_y or names[1]
-    for option, name in (("--plot-x", x), ("--plot-y", y)):
-        if name not in names:
-            raise UsageError(f"{option} {name}: not a varied dimension; the sweep varies "
-                             f"{', '.join(names)}")
-    if x == y:
-        raise UsageError(f"--plot-x and --plot-y are both {x}: choose two of "
-                         f"{', '.join(names)}")
-    numbers = (*FIGURES, *TIMINGS, "check_errors", "check_warnings", "attempts")
-    if colour not in numbers:
-        raise UsageError(f"--colour {colour}: not a figure; choose one of {', '.join(numbers)}")
+    names = session.names
+    x = plot_x or names[0]
+    y = plot_y or (names[1] if len(names) > 1 else x)
+    check_columns(session.table(), x, y, colour, session.units)
     return x, y
 
 

@@ -150,9 +150,11 @@ def check_bound(dimension: Dimension, value: float, origin: str) -> None:
                          f"{kind} must be >= 0")
 
 
-def _override(spec: ConfigSpec, name: str, raw, origin: str) -> float:
+def settable_dimension(spec: ConfigSpec, name: str, origin: str,
+                       verb: str = "change") -> Dimension:
+    """The dimension ``name`` names, or a UsageError: unknown (with the closest name) or
+    derived (``verb`` what it is computed from instead)."""
     from .bounded_yaml import short_repr
-    from .units import parse_quantity
 
     dimension = spec.dimensions.get(name)
     if dimension is None:
@@ -163,7 +165,14 @@ def _override(spec: ConfigSpec, name: str, raw, origin: str) -> float:
                          "`mcar config` lists them")
     if dimension.derived:
         raise UsageError(f"{origin}: {name} is derived ({dimension.expression.strip('${}')}), "
-                         "not set: change what it is computed from")
+                         f"not set: {verb} what it is computed from")
+    return dimension
+
+
+def _override(spec: ConfigSpec, name: str, raw, origin: str) -> float:
+    from .units import parse_quantity
+
+    dimension = settable_dimension(spec, name, origin)
     value = parse_quantity(raw, dimension.unit, f"{origin}: {name}")
     if dimension.unit == "count" and not value.is_integer():
         raise UsageError(f"{origin}: {name} = {value:g}: a count is a whole number")

@@ -15,7 +15,7 @@ import itertools
 import random
 from dataclasses import dataclass
 
-from ..config.spec import ConfigSpec
+from ..config.spec import ConfigSpec, settable_dimension
 from ..config.units import parse_quantity
 from ..errors import UsageError
 
@@ -87,18 +87,7 @@ def parse_vary(spec: ConfigSpec, word: str, sampling: bool) -> Axis:
 
 
 def _dimension(spec: ConfigSpec, name: str, origin: str):
-    import difflib
-
-    dimension = spec.dimensions.get(name)
-    if dimension is None:
-        close = difflib.get_close_matches(name, list(spec.dimensions), n=1)
-        hint = f" (did you mean '{close[0]}'?)" if close else ""
-        raise UsageError(f"{origin}: unknown dimension '{name}'{hint}; `mcar config` lists "
-                         "them")
-    if dimension.derived:
-        raise UsageError(f"{origin}: {name} is derived "
-                         f"({dimension.expression.strip('${}')}), not set: vary what it is "
-                         "computed from")
+    dimension = settable_dimension(spec, name, origin, verb="vary")
     if dimension.baked:
         raise UsageError(f"{origin}: {name} is baked into a mesh (scripts/make_meshes.py) "
                          "and cannot vary")

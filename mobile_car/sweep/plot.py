@@ -85,7 +85,7 @@ def draw_sweep(table, x: str, y: str, colour: str, units: dict[str, str]):
     names to their SI unit ("m", "rad", "kg", ...); the table's dimensions are its columns
     named there. A table without a valid point draws its rejections and no colour bar.
     Raises UsageError, naming the columns there are, for a wrong x, y or colour."""
-    _check_columns(table, x, y, colour, units)
+    check_columns(table, x, y, colour, units)
     matplotlib, Figure, FigureCanvasAgg = _matplotlib()
     with _plain(matplotlib):
         figure = Figure(figsize=SIZE_INCHES, dpi=DPI, layout="constrained")
@@ -235,7 +235,7 @@ def _colour_name(name: str) -> str:
     return _colour_axis(name, {}).label.split(" (")[0]
 
 
-def _check_columns(table, x, y, colour, units) -> None:
+def check_columns(table, x, y, colour, units) -> None:
     """UsageError, one line naming the columns there are, unless x and y are two of the
     table's dimensions and colour is one of its numeric columns."""
     from pandas.api.types import is_bool_dtype, is_numeric_dtype

@@ -14,6 +14,7 @@ from .plan import Point
 from .point import SweepJob
 
 SAVE_EVERY = 5.0  # seconds between saves of the results file while the sweep runs
+SHOWN_FAILURES = 10  # the points that could not be evaluated, named in the summary
 
 
 def swept_robot(selection) -> RobotInput:
@@ -99,7 +100,11 @@ class Session:
                  f"{f', {self.resumed} from the earlier run' if self.resumed else ''}): "
                  + ", ".join(parts)]
         lines += [f"  rejected {n}x: {name}" for name, n in constraints.most_common()]
-        for row in self.rows:
-            if row["status"] in ("error", "crashed"):
-                lines.append(f"  point {row['point']} {row['status']}: {row['reason']}")
+        failed = [row for row in sorted(self.rows, key=lambda r: int(r["point"]))
+                  if row["status"] in ("error", "crashed")]
+        lines += [f"  point {row['point']} {row['status']}: {row['reason']}"
+                  for row in failed[:SHOWN_FAILURES]]
+        if len(failed) > SHOWN_FAILURES:
+            lines.append(f"  ... and {len(failed) - SHOWN_FAILURES} more (status and reason "
+                         "in the results)")
         return lines

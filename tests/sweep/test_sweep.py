@@ -286,7 +286,12 @@ def test_on_dask_a_point_that_kills_its_workers_is_reported(tmp_path, monkeypatc
 
     monkeypatch.setenv("PYTHONPATH", str(KILL_WORKER))  # the worker processes load it
     monkeypatch.setenv("SWEEP_TEST_KILL_POINT", "2")
-    with dask.config.set({"distributed.scheduler.allowed-failures": 1}), \
+    # Saturation 1: a worker holds only the point it runs. Dask counts a worker's death
+    # against every point it holds, queued ones too (1.1, the default, queues a second
+    # point on a one-thread worker), and with one allowed failure an innocent queued point
+    # would be given up on as well.
+    with dask.config.set({"distributed.scheduler.allowed-failures": 1,
+                          "distributed.scheduler.worker-saturation": 1.0}), \
             distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                      host="127.0.0.1", dashboard_address=None) as cluster:
         done = sweep(ROBOT, "--vary", "wheel_radius=25mm..45mm:4", "--vary", "track_width=0.16",

@@ -121,9 +121,17 @@ def command(words, varies, samples, seed, scenarios, jobs, scheduler, output, re
         else:
             click.echo(f"mcar: {output} does not exist yet: starting the sweep", err=True)
     workers = _run(session, todo, jobs, scheduler)
-    session.save() if output != "-" else streams.write(_csv(session))
+    table = session.table()  # built once, for the results and the plot
+    if output == "-":
+        from mobile_car.sweep.results import encode
+
+        streams.write(encode(table, ".csv"))
+    else:
+        session.save(table)
     if plot:
-        _draw(session, plot, axes, colour)
+        from mobile_car.sweep.plot import plot_sweep
+
+        plot_sweep(table, axes[0], axes[1], colour, session.units, plot)
     for line in session.summary(workers):
         click.echo(line, err=True)
     where = "stdout" if output == "-" else output
@@ -199,12 +207,6 @@ def _run(session, todo, jobs, scheduler) -> str:
     return workers
 
 
-def _csv(session) -> bytes:
-    from mobile_car.sweep.results import encode
-
-    return encode(session.table(), ".csv")
-
-
 def _plot_axes(session, plot_x, plot_y, colour):
     """The plot's x and y (default: the first two --vary), checked with its colour by the
     plot's own rules on the empty table, before the sweep runs: a typo must not cost the
@@ -216,12 +218,6 @@ def _plot_axes(session, plot_x, plot_y, colour):
     y = plot_y or (names[1] if len(names) > 1 else x)
     check_columns(session.table(), x, y, colour, session.units)
     return x, y
-
-
-def _draw(session, path, axes, colour) -> None:
-    from mobile_car.sweep.plot import plot_sweep
-
-    plot_sweep(session.table(), axes[0], axes[1], colour, session.units, path)
 
 
 def _workers(count: int) -> str:

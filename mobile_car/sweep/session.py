@@ -72,12 +72,13 @@ class Session:
 
         return table(self.rows, self.names, self.fingerprint)
 
-    def save(self) -> None:
-        """Write the rows so far, replacing the file at once (never half a file)."""
+    def save(self, table=None) -> None:
+        """Write the rows so far (``table``: them, already made), replacing the file at
+        once (never half a file)."""
         from .results import write
 
         if self.output and self.rows:
-            write(self.table(), self.output)
+            write(self.table() if table is None else table, self.output)
         self._saved, self._dirty = time.perf_counter(), False
 
     @property

@@ -14,12 +14,17 @@ import pytest
 from conftest import REPO
 
 
-def test_quick_build_section_writes_a_table_of_real_runs(tmp_path, mcar_bin):
+def quick_section(tmp_path, section: str, timeout: int) -> str:
+    """The document `bench/run.py --quick SECTION` writes, after a run that exited 0."""
     output = tmp_path / "bench.md"
-    done = subprocess.run([sys.executable, str(REPO / "bench" / "run.py"), "--quick", "build",
-                           "-o", str(output)], capture_output=True, text=True, timeout=120)
+    done = subprocess.run([sys.executable, str(REPO / "bench" / "run.py"), "--quick", section,
+                           "-o", str(output)], capture_output=True, text=True, timeout=timeout)
     assert done.returncode == 0, done.stderr
-    text = output.read_text(encoding="utf-8")
+    return output.read_text(encoding="utf-8")
+
+
+def test_quick_build_section_writes_a_table_of_real_runs(tmp_path, mcar_bin):
+    text = quick_section(tmp_path, "build", timeout=120)
     assert text.startswith("# Benchmarks\n")
     assert "## `mcar build` vs `xacro`" in text
     rows = [line for line in text.splitlines() if line.startswith("| ") and " ms |" in line]
@@ -37,11 +42,7 @@ def test_quick_build_section_writes_a_table_of_real_runs(tmp_path, mcar_bin):
 
 
 def test_quick_sim_section_times_a_passing_simulation(tmp_path, mcar_bin):
-    output = tmp_path / "bench.md"
-    done = subprocess.run([sys.executable, str(REPO / "bench" / "run.py"), "--quick", "sim",
-                           "-o", str(output)], capture_output=True, text=True, timeout=180)
-    assert done.returncode == 0, done.stderr
-    text = output.read_text(encoding="utf-8")
+    text = quick_section(tmp_path, "sim", timeout=180)
     row = next(line for line in text.splitlines()
                if line.startswith("| `mcar sim mobile_robot.xacro` (drop, drive, spin)"))
     cells = row.strip("| ").split(" | ")
@@ -53,11 +54,7 @@ def test_quick_sim_section_times_a_passing_simulation(tmp_path, mcar_bin):
 
 def test_quick_sweep_section_times_sweeps_whose_points_all_ran(tmp_path, mcar_bin):
     pytest.importorskip("distributed", reason="the sweep extra (pip install '.[sweep]')")
-    output = tmp_path / "bench.md"
-    done = subprocess.run([sys.executable, str(REPO / "bench" / "run.py"), "--quick", "sweep",
-                           "-o", str(output)], capture_output=True, text=True, timeout=400)
-    assert done.returncode == 0, done.stderr
-    text = output.read_text(encoding="utf-8")
+    text = quick_section(tmp_path, "sweep", timeout=400)
     assert "## `mcar sweep`" in text
     table = {tuple(cells[:2]): cells for cells in
              (line.strip("| ").split(" | ") for line in text.splitlines()

@@ -75,18 +75,23 @@ def test_stdout_closed(name, tmp_path):
     assert done.returncode == 2
 
 
+def _run_reader_gone(args, stream: str, cwd):
+    """Run mcar with ``stream`` (stdout or stderr) a pipe whose reader has gone."""
+    read_end, write_end = os.pipe()
+    os.close(read_end)
+    try:
+        return _run(args, cwd=cwd, **{stream: write_end})
+    finally:
+        os.close(write_end)
+
+
 @pytest.mark.parametrize("name", ["build", "build_stdin", "tree", "check", "check_json",
                                   "config", "render", "ci_junit", "help"])
 def test_reader_gone_ends_quietly(name, tmp_path):
     """stdout is a pipe nobody reads any more: exit 0, not a word, not even at the
     interpreter's last flush ("Exception ignored ... BrokenPipeError")."""
     args, _line = STDOUT_FULL[name]
-    read_end, write_end = os.pipe()
-    os.close(read_end)
-    try:
-        done = _run(args, stdout=write_end, cwd=tmp_path)
-    finally:
-        os.close(write_end)
+    done = _run_reader_gone(args, "stdout", cwd=tmp_path)
     assert (done.returncode, done.stderr.decode()) == (0, "")
 
 
@@ -103,12 +108,7 @@ def test_stderr_that_cannot_be_written(stderr, args, tmp_path):
         done = subprocess.run(["sh", "-c", 'exec "$@" 2>&-', "sh", str(MCAR), *map(str, args)],
                               capture_output=True, cwd=tmp_path, timeout=120)
     else:
-        read_end, write_end = os.pipe()
-        os.close(read_end)
-        try:
-            done = _run(args, stderr=write_end, cwd=tmp_path)
-        finally:
-            os.close(write_end)
+        done = _run_reader_gone(args, "stderr", cwd=tmp_path)
     if stderr == "closed" and args[-1] == "out":  # no message fails: the build is complete
         assert done.returncode == 0
         assert len(list((tmp_path / "out").rglob("*.urdf"))) == 13

@@ -3,8 +3,10 @@
 xacro evaluates ``${...}`` with Python's ``eval``: ``${9**9**9}`` computes for ever inside one
 C call that no signal interrupts, and a runaway document can eat all memory. A forked child
 (cheap on Linux: nothing is re-imported) runs the work under ``RLIMIT_AS``; the parent waits
-at most ``timeout`` seconds, then kills it. The result, or the exception, comes back pickled
-through a pipe. The child is confined first (:mod:`.sandbox`): a xacro is code.
+at most ``timeout`` seconds, then kills it. The child is confined first (:mod:`.sandbox`): a
+xacro is code. Its result, or its error, comes back through a pipe as data only, in the
+checked frame of :mod:`.wire` (never a pickle: the xacro can write to that pipe itself);
+the parent reads at most the frame's bound and kills a child that sends more.
 
 The child forks even while other threads run (render finishes pictures on a worker
 thread): it touches no lock those threads take (it only evaluates xacro and writes a
@@ -16,19 +18,44 @@ from __future__ import annotations
 
 import gc
 import os
-import pickle
 import resource
 import select
 import signal
 import time
+from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..held_signals import hold_signals, release_signals
+from . import wire
 
 TIMEOUT_ENV = "MCAR_XACRO_TIMEOUT"
 MEMORY_ENV = "MCAR_XACRO_MEMORY_MB"
+OUTPUT_ENV = "MCAR_XACRO_OUTPUT_MB"
 DEFAULT_TIMEOUT = 60.0
 DEFAULT_MEMORY_MB = 4096
+DEFAULT_OUTPUT_MB = 256  # PR2, the largest robot we know, expands to about 1 MB
+
+
+@dataclass(frozen=True)
+class Codec:
+    """How a value crosses the pipe: ``pack`` (in the child) makes its frame, ``unpack``
+    (in the parent) makes the value again from the header and body of a well-formed
+    ``ok`` frame, checking every field, or raises :class:`wire.MalformedResult`."""
+
+    pack: Callable[[object], bytes]
+    unpack: Callable[[dict, bytes], object]
+
+
+def _unpack_json(header: dict, body: bytes):
+    wire.expect_fields(header, "header", ok="bool", value="json")
+    if body:
+        raise wire.MalformedResult("a plain value came with a body")
+    return header["value"]
+
+
+# Plain JSON data (numbers, strings, lists, objects): for small helpers and tests.
+JSON_VALUE = Codec(lambda value: wire.frame({"ok": True, "value": value}), _unpack_json)
 
 
 class Timeout(Exception):
@@ -46,9 +73,12 @@ class OutOfMemory(Exception):
 
 
 
-def run_isolated(func, *args, read_roots: list[Path] = ()):
+def run_isolated(func, *args, read_roots: list[Path] = (), codec: Codec = JSON_VALUE):
     """func(*args) in a guarded child that may read only below ``read_roots`` (where the
-    kernel can enforce it); raises what func raised, Timeout or OutOfMemory."""
+    kernel can enforce it), its value sent back through ``codec``. Raises the McarError
+    func raised (of the kinds :data:`wire.ERROR_KINDS` allows), wire.ChildCrashed for any
+    other exception, Timeout, OutOfMemory, or wire.MalformedResult when what came back is
+    not a well-formed result within ``MCAR_XACRO_OUTPUT_MB``."""
     from . import sandbox
 
     if not hasattr(os, "fork"):
@@ -58,6 +88,8 @@ def run_isolated(func, *args, read_roots: list[Path] = ()):
 
     timeout = env_number(TIMEOUT_ENV, DEFAULT_TIMEOUT, 0.1, 86400, "seconds")
     memory_mb = int(env_number(MEMORY_ENV, DEFAULT_MEMORY_MB, 64, 1e7, "MB"))
+    output_mb = env_number(OUTPUT_ENV, DEFAULT_OUTPUT_MB, 0.001, 1e6, "MB")
+    most = wire.PREFIX_SIZE + wire.MAX_HEADER_BYTES + int(output_mb * 1024 * 1024)
     confined_roots = sandbox.prepare(list(read_roots))
     read_fd, write_fd = os.pipe()
     held = hold_signals()  # not inside fork's after-fork callbacks: see held_signals
@@ -86,15 +118,9 @@ def run_isolated(func, *args, read_roots: list[Path] = ()):
             try:
                 if confined_roots is not None:
                     sandbox.confine(confined_roots, keep_fd=write_fd)
-                payload = (True, func(*args))
-            except MemoryError:
-                payload = (False, OutOfMemory(memory_mb))
+                data = codec.pack(func(*args))
             except BaseException as error:  # noqa: BLE001 - everything goes to the parent
-                payload = (False, error)
-            try:
-                data = pickle.dumps(payload)
-            except Exception as error:  # an unpicklable exception: send its text
-                data = pickle.dumps((False, RuntimeError(f"{type(error).__name__}: {error}")))
+                data = wire.error_frame(error)
             view = memoryview(data)  # os.write: the sandbox refuses opening a file to write
             while view:
                 view = view[os.write(write_fd, view):]
@@ -103,29 +129,48 @@ def run_isolated(func, *args, read_roots: list[Path] = ()):
         finally:
             os._exit(status)
     os.close(write_fd)
-    chunks = []
-    deadline = time.monotonic() + timeout
     try:
         release_signals(held)  # a signal held over the fork lands here, and kills the child
-        with os.fdopen(read_fd, "rb") as pipe:
-            while True:
-                left = deadline - time.monotonic()
-                if left <= 0 or not select.select([pipe], [], [], left)[0]:
-                    raise Timeout(timeout)
-                chunk = os.read(pipe.fileno(), 1 << 20)
-                if not chunk:
-                    break
-                chunks.append(chunk)
+        data = _read_result(read_fd, timeout, most, output_mb)
     except BaseException:
-        _kill(pid)  # a timeout, or Ctrl-C in the parent: the child must not outlive us
+        _kill(pid)  # a timeout, a bad frame, Ctrl-C: the child must not outlive us
         raise
     _reap(pid)
-    if not chunks:  # the child died without a word: most likely the memory limit
+    if not data:  # the child died without a word: most likely the memory limit
         raise OutOfMemory(memory_mb)
-    ok, value = pickle.loads(b"".join(chunks))
-    if ok:
-        return value
-    raise value
+    header, body = wire.unframe(data)
+    if not header["ok"]:
+        try:
+            wire.raise_error(header)
+        except wire.ChildOutOfMemory:
+            raise OutOfMemory(memory_mb) from None
+    return codec.unpack(header, body)
+
+
+def _read_result(read_fd: int, timeout: float, most: int, output_mb: float) -> bytes:
+    """Everything the child writes until it closes the pipe, read within ``timeout``;
+    stops (MalformedResult) at the first byte that cannot belong to a frame of at most
+    ``most`` bytes, so a child that sends garbage or 10 GB costs no more than that."""
+    data = bytearray()
+    expected = None
+    deadline = time.monotonic() + timeout
+    with os.fdopen(read_fd, "rb") as pipe:
+        while True:
+            left = deadline - time.monotonic()
+            if left <= 0 or not select.select([pipe], [], [], left)[0]:
+                raise Timeout(timeout)
+            chunk = os.read(pipe.fileno(), 1 << 20)
+            if not chunk:
+                return bytes(data)
+            data += chunk
+            if expected is None:
+                expected = wire.declared_size(bytes(data[:wire.PREFIX_SIZE]))
+                if expected is not None and expected > most:
+                    raise wire.MalformedResult(
+                        f"it declares {expected / 1024 / 1024:.1f} MB, more than "
+                        f"{OUTPUT_ENV}={output_mb:g}")
+            if expected is not None and len(data) > expected:
+                raise wire.MalformedResult("more bytes followed the result")
 
 
 def _kill(pid: int) -> None:

@@ -194,6 +194,7 @@ def build_file(path: str | os.PathLike | None, mappings: dict[str, str] | None =
         search = PackageSearch(origin=source)
     elif search.origin is None:
         search.origin = source
+    from . import wire
     from .isolate import OutOfMemory, Timeout, run_isolated
 
     # What the user named may be read: the input's folder (the working folder for stdin,
@@ -202,8 +203,8 @@ def build_file(path: str | os.PathLike | None, mappings: dict[str, str] | None =
     roots += search.read_roots() + [Path(value) for value in mappings.values()
                                     if os.path.isabs(value) and os.path.exists(value)]
     try:
-        return run_isolated(_expand, source, mappings, search, optional_args, text,
-                            read_roots=roots)
+        result = run_isolated(_expand, source, mappings, search, optional_args, text,
+                              read_roots=roots, codec=_result_codec(source))
     except Timeout as limit:
         raise BuildError(f"xacro did not finish within {limit.seconds:g} s (a runaway "
                          "expression such as ${9**9**9}?); MCAR_XACRO_TIMEOUT raises the limit",
@@ -212,6 +213,57 @@ def build_file(path: str | os.PathLike | None, mappings: dict[str, str] | None =
         raise BuildError(f"xacro needed more than {limit.megabytes} MB of memory; "
                          "MCAR_XACRO_MEMORY_MB raises the limit",
                          file=display_path(source)) from None
+    except wire.MalformedResult as bad:
+        raise BuildError(f"the sandboxed xacro sent back something that is not a result "
+                         f"({bad.reason}); nothing of it was used",
+                         file=display_path(source)) from None
+    _check_deps_readable(result.deps, roots, source)
+    return result
+
+
+def _result_codec(source: Path):
+    """A BuildResult as a frame: the URDF as the body, the lists in the header. The
+    parent keeps its own ``source``: the child's word is not needed for it."""
+    from . import wire
+    from .isolate import Codec
+
+    def pack(result: BuildResult) -> bytes:
+        return wire.frame({"ok": True, "deps": [os.fspath(p) for p in result.deps],
+                           "warnings": list(result.warnings),
+                           "known_args": sorted(result.known_args)},
+                          result.xml.encode("utf-8"))
+
+    def unpack(header: dict, body: bytes) -> BuildResult:
+        wire.expect_fields(header, "header", ok="bool", deps="[str]", warnings="[str]",
+                           known_args="[str]")
+        try:
+            xml_text = body.decode("utf-8")
+        except UnicodeDecodeError:
+            raise wire.MalformedResult("its URDF is not UTF-8") from None
+        return BuildResult(source=source, xml=xml_text,
+                           deps=[Path(p) for p in header["deps"]],
+                           warnings=header["warnings"], known_args=set(header["known_args"]))
+
+    return Codec(pack, unpack)
+
+
+def _check_deps_readable(deps: list[Path], roots: list[Path], source: Path) -> None:
+    """The files the child says it read must lie where it was allowed to read: the
+    parent reads them again, unconfined (the source map, freshness stamps), so a forged
+    list must not make it read ``~/.ssh``. Where Landlock holds, a real expansion cannot
+    name anything else; where it does not, the same include is refused the same way."""
+    from .sandbox import is_trusted
+
+    if is_trusted():
+        return
+    allowed = [os.path.realpath(root) for root in roots]
+    for dep in deps:
+        real = os.path.realpath(dep)
+        if not any(real == root or real.startswith(root.rstrip(os.sep) + os.sep)
+                   for root in allowed):
+            raise BuildError(f"read {display_path(dep)}, outside the folders a xacro may "
+                             "read (its own folder, the packages it finds and the files "
+                             "given as arguments)", file=display_path(source))
 
 
 def _expand(source: Path, mappings: dict[str, str], search: PackageSearch,

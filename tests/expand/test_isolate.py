@@ -8,13 +8,25 @@ import threading
 
 import pytest
 
+from mobile_car.errors import BuildError
 from mobile_car.expand.isolate import OutOfMemory, Timeout, run_isolated
+from mobile_car.expand.wire import ChildCrashed
 
 
-def test_result_and_exceptions_come_back():
+def test_result_and_exceptions_come_back_as_data():
+    """Values come back as JSON, mcar's own errors with their fields, and any other
+    exception only as its name and text: the parent never rebuilds an object the child
+    chose."""
     assert run_isolated(sorted, [3, 1, 2]) == [1, 2, 3]
-    with pytest.raises(ZeroDivisionError):
+    with pytest.raises(ChildCrashed, match="^ZeroDivisionError: integer division"):
         run_isolated(divmod, 1, 0)
+
+    def fails():
+        raise BuildError("bad", file="a.xacro", line=3, details=["in macro m"])
+
+    with pytest.raises(BuildError) as info:
+        run_isolated(fails)
+    assert (str(info.value), info.value.details) == ("a.xacro:3: bad", ["in macro m"])
 
 
 def test_timeout_kills_the_child(monkeypatch):

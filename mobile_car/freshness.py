@@ -172,16 +172,30 @@ def diagnostics_from(data) -> list:
 
 def read_record(path: Path, section: str) -> dict[str, dict]:
     """The entries under ``section`` of a JSON record (the render manifest, the ci
-    record), or none when it is missing, damaged or not a record. Read within the input
-    limit: the record may be a link to /dev/zero, or a FIFO."""
+    record), or none when it is missing, damaged, not a record, or not sealed by this
+    user's mcar (a record in a checkout may have come with a pull request: see
+    :mod:`.record_seal`). Read within the input limit: the record may be a link to
+    /dev/zero, or a FIFO."""
     from .errors import InputError
     from .load.bounded import read_input
+    from .record_seal import unsealed_entries
 
     try:
         data = json.loads(read_input(path))
     except (OSError, ValueError, RecursionError, InputError):
         return {}
-    entries = data.get(section) if isinstance(data, dict) else None
-    if not isinstance(entries, dict):
+    entries = unsealed_entries(data, section)
+    if entries is None:
         return {}
     return {key: value for key, value in entries.items() if isinstance(value, dict)}
+
+
+def write_record(path: Path, section: str, entries: dict[str, dict]) -> None:
+    """Write a record :func:`read_record` will take back, sealed; nothing where this
+    user has no record key (the next run then does the work again)."""
+    from .atomic import atomic_write
+    from .record_seal import sealed_text
+
+    text = sealed_text(section, entries)
+    if text is not None:
+        atomic_write(path, text)

@@ -14,11 +14,9 @@ recorded: they are built again every time, and so is an item whose sim could not
 
 from __future__ import annotations
 
-import json
 import os
 from pathlib import Path
 
-from ..atomic import atomic_write
 from ..freshness import (
     Basis,
     Stamper,
@@ -30,6 +28,7 @@ from ..freshness import (
     output_stamp,
     read_record,
     stamps_current,
+    write_record,
 )
 from ..load.inputs import display_path
 from .pipeline import CiItem, Step, fail
@@ -130,8 +129,7 @@ class CiCache:
 
     def save(self) -> None:
         if self._changed:
-            text = json.dumps({"items": dict(sorted(self.entries.items()))}, indent=1)
-            atomic_write(self.path, text + "\n")
+            write_record(self.path, "items", self.entries)
             self._changed = False
 
 

@@ -21,12 +21,18 @@ everything is rendered.
 from __future__ import annotations
 
 import hashlib
-import json
 import os
 from pathlib import Path
 
-from ..atomic import atomic_write
-from ..freshness import Basis, key_of, output_current, output_stamp, read_record, stamps_current
+from ..freshness import (
+    Basis,
+    key_of,
+    output_current,
+    output_stamp,
+    read_record,
+    stamps_current,
+    write_record,
+)
 
 MANIFEST_NAME = ".mcar-render.json"
 CONTACT_SHEET = "index.png"
@@ -148,6 +154,5 @@ class Manifest:
 
     def save(self) -> None:
         if self._changed:
-            text = json.dumps({"outputs": dict(sorted(self.entries.items()))}, indent=1)
-            atomic_write(self.path, text + "\n")
+            write_record(self.path, "outputs", self.entries)
             self._changed = False

@@ -38,6 +38,13 @@ Unlike `mcar render` (still pictures at joint zero, for files and CI), view is f
 person at a browser. It serves on 127.0.0.1 only, unless --host says otherwise; Ctrl-C
 stops it. It needs the optional extra: pip install "mcar[view]".
 
+It answers only its own page: a request whose Host is not the address served on
+(127.0.0.1:PORT or localhost:PORT; with --host, that host), or a connection from a
+page of another Origin (any other site open in the browser), gets 403 Forbidden.
+What the page sends is checked before it touches the robot: a joint or dimension
+value must be a finite number within its slider's range, a switch true or false.
+Anything else is dropped, with one warning line on stderr per control.
+
 {INPUT_HELP}
 
 \b
@@ -116,13 +123,19 @@ def _serve(model, reload, host: str, port: int, dimensions):
     from mobile_car.view.server import RobotView
 
     try:
-        view = RobotView(model, reload, host=host, port=port, dimensions=dimensions)
+        view = RobotView(model, reload, host=host, port=port, dimensions=dimensions,
+                         warn=_warn)
     except OSError as error:  # a host that is no address of this machine
         raise UsageError(f"cannot serve on {host}:{port}: {error.strerror or error}") from None
     if port and view.port != port:  # viser moves on to the next free port: say it is taken
         view.stop()
         raise UsageError(f"port {port} is in use; choose another with --port (0: any)")
     return view
+
+
+def _warn(text: str) -> None:
+    """What the server refused from a browser (said from viser's threads)."""
+    click.echo(text, err=True)
 
 
 def _watch(view) -> None:

@@ -7,12 +7,17 @@ the geometry is hidden.
 
 Threads: viser calls the GUI callbacks on its own threads, while the command's main
 thread rebuilds the robot when a file changes; one lock keeps them apart.
+
+Trust: only the viewer's own page may load or connect (:mod:`.origin`), and every value it
+sends is checked before viser or the model sees it (:mod:`.inbound`); what is refused is
+said on stderr through ``warn``, one line per kind of refusal.
 """
 
 from __future__ import annotations
 
 import contextlib
 import io
+import logging
 import math
 import threading
 import warnings
@@ -23,9 +28,11 @@ import viser
 import viser.transforms as vtf
 from viser.extras import ViserUrdf
 
-from ..errors import McarError
+from ..errors import McarError, UsageError
 from .dimensions import Dimensions
+from .inbound import Inbound, UnreadableMessages
 from .model import ViewModel, error_lines
+from .origin import PageOrigin, guarding_requests
 from .watch import FileWatch
 
 ROBOT_NODE = "/robot"
@@ -49,12 +56,15 @@ def url_of(host: str, port: int) -> str:
 class RobotView:
     """Serves ``model`` at ``host``:``port`` (0: any free port) until :meth:`stop`;
     ``reload`` builds the robot anew when :meth:`reload_if_changed` sees an edit;
-    ``dimensions`` (the robot's config.xacro, if it has one) gives a slider per dimension."""
+    ``dimensions`` (the robot's config.xacro, if it has one) gives a slider per dimension;
+    ``warn`` says what was refused from a browser (a line of text; default: logged)."""
 
     def __init__(self, model: ViewModel, reload: Callable[[], ViewModel],
                  host: str = "127.0.0.1", port: int = 8080,
-                 dimensions: Dimensions | None = None):
+                 dimensions: Dimensions | None = None,
+                 warn: Callable[[str], None] | None = None):
         self._reload = reload
+        self._inbound = Inbound(warn or logging.getLogger(__name__).warning)
         self._lock = threading.RLock()
         # One dimension change at a time, so that each builds on the last one accepted.
         self._dimension_lock = threading.RLock()  # (putting a slider back re-enters)
@@ -69,12 +79,21 @@ class RobotView:
         self._robot: ViserUrdf | None = None
         self._joints_folder = None
         self.watch = FileWatch()
-        with _quiet():  # viser prints a banner whatever verbose says; the command prints
+        page = PageOrigin(host)
+        with _quiet(), guarding_requests(page, self._refused) as guarded:
+            # (viser prints a banner whatever verbose says; the command prints)
             self.server = viser.ViserServer(host=host, port=port, verbose=False)
+        self._unreadable = UnreadableMessages(self._inbound.warn)
+        logging.getLogger("websockets.server").addFilter(self._unreadable)
+        if not guarded:
+            self.stop()
+            raise UsageError(f"mcar view cannot check who connects to viser "
+                             f"{viser.__version__}: install viser 1.x")
         # viser's share button opens a tunnel through a server on the internet: this page
         # is served to this machine only unless --host says otherwise, and stays so.
         self.server.request_share_url = _no_share_url
         try:
+            self._inbound.install(self.server)
             self.server.gui.configure_theme(show_share_button=False)
             self._build_panel()
             self._add_ground(model)
@@ -95,25 +114,37 @@ class RobotView:
     def stop(self) -> None:
         with _quiet():  # ("Server stopped", printed by viser's server thread)
             self.server.stop()
+        logging.getLogger("websockets.server").removeFilter(self._unreadable)
+
+    def _refused(self, reason: str) -> None:
+        self._inbound.warn(("refused", reason), f"mcar view: refused a request (403): {reason}")
 
     # -- the control panel -------------------------------------------------------------
 
     def _build_panel(self) -> None:
-        gui = self.server.gui
+        gui, accept = self.server.gui, self._inbound.accept
         self.status = gui.add_markdown("", order=_ORDER["status"])
-        self.show_visual = gui.add_checkbox("Visual geometry", True, order=_ORDER["visual"])
-        self.show_collision = gui.add_checkbox("Collision geometry", False,
-                                               order=_ORDER["collision"])
-        self.show_frames = gui.add_checkbox("Link frames", False, order=_ORDER["frames"],
-                                            hint="x/y/z axes (red/green/blue) of every link")
-        self.reset = gui.add_button("Reset joints", order=_ORDER["reset"],
-                                    hint="Every joint back to zero (or its nearer limit)")
-        self.show_visual.on_update(lambda _: self._apply_visibility())
-        self.show_collision.on_update(lambda _: self._apply_visibility())
-        self.show_frames.on_update(lambda _: self._apply_visibility())
-        self.reset.on_click(lambda _: self.reset_joints())
+        self.show_visual = accept(gui.add_checkbox("Visual geometry", True,
+                                                   order=_ORDER["visual"]))
+        self.show_collision = accept(gui.add_checkbox("Collision geometry", False,
+                                                      order=_ORDER["collision"]))
+        self.show_frames = accept(gui.add_checkbox(
+            "Link frames", False, order=_ORDER["frames"],
+            hint="x/y/z axes (red/green/blue) of every link"))
+        self.reset = accept(gui.add_button("Reset joints", order=_ORDER["reset"],
+                                           hint="Every joint back to zero (or its nearer limit)"))
+        visibility = self._on_page(self._apply_visibility, "showing or hiding geometry")
+        self.show_visual.on_update(visibility)
+        self.show_collision.on_update(visibility)
+        self.show_frames.on_update(visibility)
+        self.reset.on_click(self._on_page(self.reset_joints, "resetting the joints"))
         if self.dimensions is not None and self.dimensions.ranges:
             self._build_dimension_panel()
+
+    def _on_page(self, action: Callable[[], object], what: str) -> Callable:
+        """A callback for viser that runs ``action``; a failure is one warning line (viser
+        would print a traceback for each event)."""
+        return self._inbound.guarded(lambda _event: action(), what)
 
     def _apply_visibility(self) -> None:
         with self._lock:
@@ -150,6 +181,7 @@ class RobotView:
             for frame in self.frames.values():
                 frame.remove()
             if self._joints_folder is not None:
+                self._inbound.forget(self.sliders.values())
                 self._joints_folder.remove()
             self.model = model
             self.errors = []
@@ -183,8 +215,8 @@ class RobotView:
                     joint.name, min=joint.lower, max=joint.upper,
                     step=(joint.upper - joint.lower) / 1000 or 0.001, initial_value=value,
                     hint=f"{joint.kind}, {joint.lower:g} to {joint.upper:g} {unit}")
-                slider.on_update(lambda _: self._pose())
-                self.sliders[joint.name] = slider
+                slider.on_update(self._on_page(self._pose, f"moving joint {joint.name!r}"))
+                self.sliders[joint.name] = self._inbound.accept(slider)
 
     def joint_values(self) -> dict[str, float]:
         return {name: float(slider.value) for name, slider in self.sliders.items()}
@@ -234,21 +266,23 @@ class RobotView:
     # -- dimensions --------------------------------------------------------------------
 
     def _build_dimension_panel(self) -> None:
-        gui, dims = self.server.gui, self.dimensions
+        gui, dims, accept = self.server.gui, self.dimensions, self._inbound.accept
         with gui.add_folder("Dimensions", order=_ORDER["dimensions"], expand_by_default=False):
-            copy = gui.add_button("Copy overrides as --config YAML",
-                                  hint="mcar build --config FILE builds this robot")
-            self.overrides_yaml = gui.add_text("--config YAML", "", multiline=True,
-                                               visible=False)
-            copy.on_click(lambda _: self.show_overrides_yaml())
+            copy = accept(gui.add_button("Copy overrides as --config YAML",
+                                         hint="mcar build --config FILE builds this robot"))
+            self.overrides_yaml = accept(gui.add_text("--config YAML", "", multiline=True,
+                                                      visible=False))
+            copy.on_click(self._on_page(self.show_overrides_yaml, "showing the overrides"))
             for item in dims.ranges:
                 slider = gui.add_slider(
                     item.label, min=item.low, max=item.high, step=item.step,
                     initial_value=min(max(dims.value(item.name), item.low), item.high),
                     hint=f"{item.meaning} (default {item.default:g}, "
                          f"{item.low:g} to {item.high:g})")
-                slider.on_update(lambda event, name=item.name: self._slid(name, event.target))
-                self.dimension_sliders[item.name] = slider
+                slider.on_update(self._inbound.guarded(
+                    lambda event, name=item.name: self._slid(name, event.target),
+                    f"setting dimension {item.name!r}"))
+                self.dimension_sliders[item.name] = accept(slider)
 
     def _slid(self, name: str, slider) -> None:
         # Dragging sends values faster than the robot builds: each callback, once its turn

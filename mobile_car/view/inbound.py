@@ -166,6 +166,27 @@ class Inbound:
                           f"{type(error).__name__}: {shown(str(error), 200)}")
 
         connection.register_handler(GuiUpdateMessage, checked)
+        _drop_unused_kinds(connection)
+
+
+# Messages viser handles that mcar's page never needs to send (it has no upload, form or
+# command control): an upload started against a slider's id would buffer whatever parts
+# follow. With no handler, viser drops such a message unread.
+_UNUSED_KINDS = ("FileTransferStartUpload", "FileTransferPart", "GuiFormSubmitMessage",
+                 "GuiFormDirtyMessage", "CommandTriggerMessage", "GuiButtonHoldMessage")
+
+
+def _drop_unused_kinds(connection) -> None:
+    from viser import _messages
+
+    for name in _UNUSED_KINDS:
+        kind = getattr(_messages, name, None)
+        if kind is None:
+            continue  # not in this viser: nothing to drop
+        try:
+            connection.unregister_handler(kind)
+        except (AssertionError, KeyError):
+            pass  # none registered
 
 
 class UnreadableMessages(logging.Filter):

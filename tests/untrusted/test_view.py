@@ -282,3 +282,22 @@ def test_mcar_view_refuses_another_origin_and_says_so_on_stderr(run_mcar, tmp_pa
         "not the viewer's own page",
         SLIDER_WARNING,
         "mcar: terminated"], err
+
+
+def test_an_upload_against_a_control_is_dropped_unread(served, capfd):
+    """mcar's page has no upload control; viser would buffer the parts of an upload
+    started against any of its input controls (a slider's id does), without a bound."""
+    with _page(served.port) as page:
+        uuid = _slider(_scene(page), "shoulder")["uuid"]
+        page.send(msgspec.msgpack.encode({
+            "type": "FileTransferStartUpload", "source_component_uuid": uuid,
+            "transfer_uuid": "t", "filename": "x", "mime_type": "a/b",
+            "part_count": 1000, "size_bytes": 1 << 30}))
+        for index in range(20):
+            page.send(msgspec.msgpack.encode({
+                "type": "FileTransferPart", "source_component_uuid": uuid,
+                "transfer_uuid": "t", "part_index": index, "content": b"x" * 100_000}))
+        page.send(_update(uuid, {"value": 1}))  # processed after the upload's messages
+        _until(lambda: served.joint_values()["shoulder"] == 1.0, "the joint did not move")
+    assert served.server.gui._current_file_upload_states == {}
+    assert _stderr_lines(capfd) == []

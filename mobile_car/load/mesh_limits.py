@@ -41,11 +41,11 @@ from .compressed import (  # noqa: F401 (MeshOverLimit: one name for every limit
 )
 
 MAX_MESH_FACES_ENV = "MCAR_MAX_MESH_FACES"
-# Per mesh file. The largest meshes of the real robots mcar is tried on (husky, jackal,
-# turtlebot3, clearpath, franka, ur; tests/real_packages) have about 200,000 triangles;
-# ten times fewer than the default still draws in a second, while 1.5 million
-# coincident faces kept llvmpipe busy for minutes (issue 32). A CAD export or a scan
-# can be larger: raise it then.
+# Per mesh file. Measured by scan_mesh over the 58 meshes of the released TurtleBot3,
+# Husky, Jackal and Clearpath packages (shared/real-robots) and tests/real_packages: the
+# largest is TurtleBot3 waffle_pi's base, 63,200 triangles (Husky's wheel.dae 25,104),
+# fifteen times under the default; 1.5 million coincident faces kept llvmpipe busy for
+# minutes (issue 32). A CAD export or a scan can be larger: raise it then.
 DEFAULT_MAX_MESH_FACES = 1_000_000
 VERTICES_PER_FACE = 3  # a triangle soup (STL, unshared OBJ corners) has three a face
 _CHUNK = 4 << 20

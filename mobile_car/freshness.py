@@ -41,6 +41,12 @@ def file_sha256(path: str | os.PathLike) -> str:
     return digest.hexdigest()
 
 
+def _hash_limit() -> int:
+    from .load.compressed import max_mesh_bytes  # (light: the settings only)
+
+    return max_mesh_bytes()
+
+
 def key_of(*parts) -> str:
     """A hash of plain data (and mcar's version): two runs with equal keys were asked the
     same thing."""
@@ -90,7 +96,9 @@ class Stamper:
                 continue
             try:
                 info = os.stat(path)
-                digest = file_sha256(path)
+                # Over the mesh cap (a mesh not read, drawn as a marker): stamped by size
+                # and time only; hashing gigabytes would cost more than the redraw.
+                digest = file_sha256(path) if info.st_size <= _hash_limit() else ""
             except OSError:
                 return None
             if info.st_mtime_ns >= self.started_ns - RACY_MARGIN_NS:

@@ -1,26 +1,39 @@
-"""Mesh rule W207: every ``<mesh filename>`` must exist and load.
+"""Mesh rules W207 (every ``<mesh filename>`` must exist and load) and W210 (a mesh over
+a size or face limit is not read, and is drawn as a marker).
 
 ``package://PKG/...`` is resolved by the same :class:`~mobile_car.packages.search.PackageSearch` as
 ``mcar build``; ``file://`` and relative paths against the folder of the checked file.
-A mesh is loaded with trimesh (imported only when a mesh file exists), once per process
-however many links use it. Formats trimesh cannot read on this machine are only checked
-for existence, not reported as broken. Compressed meshes are decompressed by mcar within
-``MCAR_MAX_MESH_MB`` (:mod:`mobile_car.load.compressed`), then handed to trimesh.
+Every mesh is measured first without reading it whole (:mod:`mobile_car.load.mesh_limits`:
+file size, declared vertex and face counts); one within the limits is loaded with trimesh
+(imported only then) through :func:`mobile_car.load.mesh_reader.load_mesh`, once per
+process however many links use it. Formats trimesh cannot read on this machine are only
+checked for existence, not reported as broken.
 """
 
 from __future__ import annotations
 
-import io
 import os
 from pathlib import Path
 from typing import NamedTuple
 
 from ..errors import InputError, McarError
-from ..load.compressed import broken_errors, compressed_kind, decompressed_members, suffix_of
+from ..load.compressed import broken_errors, compressed_kind, suffix_of
+from ..load.inputs import display_path
+from ..load.mesh_limits import MeshOverLimit, scan_mesh
 from ..packages.search import PackageSearch
 from .context import Reporter, has_xacro_expression
 
-_loaded: dict[Path, str | None] = {}
+# What stands for a mesh that is not read (say it where the pictures do: README).
+PLACEHOLDER = "drawn as a magenta box"
+
+
+class _Outcome(NamedTuple):
+    problem: str | None  # why it cannot be loaded (W207)
+    over_limit: str | None  # the limit it passes (W210)
+    reads: tuple[Path, ...]  # the other files it reads
+
+
+_loaded: dict[Path, _Outcome] = {}
 
 
 class MeshFile(NamedTuple):
@@ -29,7 +42,9 @@ class MeshFile(NamedTuple):
 
     kind: str
     path: Path | None
-    sound: bool
+    sound: bool  # found, and loads or is over a limit (then drawn as a marker: over_limit)
+    over_limit: str | None = None  # why it is not read: the limit it passes
+    reads: tuple[Path, ...] = ()  # the files it pulls in: materials, textures
 
 
 def check_meshes(root, base: Path, search: PackageSearch, report: Reporter
@@ -55,10 +70,14 @@ def check_meshes(root, base: Path, search: PackageSearch, report: Reporter
                        f"{_where_looked(filename, search)}")
             found.append(MeshFile(kind, path, False))
             continue
-        problem = load_problem(path)
-        if problem:
-            report.add("W207", mesh, f"mesh '{filename}' cannot be loaded: {problem}")
-        found.append(MeshFile(kind, path, not problem))
+        outcome = inspect_mesh(path)
+        if outcome.problem:
+            report.add("W207", mesh, f"mesh '{filename}' cannot be loaded: {outcome.problem}")
+        elif outcome.over_limit:
+            report.add("W210", mesh, f"mesh '{filename}' not read: {outcome.over_limit}; "
+                       f"{PLACEHOLDER}")
+        found.append(MeshFile(kind, path, not outcome.problem, outcome.over_limit,
+                              outcome.reads))
     return found
 
 
@@ -76,11 +95,38 @@ def _where_looked(filename: str, search: PackageSearch) -> str:
 
 
 def load_problem(path: Path) -> str | None:
-    """None if trimesh loads a non-empty mesh from ``path`` (or cannot read the format)."""
+    """None if trimesh loads a non-empty mesh from ``path`` (or cannot read the format, or
+    it is over a limit: see inspect_mesh), else why not."""
+    return inspect_mesh(path).problem
+
+
+def inspect_mesh(path: Path) -> _Outcome:
+    """Whether the mesh at ``path`` loads, passes a limit, and what else it reads."""
     key = path.resolve()
     if key not in _loaded:
-        _loaded[key] = _try_load(key)
+        _loaded[key] = _inspect(key)
     return _loaded[key]
+
+
+def _inspect(path: Path) -> _Outcome:
+    if not os.access(path, os.R_OK):
+        return _Outcome("permission denied", None, ())
+    shown = display_path(path)
+    try:
+        scan = scan_mesh(path, shown)
+    except MeshOverLimit as error:
+        return _Outcome(None, error.message, ())
+    except InputError as error:
+        return _Outcome(error.message, None, ())
+    except OSError as error:
+        return _Outcome(error.strerror or str(error), None, ())
+    if _sound_binary_stl(path):
+        return _Outcome(None, None, scan.reads)
+    try:
+        problem, reads = _try_load(path, shown)
+    except MeshOverLimit as error:  # a member of an archive, counted once decompressed
+        return _Outcome(None, error.message, ())
+    return _Outcome(problem, None, tuple(dict.fromkeys([*scan.reads, *reads])))
 
 
 def _sound_binary_stl(path: Path) -> bool:
@@ -103,48 +149,26 @@ def _sound_binary_stl(path: Path) -> bool:
     return triangles > 0 and size == 84 + 50 * triangles
 
 
-def _try_load(path: Path) -> str | None:
-    if not os.access(path, os.R_OK):
-        return "permission denied"
-    if _sound_binary_stl(path):
-        return None
+def _try_load(path: Path, shown: str) -> tuple[str | None, list[Path]]:
     import trimesh  # heavy (numpy): only for meshes the cheap test above cannot vouch for
 
-    if compressed_kind(path) is not None:
-        return _compressed_problem(path, trimesh)
-    suffix = path.suffix.lower().lstrip(".")
-    if suffix not in trimesh.available_formats():
-        return None
-    return _geometry_problem(trimesh, str(path))
+    from ..load.mesh_reader import load_mesh
 
-
-def _geometry_problem(trimesh, source, **kwargs) -> str | None:
+    if compressed_kind(path) is None and suffix_of(path.name) not in trimesh.available_formats():
+        return None, []
     try:
-        loaded = trimesh.load(source, force="mesh", **kwargs)
-    except Exception as exc:  # trimesh raises anything from ValueError to struct.error
-        return _short(exc)
-    if getattr(loaded, "vertices", None) is None or len(loaded.vertices) == 0:
-        return "it holds no geometry"
-    return None
-
-
-def _compressed_problem(path: Path, trimesh) -> str | None:
-    """Decompressed by mcar within MCAR_MAX_MESH_MB (trimesh would decompress a bomb
-    whole); sound when a member of a format trimesh reads holds geometry."""
-    try:
-        members = decompressed_members(path)
-    except InputError as error:
-        return error.message
+        loaded, reads = load_mesh(path, shown, force="mesh")
+    except MeshOverLimit:
+        raise
+    except McarError as error:
+        return error.message, []
     except broken_errors() as exc:
-        return _short(exc)
-    readable = [(name, data) for name, data in members
-                if suffix_of(name) in trimesh.available_formats()]
-    problem = None
-    for name, data in readable:
-        problem = _geometry_problem(trimesh, io.BytesIO(data), file_type=suffix_of(name))
-        if problem is None:
-            return None
-    return problem
+        return _short(exc), []
+    except Exception as exc:  # trimesh raises anything from ValueError to struct.error
+        return _short(exc), []
+    if getattr(loaded, "vertices", None) is None or len(loaded.vertices) == 0:
+        return "it holds no geometry", reads
+    return None, reads
 
 
 def _short(exc: BaseException) -> str:

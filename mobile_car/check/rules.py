@@ -117,6 +117,9 @@ _TABLE = [
          "MoveIt) ignores it", "accepts"),
     Rule("W209", "duplicate-element", "a second `<origin>`, `<geometry>`, `<limit>`, ... "
          "where urdfdom reads only the first", "ignores"),
+    Rule("W210", "mesh-over-limit", "a mesh over `MCAR_MAX_MESH_MB` (file or decompressed) "
+         "or `MCAR_MAX_MESH_FACES` (its declared vertex or face count): not read, drawn as "
+         "a magenta box", "accepts"),
     Rule("W220", "xacro-warning", "xacro printed a warning while expanding a `.xacro` input",
          "n/a"),
 ]

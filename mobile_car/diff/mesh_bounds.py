@@ -2,7 +2,8 @@
 
 A binary STL (the common case, and the bundled car's) is read with ``struct``: importing
 numpy and trimesh would cost more than comparing two whole robots. Other formats go
-through trimesh, imported only then.
+through trimesh, imported only then. Every mesh is measured first (size, declared counts:
+:mod:`mobile_car.load.mesh_limits`); one over a limit has no bounds, and says why.
 """
 
 from __future__ import annotations
@@ -10,7 +11,8 @@ from __future__ import annotations
 import struct
 from pathlib import Path
 
-from ..errors import McarError
+from ..errors import InputError, McarError
+from ..load.mesh_limits import scan_mesh
 
 _cache: dict[Path, tuple | str] = {}
 
@@ -30,15 +32,21 @@ def _bounds(path: Path) -> tuple | str:
     if not path.is_file():
         return f"no file at {path}"
     try:
+        scan_mesh(path, str(path))
+    except InputError as error:
+        return f"{path} not read: {error.message}"
+    except OSError as error:
+        return f"cannot read {path}: {error.strerror or error}"
+    try:
         binary = _binary_stl(path)
     except OSError as error:
         return f"cannot read {path}: {error.strerror or error}"
     if binary is not None:
         return binary
     try:
-        import trimesh
+        from ..load.mesh_reader import load_mesh
 
-        mesh = trimesh.load(str(path), force="mesh")
+        mesh, _ = load_mesh(path, str(path), force="mesh")
         low, high = mesh.bounds
     except Exception as error:  # trimesh raises anything on a file it cannot read
         return f"cannot load {path}: {type(error).__name__}: {error}"

@@ -1,4 +1,5 @@
-"""Compressed mesh files (``.stl.bz2``, ``.stl.gz``, ``.zip``, ``.tar.gz``, ``.tar.bz2``),
+"""Compressed mesh files (``.stl.bz2``, ``.stl.gz``, ``.zip``, ``.tar.gz``, ``.tar.bz2``,
+and the formats that are zip archives: ``.zae`` COLLADA, ``.3mf``, ``.3dxml``),
 decompressed within a cap.
 
 trimesh decompresses such files itself, whole: 20 KB of ``.stl.bz2`` can stand for 3 GB.
@@ -16,8 +17,14 @@ from ..errors import InputError
 MAX_MESH_MB_ENV = "MCAR_MAX_MESH_MB"
 DEFAULT_MAX_MESH_MB = 256  # a binary STL of 5 million triangles
 _CHUNK = 1 << 20
+# Mesh formats that are zip archives; trimesh would inflate every member whole.
+ZIP_FORMATS = ("zae", "3mf", "3dxml")
 # Longest first: ``x.tar.gz`` is a tar, ``x.stl.gz`` one mesh.
-KINDS = ("tar.gz", "tgz", "tar.bz2", "zip", "bz2", "gz")
+KINDS = ("tar.gz", "tgz", "tar.bz2", "zip", "bz2", "gz", *ZIP_FORMATS)
+
+
+class MeshOverLimit(InputError):
+    """A mesh larger than a limit the user can raise: not read, drawn as a marker."""
 
 
 def broken_errors() -> tuple[type[BaseException], ...]:
@@ -52,7 +59,7 @@ class _Budget:
     def spend(self, count: int) -> None:
         self.left -= count
         if self.left < 0:
-            raise InputError(f"decompresses to more than {self.cap / 1024 / 1024:g} MB; "
+            raise MeshOverLimit(f"decompresses to more than {self.cap / 1024 / 1024:g} MB; "
                              f"set {MAX_MESH_MB_ENV} to raise the limit", file=self.shown)
 
 
@@ -87,7 +94,7 @@ def decompressed_members(path: Path, shown: str | None = None) -> list[tuple[str
         opener = bz2.open if kind == "bz2" else gzip.open
         with opener(path, "rb") as stream:
             return [(Path(path).name[:-len(kind) - 1], _Capped(stream, budget).read())]
-    if kind == "zip":
+    if kind == "zip" or kind in ZIP_FORMATS:
         members = []
         with zipfile.ZipFile(path) as archive:
             for info in archive.infolist():

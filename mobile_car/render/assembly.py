@@ -10,6 +10,10 @@ Boxes, cylinders and spheres are the same unit primitive with the size folded in
 piece's transform: their smooth shading does not change with the size (a box's edges are
 right angles at any size, a cylinder's side faces meet at 360°/sections whatever its radius
 and length), so it is computed once per shape and colour instead of once per link.
+
+Mesh files are read through :func:`mobile_car.load.mesh_reader.load_mesh`, within every
+mesh limit; one over a limit becomes a placeholder piece (a box, drawn magenta by
+:mod:`.scene`) instead of being read.
 """
 
 from __future__ import annotations
@@ -17,10 +21,14 @@ from __future__ import annotations
 from collections import defaultdict, deque
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import trimesh
 import yourdfpy
+
+from ..load.mesh_limits import MeshOverLimit
+from ..load.mesh_reader import load_mesh
 
 # Joint types whose position yourdfpy applies (at zero it is the origin, but a mimic's
 # offset still turns or shifts the child).
@@ -32,13 +40,15 @@ class Piece:
     """One geometry of a link, placed in the world by ``transform`` (4x4): either ``mesh``
     (from a file, in its own frame, coloured) or ``primitive``, the name of a unit box,
     cylinder or sphere (see :func:`unit_primitive`; ``transform`` includes the size) with
-    ``rgba``, the 0..255 colour yourdfpy would give it (None: no URDF colour)."""
+    ``rgba``, the 0..255 colour yourdfpy would give it (None: no URDF colour).
+    ``placeholder``: a mesh over a limit, not read; a unit box, sized by the scene."""
 
     link: str
     transform: np.ndarray
     mesh: trimesh.Trimesh | None = None
     primitive: str | None = None
     rgba: tuple | None = None
+    placeholder: bool = False
 
 
 def joint_position(joint: yourdfpy.Joint, positions: dict[str, float] | None) -> float:
@@ -131,20 +141,29 @@ def _primitive(geometry) -> tuple[str, np.ndarray] | None:
     return None
 
 
-def _mesh_scene(geometry, filename: Callable[[str], str], skip_materials: bool):
-    """A mesh file as a trimesh.Scene, scaled, loaded the way yourdfpy loads it."""
-    scene = trimesh.load(filename(geometry.mesh.filename), ignore_broken=True,
-                         force="scene", skip_materials=skip_materials)
+def _mesh_scene(geometry, filename: Callable[[str], str], skip_materials: bool,
+                reads: list[Path]):
+    """A mesh file as a trimesh.Scene, scaled, loaded the way yourdfpy loads it (the
+    files it pulls in added to ``reads``); None if it is over a mesh limit."""
+    try:
+        scene, pulled = load_mesh(filename(geometry.mesh.filename), ignore_broken=True,
+                                  force="scene", skip_materials=skip_materials)
+    except MeshOverLimit:  # mcar check has said so, with the <mesh>'s line
+        return None
+    reads.extend(pulled)
     if geometry.mesh.scale is not None:
         scene = scene.scaled(geometry.mesh.scale)
     return scene
 
 
 def pieces(robot: yourdfpy.Robot, filename: Callable[[str], str],
-           collision: bool, positions: dict[str, float] | None = None) -> Iterator[Piece]:
+           collision: bool, positions: dict[str, float] | None = None,
+           reads: list[Path] | None = None) -> Iterator[Piece]:
     """Every visual (or collision) geometry of ``robot``, placed in the world with the
     joints at ``positions`` (default zero) and, for a visual, coloured with its URDF
-    material as yourdfpy colours it."""
+    material as yourdfpy colours it. The files meshes pull in (materials, textures) are
+    added to ``reads``."""
+    reads = [] if reads is None else reads
     poses = link_poses(robot, positions)
     materials = {material.name: material for material in robot.materials}
     for link in robot.links:
@@ -161,7 +180,10 @@ def pieces(robot: yourdfpy.Robot, filename: Callable[[str], str],
                 continue
             if body.geometry.mesh is None:
                 continue
-            scene = _mesh_scene(body.geometry, filename, skip_materials=collision)
+            scene = _mesh_scene(body.geometry, filename, collision, reads)
+            if scene is None:
+                yield Piece(link.name, placed, primitive="box", placeholder=True)
+                continue
             for node in scene.graph.nodes_geometry:
                 transform, name = scene.graph.get(node)
                 mesh = scene.geometry[name]

@@ -6,9 +6,9 @@ relative to that folder, to what decided its pixels, twice over:
 * ``key`` and ``files``: a hash of the settings (arguments, overrides, package search,
   render options, mcar's version; see :mod:`mobile_car.freshness`) and the stamps of every
   file the picture was made from (the robot file, everything its expansion read, its
-  meshes). A run that finds both unchanged skips the picture after a few ``stat()``
+  meshes and what they pull in: ``.mtl`` files, textures). A run that finds both unchanged skips the picture after a few ``stat()``
   calls, loading nothing: a no-op ``mcar render`` never imports xacro or trimesh.
-* ``input``: a fingerprint of the expanded URDF, the mesh bytes and the settings, for when
+* ``input``: a fingerprint of the expanded URDF, the mesh (and texture) bytes and the settings, for when
   a stamped file did change: a picture whose URDF comes out the same is not redrawn.
 
 Plus the renderer that drew it (a picture drawn by OpenGL does not satisfy ``--renderer
@@ -45,13 +45,22 @@ def sha256(data: bytes) -> str:
 
 
 def input_fingerprint(urdf: bytes, meshes: list[Path], settings: dict) -> str:
-    """Hash of the URDF, its mesh files (names and bytes) and the settings (plain data)."""
+    """Hash of the URDF, its mesh files and the files they pull in (names and bytes; for a
+    file over the mesh size limit, which is not read, its size and time) and the
+    settings (plain data)."""
+    from ..load.compressed import max_mesh_bytes
+
     digest = hashlib.sha256()
     digest.update(key_of("drawing", DRAWING_VERSION, settings).encode())  # mcar's version too
     digest.update(sha256(urdf).encode())
+    cap = max_mesh_bytes()
     for mesh in meshes:
         with open(mesh, "rb") as handle:  # in chunks: a mesh may be large
-            mesh_hash = hashlib.file_digest(handle, "sha256").hexdigest()
+            info = os.fstat(handle.fileno())
+            if info.st_size > cap:
+                mesh_hash = f"{info.st_size} {info.st_mtime_ns}"
+            else:
+                mesh_hash = hashlib.file_digest(handle, "sha256").hexdigest()
         digest.update(str(mesh).encode() + b"\0" + mesh_hash.encode())
     return digest.hexdigest()
 

@@ -12,7 +12,9 @@ geometry has no material in URDF, so it takes its link's first visual colour, as
 
 Mesh files are resolved with :class:`~mobile_car.packages.search.PackageSearch`, the same search
 ``mcar build`` uses, and are checked before loading so that a missing one is reported with
-its file and line instead of being dropped silently (yourdfpy only logs a warning).
+its file and line instead of being dropped silently (yourdfpy only logs a warning). They
+are read within the mesh limits (:mod:`mobile_car.load.mesh_reader`); one over a limit
+is drawn as a magenta box (PLACEHOLDER_RGBA), a fifth of the rest of the robot in size.
 """
 
 from __future__ import annotations
@@ -21,7 +23,6 @@ import hashlib
 import io
 import logging
 import math
-import tempfile
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -42,6 +43,11 @@ from .pose import joint_positions
 SMOOTH_ANGLE = math.radians(30)
 # trimesh's colour for geometry without any material (rviz uses a similar grey).
 NO_MATERIAL_RGBA = (0.6, 0.6, 0.62, 1.0)
+# A mesh over a limit (W210): a box in a colour no robot part has, the colour of a
+# missing texture in many 3D tools; its side a fraction of the rest of the robot.
+PLACEHOLDER_RGBA = (255, 0, 255, 255)
+PLACEHOLDER_FRACTION = 0.2
+PLACEHOLDER_SIDE = 0.1  # metres, when nothing else is drawn
 # Smoothed meshes kept for reuse within a process (see _smooth_corners).
 _SMOOTHED: dict[str, tuple] = {}
 _SMOOTHED_LIMIT = 64
@@ -62,6 +68,8 @@ class Scene:
     # into ``link_names`` (mcar diff recolours the changed links).
     link_of: np.ndarray | None = None
     link_names: tuple[str, ...] = ()
+    # The files the meshes pulled in (materials, textures), inputs like the meshes.
+    reads: tuple[Path, ...] = ()
 
     @property
     def triangle_count(self) -> int:
@@ -137,44 +145,6 @@ def _meshes(root: etree._Element, source: ModelSource, search: PackageSearch,
         yield uri, path, dict(where, link=link)
 
 
-def _unpack_compressed(root, source: ModelSource, search: PackageSearch, collision: bool,
-                       folder: Path) -> dict[str, str]:
-    """uri -> a decompressed copy in ``folder`` of each compressed mesh (trimesh would
-    decompress a bomb whole; here it stops at MCAR_MAX_MESH_MB): a single mesh as its
-    own file, an archive as an uncompressed zip trimesh reads as it would the original."""
-    import zipfile
-
-    from ..load.compressed import broken_errors, compressed_kind, decompressed_members
-
-    unpacked: dict[str, str] = {}
-    for uri, path, where in _meshes(root, source, search, collision):
-        kind = compressed_kind(path)
-        if kind is None or uri in unpacked:
-            continue
-        try:
-            members = decompressed_members(path, display_path(path))
-        except McarError as exc:
-            message = exc.message
-        except broken_errors() as exc:
-            message = " ".join(str(exc).split())[:200] or type(exc).__name__
-        else:
-            message = None
-        if message is not None:
-            raise RenderError(f"link '{where['link']}': mesh {uri}: {message}",
-                              file=where["file"], line=where["line"])
-        target = folder / str(len(unpacked))
-        target.mkdir()
-        if kind in ("bz2", "gz"):
-            (target / Path(members[0][0]).name).write_bytes(members[0][1])
-            unpacked[uri] = str(target / Path(members[0][0]).name)
-        else:
-            with zipfile.ZipFile(target / "mesh.zip", "w", zipfile.ZIP_STORED) as archive:
-                for name, data in members:
-                    archive.writestr(name, data)
-            unpacked[uri] = str(target / "mesh.zip")
-    return unpacked
-
-
 def load_scene(source: ModelSource, search: PackageSearch, collision: bool = False,
                joints=(), with_links: bool = False) -> Scene:
     """Pose the robot (joints at zero, or as ``joints``, (name, value text) pairs of
@@ -182,17 +152,15 @@ def load_scene(source: ModelSource, search: PackageSearch, collision: bool = Fal
     link each corner belongs to."""
     root = parse_urdf(source)
     mesh_files(root, source, search, collision)  # report a missing mesh before yourdfpy hides it
-    with tempfile.TemporaryDirectory(prefix="mcar-meshes-") as folder:
-        unpacked = _unpack_compressed(root, source, search, collision, Path(folder))
-        return _load_model(source, search, collision, unpacked, joints, with_links)
+    return _load_model(source, search, collision, joints, with_links)
 
 
 def _load_model(source: ModelSource, search: PackageSearch, collision: bool,
-                unpacked: dict[str, str], joints=(), with_links: bool = False) -> Scene:
+                joints=(), with_links: bool = False) -> Scene:
     def resolve(fname: str) -> str:
-        if fname.strip() in unpacked:
-            return unpacked[fname.strip()]
         return str(search.resolve_uri(fname, base=source.path.parent))
+
+    reads: list[Path] = []
 
     # yourdfpy reports unconnected links and unreadable meshes through logging; the
     # library must not print, and every real problem is raised below instead.
@@ -207,8 +175,9 @@ def _load_model(source: ModelSource, search: PackageSearch, collision: bool,
         positions = joint_positions(model.robot, joints, display_path(source.path))
         link_colors = _link_colors(model) if collision else {}
         with np.errstate(all="ignore"):  # an overflow is reported below, not as a warning
-            scene = _flatten(pieces(model.robot, resolve, collision, positions), link_colors,
-                             with_links)
+            scene = _flatten(pieces(model.robot, resolve, collision, positions, reads),
+                             link_colors, with_links)
+        scene.reads = tuple(dict.fromkeys(reads))
     except McarError:
         raise
     except Exception as exc:  # yourdfpy and trimesh raise anything from KeyError to ValueError
@@ -298,7 +267,7 @@ def _face_colors(piece: Piece, link_colors: dict[str, tuple]) -> np.ndarray | No
 def _primitive_corners(piece: Piece, link_colors: dict[str, tuple]) -> tuple:
     """The smoothed corners of a unit primitive, in the piece's colour. The shape is
     smoothed once per process: a primitive has one colour, which smoothing keeps."""
-    colour = _face_colors(piece, link_colors)
+    colour = PLACEHOLDER_RGBA if piece.placeholder else _face_colors(piece, link_colors)
     if colour is None:
         colour = piece.rgba if piece.rgba is not None else \
             np.round(np.array(NO_MATERIAL_RGBA) * 255).astype(np.uint8)
@@ -326,9 +295,23 @@ def _mesh_corners(piece: Piece, link_colors: dict[str, tuple]) -> tuple | None:
     return _smooth_corners(mesh)
 
 
+def _sized_markers(markers: list[Piece], bounds) -> list[Piece]:
+    """The placeholders of meshes not read, as boxes a fraction of the robot's size."""
+    side = PLACEHOLDER_SIDE
+    if bounds is not None and float(np.ptp(bounds, axis=0).max()) > 0:
+        side = PLACEHOLDER_FRACTION * float(np.ptp(bounds, axis=0).max())
+    scale = np.diag([side, side, side, 1.0])
+    return [Piece(piece.link, piece.transform @ scale, primitive="box", placeholder=True)
+            for piece in markers]
+
+
 def _flatten(placed: Iterator[Piece], link_colors: dict[str, tuple],
              with_links: bool = False) -> Scene:
     placed = list(placed)
+    markers = [piece for piece in placed if piece.placeholder]
+    if markers:
+        placed = [piece for piece in placed if not piece.placeholder]
+        placed += _sized_markers(markers, _flatten(iter(placed), link_colors).bounds)
     shaped = []
     # Where two faces lie in one plane, the one drawn first shows. Pictures keep the order
     # they had when yourdfpy's scene named the pieces geometry_0, geometry_1, ... and they

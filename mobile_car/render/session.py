@@ -34,6 +34,9 @@ from .picture import DrawnView, draw_views, finish_picture
 from .scene import ModelSource, load_scene
 from .sheet import THUMBNAIL_WIDTH, contact_sheet
 
+# The check's warnings shown with a picture: xacro's, and a mesh over a limit (drawn as
+# a marker).
+SHOWN_WARNINGS = ("W210", "W220")
 # Pictures finished (overlays, PNG, write) in parallel with drawing the next ones.
 FINISH_THREADS = 1
 
@@ -177,9 +180,11 @@ class RenderSession:
             blocking = blocking_diagnostics(result, self.options.collision)
             if blocking:
                 raise CheckFailed(job.input.label, blocking)
-            warnings = [d for d in result.diagnostics if d.rule == "W220"]
+            warnings = [d for d in result.diagnostics if d.rule in SHOWN_WARNINGS]
             kind = "collision" if self.options.collision else "visual"
-            meshes = [mesh.path for mesh in result.mesh_files if mesh.kind == kind]
+            drawn = [mesh for mesh in result.mesh_files if mesh.kind == kind]
+            # A mesh's materials and textures are inputs too: never overwritten, stamped.
+            meshes = [*(mesh.path for mesh in drawn), *(p for mesh in drawn for p in mesh.reads)]
             files = [*result.loaded.deps, *meshes]
             source = model_source(result.loaded)
             if job.target is not None:
@@ -194,6 +199,9 @@ class RenderSession:
                                  seconds=time.perf_counter() - started)
             scene = load_scene(source, result.loaded.search, collision=self.options.collision,
                                joints=self.options.joints)
+            if job.target is not None:  # what trimesh opened, should the scan have missed it
+                refuse_overwriting(job.target, scene.reads)
+            files = [*files, *scene.reads]
             if not scene.triangle_count:
                 warnings.append(f"no {kind} geometry to draw")
             renderer = self._renderer()

@@ -185,6 +185,20 @@ def _link_colours(root) -> dict[str, list[float]]:
     return found
 
 
+def _over_limit(path: Path) -> str | None:
+    """Why a mesh is not handed to MuJoCo (a mesh limit it passes, or it is unreadable)."""
+    from ..errors import InputError
+    from ..load.mesh_limits import scan_mesh
+
+    try:
+        scan_mesh(path, str(path))
+    except InputError as error:
+        return error.message
+    except OSError as error:
+        return error.strerror or str(error)
+    return None
+
+
 def _prepare(root, base: Path, search) -> list[str]:
     """Strip what MuJoCo must not read (visuals, Gazebo and ros2_control extras), point
     collision meshes at their files; the notes say what was left out."""
@@ -202,6 +216,12 @@ def _prepare(root, base: Path, search) -> list[str]:
             link = collision.getparent()
             notes.append(f"link {link.get('name')}: collision mesh {filename} left out "
                          f"(MuJoCo reads {', '.join(MESH_FORMATS)} files that exist)")
+            link.remove(collision)
+            continue
+        over = _over_limit(path)
+        if over is not None:  # MuJoCo would read it whole
+            link = collision.getparent()
+            notes.append(f"link {link.get('name')}: collision mesh {filename} left out: {over}")
             link.remove(collision)
             continue
         mesh.set("filename", str(path.resolve()))

@@ -64,11 +64,16 @@ def load_model(inp: RobotInput, options: LoadOptions, stdin=None) -> ViewModel:
     loaded = result.loaded
     source = model_source(loaded)
     meshes = [mesh.path for mesh in result.mesh_files if mesh.path is not None]
+    meshes += [path for mesh in result.mesh_files for path in mesh.reads]
     generated = options.overrides.path if options.overrides is not None else None
     files = [path for path in dict.fromkeys([*loaded.deps, *meshes]) if path != generated]
 
+    # A mesh over a limit (W210) is not read: a name that is no file, which yourdfpy skips.
+    unread = {mesh.path for mesh in result.mesh_files if mesh.over_limit}
+
     def resolve(fname: str) -> str:
-        return str(loaded.search.resolve_uri(fname, base=source.path.parent))
+        path = loaded.search.resolve_uri(fname, base=source.path.parent)
+        return "" if path in unread else str(path)
 
     # yourdfpy logs what it cannot load; a library must not print, and mcar check has
     # reported every real problem above.
@@ -84,7 +89,7 @@ def load_model(inp: RobotInput, options: LoadOptions, stdin=None) -> ViewModel:
     except Exception as exc:  # yourdfpy and trimesh raise anything from KeyError to ValueError
         raise RenderError(f"cannot build the model: {type(exc).__name__}: {exc}",
                           file=inp.label) from None
-    warnings = [d for d in result.diagnostics if d.rule == "W220"]
+    warnings = [d for d in result.diagnostics if d.rule in ("W210", "W220")]
     return ViewModel(urdf, joint_ranges(urdf), files, warnings)
 
 

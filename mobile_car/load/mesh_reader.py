@@ -1,0 +1,114 @@
+"""The one way mcar reads a mesh file with trimesh: measured first, within every limit.
+
+:func:`load_mesh` checks the file with :func:`~.mesh_limits.scan_mesh` (size, declared
+counts), decompresses compressed and zipped formats itself within ``MCAR_MAX_MESH_MB``
+(counting each member again), and hands trimesh the bytes with a resolver that opens only
+regular files below the mesh's folder, each within the same size cap, and notes every
+file it opens: a texture or ``.mtl`` is an input of the run like the mesh.
+
+Imports trimesh: only the commands that read meshes import this module.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import stat
+import zipfile
+from pathlib import Path
+
+import trimesh
+from PIL import Image
+
+from ..errors import InputError
+from .compressed import ZIP_FORMATS, compressed_kind, decompressed_members, max_mesh_bytes
+from .mesh_limits import MeshOverLimit, scan_bytes, scan_mesh, suffix_of
+
+_IMAGES = (".png", ".jpg", ".jpeg", ".bmp", ".tga", ".tif", ".tiff", ".gif", ".webp")
+
+
+class BoundedResolver(trimesh.resolvers.FilePathResolver):
+    """trimesh's resolver for the files a mesh names (materials, textures, buffers): in
+    the mesh's folder or below, regular files within the mesh size cap, and textures
+    within PIL's own pixel limit (a small PNG can stand for gigabytes of pixels); what it
+    opened is in ``read``. A file it refuses is one trimesh does without (its colour)."""
+
+    def __init__(self, mesh: Path, read: list[Path]):
+        super().__init__(str(mesh))
+        self.read = read
+
+    def namespaced(self, namespace: str) -> BoundedResolver:
+        return BoundedResolver(Path(self.parent) / namespace / "_", self.read)
+
+    def get(self, name: str) -> bytes:
+        for candidate in (name.strip(), name.strip().lstrip("/"), os.path.split(name)[-1]):
+            try:
+                path = self.absolute(candidate)
+            except ValueError:
+                continue
+            if path.exists():
+                return self._read(path)
+        raise FileNotFoundError(name)
+
+    def _read(self, path: Path) -> bytes:
+        with open(path, "rb", opener=_no_blocking) as handle:
+            info = os.fstat(handle.fileno())
+            if not stat.S_ISREG(info.st_mode):
+                raise OSError(f"{path}: not a regular file")
+            if info.st_size > max_mesh_bytes():
+                raise OSError(f"{path}: over the mesh size limit")
+            self.read.append(path)
+            data = handle.read(max_mesh_bytes() + 1)
+        if path.suffix.lower() in _IMAGES:
+            with Image.open(io.BytesIO(data)) as image:  # reads the header only
+                width, height = image.size
+            if width * height > (Image.MAX_IMAGE_PIXELS or 1 << 62):
+                raise OSError(f"{path}: {width}x{height} pixels, too many for a texture")
+        return data
+
+    def write(self, name, data):
+        raise OSError("mcar writes no file next to a mesh")
+
+
+def _no_blocking(path, flags):
+    """Open without waiting for a FIFO's writer (it is refused just after)."""
+    return os.open(path, flags | os.O_NONBLOCK)
+
+
+def load_mesh(path: str | os.PathLike, shown: str | None = None, **kwargs):
+    """``trimesh.load(path, **kwargs)`` within every limit, and the files it read besides
+    the mesh. MeshOverLimit over a limit; MeshBroken, InputError or one of
+    compressed.broken_errors() for a file that cannot be measured; trimesh's own
+    exceptions for one it cannot parse."""
+    path = Path(path)
+    shown = shown or str(path)
+    read: list[Path] = []
+    scan_mesh(path, shown)
+    kind = compressed_kind(path)
+    resolver = BoundedResolver(path, read)
+    if kind is None:
+        with open(path, "rb", opener=_no_blocking) as handle:
+            data = handle.read(max_mesh_bytes() + 1)
+        if len(data) > max_mesh_bytes():  # it grew since it was measured
+            raise MeshOverLimit("grew past the mesh size limit while read", file=shown)
+        loaded = trimesh.load(io.BytesIO(data), file_type=suffix_of(path.name),
+                              resolver=resolver, **kwargs)
+        return loaded, read
+    members = decompressed_members(path, shown)
+    for name, data in members:
+        scan_bytes(name, data, f"{shown} ({name})")
+    if not members:
+        raise InputError("an archive with no file in it", file=shown)
+    if kind in ("bz2", "gz"):
+        name, data = members[0]
+        return trimesh.load(io.BytesIO(data), file_type=suffix_of(name), resolver=resolver,
+                            **kwargs), read
+    # An archive again, its members stored as they are: trimesh reads what was measured.
+    stored = io.BytesIO()
+    with zipfile.ZipFile(stored, "w", zipfile.ZIP_STORED) as archive:
+        for name, data in members:
+            archive.writestr(name, data)
+    del members
+    stored.seek(0)
+    file_type = kind if kind in ZIP_FORMATS else "zip"
+    return trimesh.load(stored, file_type=file_type, **kwargs), read

@@ -42,6 +42,11 @@ class Diagnostic:
     def rule_name(self) -> str:
         return RULES[self.rule].name
 
+    @classmethod
+    def knows(cls, rule: str) -> bool:
+        """Whether ``rule`` is one of this kind's (a recorded diagnostic is checked)."""
+        return rule in RULES
+
     def github(self) -> str:
         """A GitHub Actions workflow command that annotates the line in the pull request."""
         return github_annotation(self.severity, self.file, self.line,

@@ -26,7 +26,15 @@ import os
 from pathlib import Path
 
 from ..atomic import atomic_write
-from ..freshness import Basis, key_of, output_current, output_stamp, read_record, stamps_current
+from ..freshness import (
+    Basis,
+    diagnostics_from,
+    key_of,
+    output_current,
+    output_stamp,
+    read_record,
+    stamps_current,
+)
 
 MANIFEST_NAME = ".mcar-render.json"
 CONTACT_SHEET = "index.png"
@@ -97,6 +105,10 @@ class Manifest:
             return None
         if renderer != "auto" and entry.get("renderer") != renderer:
             return None
+        try:  # the warnings shown again with the picture: damaged, and it is drawn again
+            diagnostics_from(entry.get("warnings") or [])
+        except ValueError:
+            return None
         current, refreshed = stamps_current(entry["files"])
         self._changed = self._changed or refreshed
         if not current or not self._png_current(target, entry):
@@ -137,7 +149,8 @@ class Manifest:
     def sheet_pictures(self) -> list[tuple[str, dict]]:
         """The pictures the contact sheet shows: every one listed that is on disk."""
         return sorted((key, entry) for key, entry in self.entries.items()
-                      if key != CONTACT_SHEET and (self.folder / key).is_file())
+                      if key != CONTACT_SHEET and isinstance(entry.get("png"), str)
+                      and (self.folder / key).is_file())
 
     def sheet_fingerprint(self) -> str:
         return sha256(repr((DRAWING_VERSION, [(key, entry.get("png"))

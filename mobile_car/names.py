@@ -55,6 +55,16 @@ def shown_lines(text: str) -> str:
     return "\n".join(shown(line) for line in str(text).split("\n"))
 
 
+def json_safe(text: str) -> str:
+    """JSON text (``json.dumps(..., ensure_ascii=False)``) with each character
+    :func:`shown` would escape written as JSON's ``\\uXXXX`` instead: the same data for a
+    parser, nothing raw for a terminal. (JSON already escapes C0 controls; these can only
+    stand inside strings, where the escape means the same character.)"""
+    if text.isascii():
+        return text
+    return "".join(f"\\u{ord(c):04x}" if _escaped(c) else c for c in text)
+
+
 # The longest name one path component may have (Linux, macOS, Windows: 255 bytes on
 # ext4, XFS, btrfs, APFS; 255 UTF-16 units on NTFS, never fewer than 255 bytes' worth).
 NAME_MAX = 255
@@ -71,5 +81,5 @@ def component_problem(component: str) -> str | None:
     except UnicodeError:
         return "it cannot be encoded as a file name"
     if size > NAME_MAX:
-        return f"it is {size} bytes long and a file name holds at most {NAME_MAX}"
+        return f"it is {size} bytes long, and a file name holds at most {NAME_MAX} bytes"
     return None

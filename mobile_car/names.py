@@ -58,11 +58,12 @@ def shown_lines(text: str) -> str:
 def json_safe(text: str) -> str:
     """JSON text (``json.dumps(..., ensure_ascii=False)``) with each character
     :func:`shown` would escape written as JSON's ``\\uXXXX`` instead: the same data for a
-    parser, nothing raw for a terminal. (JSON already escapes C0 controls; these can only
-    stand inside strings, where the escape means the same character.)"""
+    parser, nothing raw for a terminal. (JSON escapes C0 controls in strings itself, so
+    what is left stands inside strings, where the escape means the same character; the
+    line breaks of its indentation are kept.)"""
     if text.isascii():
         return text
-    return "".join(f"\\u{ord(c):04x}" if _escaped(c) else c for c in text)
+    return "".join(f"\\u{ord(c):04x}" if c != "\n" and _escaped(c) else c for c in text)
 
 
 # The longest name one path component may have (Linux, macOS, Windows: 255 bytes on

@@ -17,7 +17,7 @@ from pathlib import Path
 
 from ..errors import UsageError
 from ..names import NAME_MAX
-from .placing import place, require_makeable, short
+from .placing import place, refuse_present, require_makeable, short
 
 TEMPLATES = Path(__file__).resolve().parent / "templates"
 # template -> where it goes in the package ({name}: the package's name)
@@ -60,11 +60,12 @@ def add_part(root: Path, package: str, part: str) -> list[Path]:
     if part in SPECS or part in EXTENSIONS:
         raise UsageError(f"a part cannot be called '{part}': a URDF element has that name, "
                          "so its macro could not be told from it")
-    refuse_bad_part_name(root, part)
     files = {destination.format(part=part): _filled(template, {"NAME": package, "PART": part})
              for template, destination in PART_FILES.items()}
     folder = root / "urdf" / part
     require_makeable(folder, list(files), _length_hint(part, "part", "NAME", files))
+    refuse_present(folder, files)  # the part exists: that, not its names, is the news
+    refuse_bad_part_name(root, part)
     return place(folder, files)
 
 

@@ -40,15 +40,20 @@ def require_makeable(folder: Path, relatives: list[str], why: str) -> None:
             raise UsageError(f"cannot make the folder '{short(part)}': {problem}")
 
 
+def refuse_present(folder: Path, files, optional: frozenset[str] = frozenset()) -> None:
+    """UsageError naming the files below ``folder`` that exist (``optional`` ones aside)."""
+    present = [Path(folder) / rel for rel in files
+               if rel not in optional and os.path.lexists(Path(folder) / rel)]
+    if present:
+        raise UsageError("will not overwrite " + ", ".join(shown(p) for p in present))
+
+
 def place(folder: Path, files: dict[str, str], optional: frozenset[str] = frozenset()
           ) -> list[Path]:
     """Write ``files`` (path below ``folder`` -> text) into ``folder``, all or none;
     ``optional`` ones are left out where a file exists. Returns the paths written."""
     folder = Path(os.path.abspath(folder))
-    present = [folder / rel for rel in files
-               if rel not in optional and os.path.lexists(folder / rel)]
-    if present:
-        raise UsageError("will not overwrite " + ", ".join(shown(p) for p in present))
+    refuse_present(folder, files, optional)
     files = {rel: text for rel, text in files.items() if not os.path.lexists(folder / rel)}
     made_parents = _make_parents(folder.parent)
     staging = folder.parent / f".mcar-new-{secrets.token_hex(4)}"

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..names import shown
+from ..names import shown, shown_lines
 from .rules import ERROR, RULES
 
 
@@ -60,8 +60,9 @@ class Diagnostic:
 def github_annotation(severity: str, file: str, line: int | None, title: str | None,
                       message: str) -> str:
     """``::error file=F,line=L,title=T::message``, escaped as GitHub's toolkit does, after
-    control characters are (the log shows ANSI sequences: see mobile_car.names)."""
-    file, title, message = shown(file), title and shown(title), shown(message)
+    control characters other than a message's line breaks are (the log shows ANSI
+    sequences: see mobile_car.names)."""
+    file, title, message = shown(file), title and shown(title), shown_lines(message)
     props = [f"file={_escape_property(file)}"]
     if line:
         props.append(f"line={line}")

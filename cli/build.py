@@ -10,6 +10,7 @@ import click
 from mobile_car.atomic import atomic_write
 from mobile_car.errors import EXIT_OK, McarError, UsageError, combine_exit_codes
 from mobile_car.load.inputs import display_path
+from mobile_car.names import shown
 from mobile_car.packages.discover import output_name
 
 from . import streams
@@ -85,7 +86,7 @@ def _print_deps(deps: list[Path], absolute: bool) -> None:
     from mobile_car.load.outputs import shown_dep
 
     for dep in dict.fromkeys(shown_dep(d, absolute) for d in deps):
-        streams.echo(dep)
+        streams.echo(shown(dep))
 
 
 def _output(loaded, output_format: str) -> bytes:

@@ -13,6 +13,7 @@ from mobile_car.check.checker import CheckResult, as_json, check_input
 from mobile_car.check.diagnostics import github_annotation
 from mobile_car.check.tree import check_urdf_batches
 from mobile_car.errors import combine_exit_codes
+from mobile_car.names import json_safe
 
 from . import signals, streams
 from .common import (
@@ -126,7 +127,8 @@ def _emit_json(results: list[CheckResult], exit_code: int) -> None:
                 "errors": sum(r.errors for r in results),
                 "warnings": sum(r.warnings for r in results),
                 "exit_code": exit_code}
-    streams.write(json.dumps(document, indent=1, ensure_ascii=False).encode("utf-8") + b"\n")
+    streams.write(json_safe(json.dumps(document, indent=1, ensure_ascii=False)).encode("utf-8")
+                  + b"\n")
 
 
 def overall_exit(results: list[CheckResult], strict: bool) -> int:

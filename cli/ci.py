@@ -10,6 +10,7 @@ import click
 
 from mobile_car.errors import McarError, UsageError
 from mobile_car.load.inputs import display_path
+from mobile_car.names import shown
 from mobile_car.packages.bundled import PACKAGE_NAME
 
 from . import streams
@@ -100,11 +101,11 @@ def _problems(item) -> list:
             continue
         if step.problems:  # sim: its rules' diagnostics, then each failed scenario
             lines += step.diagnostics
-            lines += [f"{item.label}: {severity_label('error')} {step.name} {problem}"
+            lines += [f"{item.label}: {severity_label('error')} {step.name} {shown(problem)}"
                       for problem in step.problems]
             continue
         lines += step.diagnostics or [step.error or f"{item.label}: {step.name} failed: "
-                                      f"{step.message}"]
+                                      f"{shown(step.message)}"]
     return lines
 
 
@@ -286,7 +287,7 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
             if not quiet:  # a robot that is not a vehicle: why it was not simulated
                 for step in item.steps:
                     if step.name == "sim" and step.message.startswith("not simulated"):
-                        click.echo(f"mcar: {item.label}: {step.message}", err=True)
+                        click.echo(f"mcar: {item.label}: {shown(step.message)}", err=True)
             for line in _problems(item):
                 if isinstance(line, str):
                     click.echo(line, err=True)

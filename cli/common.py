@@ -11,6 +11,7 @@ from pathlib import Path
 import click
 
 from mobile_car.errors import EXIT_OK, EXIT_USAGE, McarError, Terminated, UsageError
+from mobile_car.names import shown
 
 from . import streams
 
@@ -163,25 +164,28 @@ def severity_label(severity: str) -> str:
 def print_diagnostic(diagnostic) -> None:
     """One ``FILE:LINE: error: message [E104]`` line on stderr, the severity coloured."""
     click.echo(f"{diagnostic.location()}: {severity_label(diagnostic.severity)} "
-               f"{diagnostic.message} [{diagnostic.rule}]", err=True, color=use_color())
+               f"{shown(diagnostic.message)} [{diagnostic.rule}]", err=True, color=use_color())
 
 
 def print_warning(where: str, message: str) -> None:
-    click.echo(f"{where}: {severity_label('warning')} {message}", err=True, color=use_color())
+    click.echo(f"{shown(where)}: {severity_label('warning')} {shown(message)}", err=True,
+               color=use_color())
 
 
 def report(error: McarError) -> None:
     """Print an error as one `FILE:LINE: error: message` line, then its context lines; a
-    robot that failed its check prints the check's diagnostics instead."""
+    robot that failed its check prints the check's diagnostics instead. Names in it are
+    escaped (mobile_car.names): a file called "x\\n" cannot add a line of its own."""
     for diagnostic in getattr(error, "diagnostics", ()):
         print_diagnostic(diagnostic)
     if getattr(error, "diagnostics", None):
         return
     where = error.location()
     prefix = f"{where}: " if where else "mcar: "
-    click.echo(f"{prefix}{severity_label('error')} {error.message}", err=True, color=use_color())
+    click.echo(f"{prefix}{severity_label('error')} {shown(error.message)}", err=True,
+               color=use_color())
     for line in error.details:
-        click.echo(f"  {line}", err=True)
+        click.echo(f"  {shown(line)}", err=True)
 
 
 def _say_if_unconfined() -> None:
@@ -256,6 +260,6 @@ def _exit_code_of(error: BaseException) -> int:
     if os.environ.get("MCAR_DEBUG"):
         raise error
     # If the failure was a write to stderr, this line cannot be written either: exit 2.
-    streams.say(f"mcar: internal error: {type(error).__name__}: {error} "
+    streams.say(f"mcar: internal error: {type(error).__name__}: {shown(str(error))} "
                 "(set MCAR_DEBUG=1 for a traceback, and please report it)")
     return EXIT_USAGE

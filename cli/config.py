@@ -9,6 +9,7 @@ import click
 
 from mobile_car.errors import UsageError
 from mobile_car.load.inputs import display_path
+from mobile_car.names import shown_lines
 
 from . import streams
 from .common import handle_errors, load_inputs, robot_options
@@ -108,4 +109,4 @@ def command(words, fmt, sets, config_files, package_paths):
 
         streams.echo(yaml.safe_dump(table, sort_keys=False), nl=False)
     else:
-        streams.echo(_text(table))
+        streams.echo(shown_lines(_text(table)))  # names are data: mobile_car.names

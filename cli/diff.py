@@ -10,6 +10,7 @@ from pathlib import Path
 import click
 
 from mobile_car.errors import EXIT_PROBLEMS, EXIT_USAGE, InputError, McarError, UsageError
+from mobile_car.names import shown_lines
 from mobile_car.render.options import RENDERER_ENV, RENDERERS
 
 from . import streams
@@ -103,7 +104,7 @@ def command(words, fmt, tolerance, picture, renderer, package_paths, sets, confi
         parts += [f"robot file added: {name}\n" for name in only_new]
         if fmt == "markdown":
             parts.insert(0, "## mcar diff\n")
-        streams.echo("\n".join(parts), nl=False)
+        streams.echo(shown_lines("\n".join(parts)), nl=False)  # names: mobile_car.names
     if only_old or only_new or any(d.changed for d in diffs):
         sys.exit(EXIT_PROBLEMS)
 

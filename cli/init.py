@@ -26,13 +26,15 @@ It follows the mobile car's layout (the seed's method):
   .github/workflows/mcar.yml         CI: mcar ci on this package
   .pre-commit-config.yaml            a hook running mcar ci on this package
 Then `mcar new part NAME` inside it adds a part folder. Nothing is overwritten: if a
-file it would write exists, nothing is written.
+file it would write exists, nothing is written; the package is written whole or not at
+all (a name too long for the file system is refused before anything is written).
 
 \b
 Exit codes:
   0  the package was written
   1  (not used)
-  2  usage or I/O error: an invalid name, a file that exists, a folder not writable
+  2  usage or I/O error: an invalid or too long name, a file that exists, a folder
+     not writable
   130  interrupted (Ctrl-C); 143 terminated
 """
 

@@ -15,7 +15,8 @@ EXIT_CODES = """\b
 Exit codes:
   0  the files were written
   1  (not used)
-  2  usage or I/O error: not inside a package, an invalid name, a file that exists
+  2  usage or I/O error: not inside a package, an invalid, too long or clashing
+     name, a file that exists
   130  interrupted (Ctrl-C); 143 terminated
 """
 
@@ -35,7 +36,10 @@ PART_HELP = f"""Add a part: a macro file and a test file that builds the part al
   -> urdf/arm/test_arm.urdf.xacro    the arm alone on a base link
 
 Include the macro from the robot file and call it as <xacro:arm parent="base_link">
-with an <origin>. Nothing is overwritten.
+with an <origin>. Nothing is overwritten, and the two files are written both or neither.
+NAME may not be one of xacro's own elements (include, macro, property, arg, if, ...) nor
+give a macro, link or joint the package already has (base would make a second
+base_link).
 
 {EXIT_CODES}"""
 

@@ -11,6 +11,7 @@ from pathlib import Path
 import click
 
 from mobile_car.errors import EXIT_OK, UsageError, combine_exit_codes
+from mobile_car.names import shown
 from mobile_car.packages.bundled import PACKAGE_NAME
 from mobile_car.render.options import (
     DEFAULT_BACKGROUND,
@@ -313,7 +314,7 @@ def _run(session, jobs, manifest, quiet: bool) -> _Outcome:
             signals.raise_if_received()  # swallowed by a library's import guard: stop here
             outcome.counts[result.status] += 1
             if bar is not None:
-                bar.update(1, result.job.caption)
+                bar.update(1, shown(result.job.caption))
             for note in session.notes:
                 print_warning("mcar", note)
             session.notes.clear()

@@ -7,6 +7,7 @@ import json
 import click
 
 from mobile_car.errors import EXIT_PROBLEMS, UsageError, combine_exit_codes
+from mobile_car.names import json_safe, shown
 
 from . import streams
 from .common import (
@@ -121,7 +122,7 @@ def command(words, scenarios, output_format, record, left, right, package_paths,
             result = simulate(checked, scenarios, left, right, record=bool(record),
                               only_if_drives=not explicit)
             if not result.simulated:
-                click.echo(f"mcar: {result.file}: not simulated: {result.why_no_drive}",
+                click.echo(f"mcar: {result.file}: not simulated: {shown(result.why_no_drive)}",
                            err=True)
                 continue
             reports.append(result)
@@ -141,19 +142,20 @@ def _emit(reports, output_format: str, exit_code: int) -> None:
         for diagnostic in result.diagnostics:
             print_diagnostic(diagnostic)
         for line in failure_lines(result):
-            click.echo(f"{result.file}: {severity_label('error')} {line}", err=True,
+            click.echo(f"{result.file}: {severity_label('error')} {shown(line)}", err=True,
                        color=use_color())
     if output_format == "json":
         document = {"files": [as_json(r) for r in reports], "exit_code": exit_code}
-        streams.write(json.dumps(document, indent=1, ensure_ascii=False).encode() + b"\n")
+        streams.write(json_safe(json.dumps(document, indent=1, ensure_ascii=False)).encode()
+                      + b"\n")
         return
     if output_format == "junit":
         streams.write(junit(reports).encode())
         return
     for result in reports:
         for note in result.notes:
-            click.echo(f"mcar: {result.file}: {note}", err=True)
-        streams.echo("\n".join(text_table(result)))
+            click.echo(f"mcar: {result.file}: {shown(note)}", err=True)
+        streams.echo("\n".join(map(shown, text_table(result))))
     counts = {"passed": 0, "failed": 0, "skipped": 0}
     for result in reports:
         for scenario in result.scenarios:

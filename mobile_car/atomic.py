@@ -45,7 +45,9 @@ def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
                              file=str(target)) from None
         if target.is_dir():
             raise InputError("is a directory, cannot write a file there", file=str(target))
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+        # The temporary name adds 14 bytes: a long target name (up to NAME_MAX, 255) is cut.
+        stem = target.name if len(os.fsencode(target.name)) <= 200 else target.name[:40]
+        fd, tmp = tempfile.mkstemp(prefix=f".{stem}.", suffix=".tmp", dir=target.parent)
     except InputError:
         release_signals(held)
         raise

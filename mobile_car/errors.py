@@ -26,13 +26,18 @@ class McarError(Exception):
         self.details = list(details or [])
 
     def location(self) -> str:
+        """``FILE:LINE``, the file's name escaped (see mobile_car.names: names are data)."""
         if self.file is None:
             return ""
-        return f"{self.file}:{self.line}" if self.line else str(self.file)
+        from .names import shown
+
+        return f"{shown(self.file)}:{self.line}" if self.line else shown(self.file)
 
     def __str__(self) -> str:
+        from .names import shown
+
         where = self.location()
-        return f"{where}: {self.message}" if where else self.message
+        return f"{where}: {shown(self.message)}" if where else shown(self.message)
 
 
 class UsageError(McarError):

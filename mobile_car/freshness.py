@@ -169,13 +169,26 @@ def diagnostics_data(diagnostics) -> list[dict]:
              else d.file, "line": d.line, "message": d.message} for d in diagnostics]
 
 
-def diagnostics_from(data) -> list:
-    """The Diagnostics :func:`diagnostics_data` recorded."""
+def diagnostics_from(data, kind=None) -> list:
+    """The Diagnostics :func:`diagnostics_data` recorded (``kind``: the class, Diagnostic
+    by default, whose rule table they name); ValueError if ``data`` is not what it wrote:
+    a damaged or forged record is rebuilt, never trusted."""
     from .check.diagnostics import Diagnostic
     from .load.inputs import display_path
 
-    return [Diagnostic(d["rule"], display_path(d["file"]) if os.path.isabs(d["file"])
-                       else d["file"], d["line"], d["message"]) for d in data]
+    kind = kind or Diagnostic
+    if not isinstance(data, list):
+        raise ValueError("recorded diagnostics are not a list")
+    found = []
+    for d in data:
+        rule, file, line = (d.get("rule"), d.get("file"), d.get("line")) \
+            if isinstance(d, dict) else (None, None, None)
+        if not (isinstance(rule, str) and kind.knows(rule) and isinstance(file, str)
+                and (line is None or type(line) is int) and isinstance(d.get("message"), str)):
+            raise ValueError(f"not a recorded diagnostic: {d!r:.80}")
+        found.append(kind(rule, display_path(file) if os.path.isabs(file) else file, line,
+                          d["message"]))
+    return found
 
 
 def read_record(path: Path, section: str) -> dict[str, dict]:
@@ -195,7 +208,8 @@ def read_record(path: Path, section: str) -> dict[str, dict]:
     entries = unsealed_entries(data, section)
     if entries is None:
         return {}
-    return {key: value for key, value in entries.items() if isinstance(value, dict)}
+    return {key: value for key, value in entries.items()
+            if isinstance(value, dict) and _is_record_name(key)}
 
 
 def write_record(path: Path, section: str, entries: dict[str, dict]) -> None:
@@ -207,3 +221,10 @@ def write_record(path: Path, section: str, entries: dict[str, dict]) -> None:
     text = sealed_text(section, entries)
     if text is not None:
         atomic_write(path, text)
+
+
+def _is_record_name(key: str) -> bool:
+    """A record names its outputs by their paths below its folder: one that names a file
+    elsewhere (absolute, ``..``) or none at all (NUL) was not written by mcar."""
+    parts = key.split("/")
+    return bool(key) and "\0" not in key and not key.startswith("/") and ".." not in parts

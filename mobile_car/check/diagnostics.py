@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..names import shown, shown_lines
 from .rules import ERROR, RULES
 
 
@@ -31,14 +32,20 @@ class Diagnostic:
         return (self.file, self.line or 0, self.rule, self.message)
 
     def location(self) -> str:
-        return f"{self.file}:{self.line}" if self.line else self.file
+        """``FILE:LINE``, the name escaped (mobile_car.names: a file name is data)."""
+        return f"{shown(self.file)}:{self.line}" if self.line else shown(self.file)
 
     def text(self) -> str:
         """``FILE:LINE: error: message [E104]``, the form compilers and linters use."""
-        return f"{self.location()}: {self.severity}: {self.message} [{self.rule}]"
+        return f"{self.location()}: {self.severity}: {shown(self.message)} [{self.rule}]"
 
     def rule_name(self) -> str:
         return RULES[self.rule].name
+
+    @classmethod
+    def knows(cls, rule: str) -> bool:
+        """Whether ``rule`` is one of this kind's (a recorded diagnostic is checked)."""
+        return rule in RULES
 
     def github(self) -> str:
         """A GitHub Actions workflow command that annotates the line in the pull request."""
@@ -52,7 +59,10 @@ class Diagnostic:
 
 def github_annotation(severity: str, file: str, line: int | None, title: str | None,
                       message: str) -> str:
-    """``::error file=F,line=L,title=T::message``, escaped as GitHub's toolkit does."""
+    """``::error file=F,line=L,title=T::message``, escaped as GitHub's toolkit does, after
+    control characters other than a message's line breaks are (the log shows ANSI
+    sequences: see mobile_car.names)."""
+    file, title, message = shown(file), title and shown(title), shown_lines(message)
     props = [f"file={_escape_property(file)}"]
     if line:
         props.append(f"line={line}")

@@ -14,6 +14,7 @@ from __future__ import annotations
 from collections import defaultdict
 from dataclasses import dataclass, field
 
+from ..names import shown
 from .urdf_model import axis_of, first_child, origin_of, parse_number
 from .urdf_reader import Joint, Robot
 
@@ -166,9 +167,11 @@ def check_urdf_batches(robot_name: str, tree: KinematicTree, lines_per_batch: in
     """
     root = tree.root
     kids = {link: [joint.child for joint in joints] for link, joints in tree.children.items()}
-    batch = [(f"robot name is: {robot_name}\n"
+    # Names escaped (a no-op for every name check_urdf could print cleanly): "&#13;" or a
+    # C1 control in a link name must not rewrite the terminal (see mobile_car.names).
+    batch = [(f"robot name is: {shown(robot_name)}\n"
               "---------- Successfully Parsed XML ---------------\n"
-              f"root Link: {root} has {len(kids.get(root, ()))} child(ren)\n").encode()]
+              f"root Link: {shown(root)} has {len(kids.get(root, ()))} child(ren)\n").encode()]
     append = batch.append
     spaces = memoryview(b" " * 4096)
     # A stack of iterators over (number, child): depth-first, in order, without recursion.
@@ -180,7 +183,7 @@ def check_urdf_batches(robot_name: str, tree: KinematicTree, lines_per_batch: in
             if indent > len(spaces):
                 spaces = memoryview(b" " * (2 * indent))
             append(spaces[:indent])
-            append(f"child({number}):  {link}\n".encode())
+            append(f"child({number}):  {shown(link)}\n".encode())
             below = kids.get(link)
             if below:
                 stack.append(enumerate(below, start=1))
@@ -202,7 +205,7 @@ def _numbers(values) -> str:
 def joint_summary(joint: Joint) -> str:
     """``name: type, xyz 0 0 0.1, rpy 0 0 0, axis 0 0 1, limits -1..1``."""
     origin = origin_of(joint.element)
-    parts = [f"{joint.name}: {joint.type}", f"xyz {_numbers(origin['xyz'])}",
+    parts = [f"{shown(joint.name)}: {joint.type}", f"xyz {_numbers(origin['xyz'])}",
              f"rpy {_numbers(origin['rpy'])}"]
     axis = axis_of(joint)
     if axis is not None:
@@ -218,12 +221,12 @@ def joint_summary(joint: Joint) -> str:
 
 def rich_text(tree: KinematicTree) -> str:
     """The tree drawn with box characters; each link shows the joint that carries it."""
-    lines = [tree.root]
+    lines = [shown(tree.root)]
     kids = tree.children.get(tree.root, [])
     stack = [(joint, "", i == len(kids) - 1) for i, joint in reversed(list(enumerate(kids)))]
     while stack:
         joint, prefix, last = stack.pop()
-        lines.append(f"{prefix}{'└── ' if last else '├── '}{joint.child}  "
+        lines.append(f"{prefix}{'└── ' if last else '├── '}{shown(joint.child)}  "
                      f"({joint_summary(joint)})")
         kids = tree.children.get(joint.child, [])
         inner = prefix + ("    " if last else "│   ")
@@ -239,16 +242,16 @@ def _dot_id(text: str) -> str:
 
 def graphviz_dot(robot_name: str, tree: KinematicTree) -> str:
     """A Graphviz digraph: links as boxes, joints as labelled edges, in tree order."""
-    lines = [f"digraph {_dot_id(robot_name)} {{",
+    lines = [f"digraph {_dot_id(shown(robot_name))} {{",
              "  rankdir=TB;",
              '  node [shape=box, style="rounded", fontname="Helvetica"];',
              '  edge [fontname="Helvetica", fontsize=10];']
     for link in tree.subtree(tree.root):
-        lines.append(f"  {_dot_id(link)};")
+        lines.append(f"  {_dot_id(shown(link))};")
     for link in tree.subtree(tree.root):
         for joint in tree.children.get(link, ()):
             label = joint_summary(joint).replace(", ", "\n")
-            lines.append(f"  {_dot_id(link)} -> {_dot_id(joint.child)} "
+            lines.append(f"  {_dot_id(shown(link))} -> {_dot_id(shown(joint.child))} "
                          f"[label={_dot_id(label)}];")
     lines.append("}")
     return "\n".join(lines) + "\n"

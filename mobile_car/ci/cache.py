@@ -62,8 +62,15 @@ class CiCache:
         """Fill in the item's steps from the record if nothing it depends on changed;
         ``picture_fresh(item)`` says whether its picture (if it has one) is current;
         ``sim``: the run simulates (not --no-sim)."""
-        entry = self.entries.get(self._name(item))
+        name = self._name(item)
+        entry = self.entries.get(name)
         if not entry or entry.get("key") != self._key(item, basis, strict):
+            return False
+        try:
+            passed, diagnostics, simulated = _recorded(entry)
+        except ValueError:  # damaged or forged: built again and recorded anew
+            del self.entries[name]
+            self._changed = True
             return False
         current, refreshed = stamps_current(entry.get("files"))
         if not current:
@@ -72,13 +79,9 @@ class CiCache:
         if not written:
             return False
         self._changed = self._changed or refreshed or touched
-        check = entry.get("check") or {}
-        diagnostics = diagnostics_from(check.get("diagnostics") or [])
-        passed = check.get("passed") is True
         if passed and item.png is not None and not picture_fresh(item):
             return False
-        simulated = entry.get("sim")
-        if passed and sim and not isinstance(simulated, dict):
+        if passed and sim and simulated is None:
             return False
         item.links, item.joints = entry.get("links"), entry.get("joints")
         item.deps = [Path(p) for p in entry.get("deps") or []]
@@ -88,7 +91,7 @@ class CiCache:
             return True
         item.steps.append(Step("check", diagnostics=diagnostics))
         if sim:
-            item.steps.append(_sim_step(simulated))
+            item.steps.append(simulated)
         if item.png is not None:
             item.steps.append(Step("render", message=f"unchanged {display_path(item.png)}"))
         return True
@@ -133,14 +136,50 @@ class CiCache:
             self._changed = False
 
 
+def _recorded(entry: dict) -> tuple[bool, list, Step | None]:
+    """What replaying an entry needs, checked to be what :meth:`CiCache.record` writes:
+    (check passed, its diagnostics, the sim step or None); ValueError if it is not."""
+    check = entry.get("check")
+    deps = entry.get("deps") or []
+    if not isinstance(check, dict) or not isinstance(check.get("passed"), bool):
+        raise ValueError("no check verdict")
+    if not all(value is None or type(value) is int
+               for value in (entry.get("links"), entry.get("joints"))):
+        raise ValueError("link or joint count not a number")
+    if not isinstance(deps, list) or not all(isinstance(p, str) and "\0" not in p
+                                             for p in deps):
+        raise ValueError("dependencies not a list of paths")
+    diagnostics = diagnostics_from(check.get("diagnostics") or [])
+    if not check["passed"] and not diagnostics:
+        raise ValueError("a failed check without its diagnostics")
+    simulated = entry.get("sim")
+    return check["passed"], diagnostics, None if simulated is None else _sim_step(simulated)
+
+
+_STATUSES = ("passed", "failed", "skipped")
+
+
 def _sim_step(data: dict) -> Step:
-    """The sim step a run recorded (see :meth:`CiCache.record`)."""
-    from ..load.inputs import display_path
+    """The sim step a run recorded (see :meth:`CiCache.record`); ValueError if it is not
+    one."""
     from ..sim.diagnostics import SimDiagnostic
 
-    diagnostics = [SimDiagnostic(d["rule"], display_path(d["file"]) if os.path.isabs(d["file"])
-                                 else d["file"], d["line"], d["message"])
-                   for d in data.get("diagnostics") or []]
-    return Step("sim", data.get("status", "failed"), data.get("message", ""), diagnostics,
-                exit_code=data.get("exit_code", 1), cases=list(data.get("cases") or []),
-                problems=list(data.get("problems") or []))
+    if not isinstance(data, dict):
+        raise ValueError("sim step not a record")
+    status, message, code = data.get("status"), data.get("message"), data.get("exit_code")
+    cases, problems = data.get("cases") or [], data.get("problems") or []
+    if status not in _STATUSES or not isinstance(message, str) or type(code) is not int:
+        raise ValueError("sim step without status, message or exit code")
+    if not isinstance(cases, list) or not all(_is_case(case) for case in cases):
+        raise ValueError("sim testcases damaged")
+    if not isinstance(problems, list) or not all(isinstance(p, str) for p in problems):
+        raise ValueError("sim problems not lines")
+    diagnostics = diagnostics_from(data.get("diagnostics") or [], SimDiagnostic)
+    return Step("sim", status, message, diagnostics, exit_code=code, cases=list(cases),
+                problems=list(problems))
+
+
+def _is_case(case) -> bool:
+    """A testcase as mobile_car.sim.report.junit_cases makes it."""
+    return isinstance(case, dict) and case.get("status") in _STATUSES and all(
+        isinstance(case.get(key), str) for key in ("name", "message", "text"))

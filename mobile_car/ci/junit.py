@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from xml.etree import ElementTree as ET
 
-from ..sim.junit import junit_case
+from ..sim.junit import junit_case, junit_document
 from .pipeline import CiItem
 
 
@@ -50,8 +50,7 @@ def junit_report(items: list[CiItem], suite: str = "mcar ci") -> str:
             ET.SubElement(case, "skipped", message=step.message)
         elif step.diagnostics:  # warnings of a passed (non-strict) check
             ET.SubElement(case, "system-out").text = "\n".join(d.text() for d in step.diagnostics)
-    ET.indent(root)
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
+    return junit_document(root)
 
 
 def _status(entry) -> str:

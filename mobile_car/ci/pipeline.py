@@ -21,6 +21,7 @@ from ..errors import McarError, combine_exit_codes
 from ..load.inputs import RobotInput, display_path
 from ..load.robot import CONFIG_ARG, LoadOptions
 from ..load.selection import Selection
+from ..names import shown
 from ..packages.discover import output_name, source_base
 
 STEPS = ("build", "check", "sim", "render")
@@ -93,8 +94,8 @@ def plan(selection: Selection, build_dir: Path, render_dir: Path | None) -> list
         if render_dir is not None:
             png = render_dir / prefix / relative.with_name(
                 relative.name[: -len(".urdf")] + ".png")
-        label = (inp.relative.as_posix() if inp.base is not None else inp.label) + \
-            (f" @ {variant.stem}" if variant else "")
+        label = (shown(inp.relative.as_posix()) if inp.base is not None else inp.label) + \
+            (f" @ {shown(variant.stem)}" if variant else "")
         return CiItem(label, inp, variant, build_dir / prefix / relative, png)
 
     if selection.reads_stdin:

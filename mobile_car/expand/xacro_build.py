@@ -25,6 +25,7 @@ import xacro
 from ..errors import BuildError, InputError, UsageError
 from ..load.bounded import read_input, read_text_quietly
 from ..load.inputs import STDIN_LABEL, check_input_size, check_size, display_path
+from ..names import shown
 from ..packages.search import PackageSearch, enclosing_package
 from .error_location import error_from
 from .macro_calls import unprefixed_call
@@ -46,12 +47,16 @@ class BuildResult:
 
 
 def banner_name(path: Path) -> str:
-    """The input's name as the output banner shows it: no machine-specific directories."""
+    """The input's name as the output banner shows it: no machine-specific directories,
+    control characters escaped (XML has no ESC, even in a comment) and ``--`` broken up
+    (a comment cannot hold it; minidom refuses to write one that does)."""
     own = enclosing_package(path)
     if own is not None:
         name, root = own
-        return f"{name}/{path.resolve().relative_to(root).as_posix()}"
-    return path.name
+        text = f"{name}/{path.resolve().relative_to(root).as_posix()}"
+    else:
+        text = path.name
+    return shown(text).replace("--", "-\u2010")
 
 
 def known_args(files: list[Path]) -> set[str]:

@@ -12,18 +12,20 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError, UsageError
+from ..names import shown
 
 STDIN = "-"
 STDIN_LABEL = "<stdin>"
 
 
 def display_path(path: str | os.PathLike) -> str:
-    """A path for messages: relative to the working directory when below it."""
+    """A path for messages: relative to the working directory when below it, control
+    characters escaped (a file name is data: see mobile_car.names)."""
     absolute = Path(os.path.abspath(path))
     try:
-        return str(absolute.relative_to(Path.cwd()))
+        return shown(absolute.relative_to(Path.cwd()))
     except ValueError:
-        return str(absolute)
+        return shown(absolute)
 
 
 def parse_mapping_args(words: list[str]) -> dict[str, str]:

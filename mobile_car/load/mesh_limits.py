@@ -116,8 +116,9 @@ def scan_stream(kind: str, handle, size: int, shown: str, folder: Path | None) -
     scan = scanner(handle, size, shown, folder)
     limit = max_mesh_faces()
     if scan.faces is not None and scan.faces > limit:
-        raise MeshOverLimit(f"{'at least ' if scan.partial else ''}{scan.faces} faces, over the limit of {limit} for a mesh; "
-                            f"set {MAX_MESH_FACES_ENV} to raise it", file=shown)
+        at_least = "at least " if scan.partial else ""
+        raise MeshOverLimit(f"{at_least}{scan.faces} faces, over the limit of {limit} for a "
+                            f"mesh; set {MAX_MESH_FACES_ENV} to raise it", file=shown)
     if scan.vertices is not None and scan.vertices > VERTICES_PER_FACE * limit:
         raise MeshOverLimit(f"{'at least ' if scan.partial else ''}{scan.vertices} "
                             f"vertices, over the limit of "

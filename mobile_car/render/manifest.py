@@ -6,10 +6,12 @@ relative to that folder, to what decided its pixels, twice over:
 * ``key`` and ``files``: a hash of the settings (arguments, overrides, package search,
   render options, mcar's version; see :mod:`mobile_car.freshness`) and the stamps of every
   file the picture was made from (the robot file, everything its expansion read, its
-  meshes and what they pull in: ``.mtl`` files, textures). A run that finds both unchanged skips the picture after a few ``stat()``
-  calls, loading nothing: a no-op ``mcar render`` never imports xacro or trimesh.
-* ``input``: a fingerprint of the expanded URDF, the mesh (and texture) bytes and the settings, for when
-  a stamped file did change: a picture whose URDF comes out the same is not redrawn.
+  meshes and what they pull in: ``.mtl`` files, textures). A run that finds both unchanged
+  skips the picture after a few ``stat()`` calls, loading nothing: a no-op ``mcar render``
+  never imports xacro or trimesh.
+* ``input``: a fingerprint of the expanded URDF, the mesh (and texture) bytes and the
+  settings, for when a stamped file did change: a picture whose URDF comes out the same
+  is not redrawn.
 
 Plus the renderer that drew it (a picture drawn by OpenGL does not satisfy ``--renderer
 raycast``, either satisfies ``auto``), the hash and stat of the PNG written (a picture
@@ -26,6 +28,7 @@ from pathlib import Path
 
 from ..freshness import (
     Basis,
+    diagnostics_from,
     key_of,
     output_current,
     output_stamp,
@@ -112,6 +115,10 @@ class Manifest:
             return None
         if renderer != "auto" and entry.get("renderer") != renderer:
             return None
+        try:  # the warnings shown again with the picture: damaged, and it is drawn again
+            diagnostics_from(entry.get("warnings") or [])
+        except ValueError:
+            return None
         current, refreshed = stamps_current(entry["files"])
         self._changed = self._changed or refreshed
         if not current or not self._png_current(target, entry):
@@ -152,7 +159,8 @@ class Manifest:
     def sheet_pictures(self) -> list[tuple[str, dict]]:
         """The pictures the contact sheet shows: every one listed that is on disk."""
         return sorted((key, entry) for key, entry in self.entries.items()
-                      if key != CONTACT_SHEET and (self.folder / key).is_file())
+                      if key != CONTACT_SHEET and isinstance(entry.get("png"), str)
+                      and (self.folder / key).is_file())
 
     def sheet_fingerprint(self) -> str:
         return sha256(repr((DRAWING_VERSION, [(key, entry.get("png"))

@@ -11,6 +11,7 @@ import math
 
 from PIL import Image, ImageDraw
 
+from ..names import shown
 from .compose import TEXT_COLOR, font
 
 SHEET_BACKGROUND = (246, 247, 249)
@@ -40,7 +41,7 @@ def tile(images: list[Image.Image], captions: list[str], columns: int, cell: tup
         top = pad + row * (cell_h + caption_height + pad)
         thumb = _fit(image.convert("RGB"), cell_w, cell_h)
         sheet.paste(thumb, (left + (cell_w - thumb.width) // 2, top + (cell_h - thumb.height) // 2))
-        text = caption
+        text = shown(caption)  # one line: Pillow cannot centre (anchor) a caption of two
         while len(text) > 4 and draw.textlength(text, font=caption_font) > cell_w:
             text = "…" + text[2:]  # keep the end of a long path: the file name
         draw.text((left + cell_w // 2, top + cell_h + pad // 2), text, fill=TEXT_COLOR,

@@ -11,10 +11,13 @@ one file it would write exists, nothing is written.
 
 from __future__ import annotations
 
+import os
 import re
 from pathlib import Path
 
 from ..errors import UsageError
+from ..names import NAME_MAX
+from .placing import place, refuse_present, require_makeable, short
 
 TEMPLATES = Path(__file__).resolve().parent / "templates"
 # template -> where it goes in the package ({name}: the package's name)
@@ -28,53 +31,60 @@ PACKAGE_FILES = {
     "package/urdf/config.xacro": "urdf/config.xacro",
     "package/urdf/robot.urdf.xacro": "urdf/{name}.urdf.xacro",
 }
-PART_FILES = {"part/part.xacro": "urdf/{part}/{part}.xacro",
-              "part/test_part.urdf.xacro": "urdf/{part}/test_{part}.urdf.xacro"}
+GITKEEP = "meshes/.gitkeep"
+# template -> where it goes in the part's folder, urdf/PART/
+PART_FILES = {"part/part.xacro": "{part}.xacro",
+              "part/test_part.urdf.xacro": "test_{part}.urdf.xacro"}
 # ROS package names (REP 144), and names a macro and its links can take.
 _NAME_RE = re.compile(r"[a-z][a-z0-9_]*")
 
 
 def create_package(path: Path, name: str | None = None) -> list[Path]:
-    """Write a new description package at ``path``; returns the files written."""
+    """Write a new description package at ``path``; returns the files written. Nothing
+    is written unless all of it can be: see :mod:`.placing`."""
     name = name or path.resolve().name
     _require_name(name, "package", "--name")
-    written = _write(path, PACKAGE_FILES, {"NAME": name}, {"name": name})
-    meshes = path / "meshes"
-    meshes.mkdir(exist_ok=True)
-    (meshes / ".gitkeep").touch()
-    return [*written, meshes / ".gitkeep"]
+    files = {destination.format(name=name): _filled(template, {"NAME": name})
+             for template, destination in PACKAGE_FILES.items()}
+    files[GITKEEP] = ""
+    require_makeable(path, list(files), _length_hint(name, "package", "--name", files))
+    return place(path, files, optional=frozenset({GITKEEP}))
 
 
 def add_part(root: Path, package: str, part: str) -> list[Path]:
     """Add ``urdf/PART/PART.xacro`` and its test file to the package at ``root``."""
     from ..check.urdf_vocabulary import EXTENSIONS, SPECS
+    from .part_names import refuse_bad_part_name
 
     _require_name(part, "part", "NAME")
     if part in SPECS or part in EXTENSIONS:
         raise UsageError(f"a part cannot be called '{part}': a URDF element has that name, "
                          "so its macro could not be told from it")
-    return _write(root, PART_FILES, {"NAME": package, "PART": part}, {"part": part})
+    files = {destination.format(part=part): _filled(template, {"NAME": package, "PART": part})
+             for template, destination in PART_FILES.items()}
+    folder = root / "urdf" / part
+    require_makeable(folder, list(files), _length_hint(part, "part", "NAME", files))
+    refuse_present(folder, files)  # the part exists: that, not its names, is the news
+    refuse_bad_part_name(root, part)
+    return place(folder, files)
 
 
 def _require_name(name: str, what: str, option: str) -> None:
     if not _NAME_RE.fullmatch(name):
-        raise UsageError(f"'{name}' is not a valid {what} name: lowercase letters, digits and "
-                         f"underscores, starting with a letter (ROS REP 144); give one with "
-                         f"{option}")
+        raise UsageError(f"'{short(name)}' is not a valid {what} name: lowercase letters, "
+                         f"digits and underscores, starting with a letter (ROS REP 144); give "
+                         f"one with {option}")
 
 
-def _write(root: Path, files: dict[str, str], tokens: dict[str, str],
-           names: dict[str, str]) -> list[Path]:
-    from ..atomic import atomic_write
+def _length_hint(name: str, what: str, option: str, files: dict[str, str]) -> str:
+    """The end of a too-long-name message: how long the name may be."""
+    longest = max(len(os.fsencode(part)) for rel in files for part in rel.split("/"))
+    room = NAME_MAX - (longest - len(os.fsencode(name)))
+    return f"give a {what} name of at most {room} characters ({option})"
 
-    targets = {template: root / destination.format(**names)
-               for template, destination in files.items()}
-    present = [target for target in targets.values() if target.exists()]
-    if present:
-        raise UsageError("will not overwrite " + ", ".join(str(p) for p in present))
-    for template, target in targets.items():
-        text = (TEMPLATES / template).read_text(encoding="utf-8")
-        for token, value in tokens.items():
-            text = text.replace(f"@{token}@", value)
-        atomic_write(target, text)
-    return list(targets.values())
+
+def _filled(template: str, tokens: dict[str, str]) -> str:
+    text = (TEMPLATES / template).read_text(encoding="utf-8")
+    for token, value in tokens.items():
+        text = text.replace(f"@{token}@", value)
+    return text

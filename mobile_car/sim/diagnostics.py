@@ -35,3 +35,7 @@ class SimDiagnostic(Diagnostic):
 
     def rule_name(self) -> str:
         return SIM_RULES[self.rule][0]
+
+    @classmethod
+    def knows(cls, rule: str) -> bool:
+        return rule in SIM_RULES

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from xml.etree import ElementTree as ET
 
 from ..errors import EXIT_OK, EXIT_PROBLEMS
-from .junit import junit_case
+from .junit import junit_case, junit_document
 from .lint import SimDiagnostic, link_mass, lint, moving_links_without_mass
 from .scenarios import ScenarioResult, command_speed, run_scenarios, show_bound, show_value
 
@@ -210,5 +210,4 @@ def junit(reports: list[SimReport]) -> str:
     for report, case in cases:
         junit_case(suite, case, classname=f"mcar.sim.{report.robot}", name=case["name"],
                    file=report.file)
-    ET.indent(root)
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
+    return junit_document(root)

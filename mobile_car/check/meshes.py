@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import NamedTuple
 
 from ..errors import InputError, McarError
+from ..load.bounded import not_regular
 from ..load.compressed import broken_errors, compressed_kind, decompressed_members, suffix_of
 from ..packages.search import PackageSearch
 from .context import Reporter, has_xacro_expression
@@ -49,6 +50,11 @@ def check_meshes(root, base: Path, search: PackageSearch, report: Reporter
         except McarError as error:
             report.add("W207", mesh, f"mesh '{filename}': {error.message}")
             found.append(MeshFile(kind, None, False))
+            continue
+        special = not_regular(path)  # a FIFO would block the loader for ever
+        if special:
+            report.add("W207", mesh, f"mesh '{filename}' {special}")
+            found.append(MeshFile(kind, path, False))
             continue
         if not path.is_file():
             report.add("W207", mesh, f"mesh '{filename}' not found at {os.path.abspath(path)}"

@@ -23,7 +23,7 @@ from pathlib import Path
 import xacro
 
 from ..errors import BuildError, InputError, UsageError
-from ..load.bounded import read_input, read_text_quietly
+from ..load.bounded import NotRegularFile, not_regular, read_input, read_text_quietly
 from ..load.inputs import STDIN_LABEL, check_input_size, check_size, display_path
 from ..packages.search import PackageSearch, enclosing_package
 from .error_location import error_from
@@ -106,6 +106,11 @@ class _Session:
                 inp = io.BytesIO(read_input(os.path.join(xacro.root_dir, filename)))
             except OSError:
                 pass  # xacro opens it again and reports the error its own way
+            except NotRegularFile as error:  # a FIFO: xacro's open() would wait for ever
+                # As xacro reports a missing include: not "in" the file it could not read,
+                # located at the include; not an OSError, so optional="true" skips none.
+                xacro.filestack.pop()
+                raise xacro.XacroException(error.message, exc=error) from None
         result = self._original_parse(inp, filename)
         self.parsing.pop()
         return result
@@ -186,6 +191,9 @@ def build_file(path: str | os.PathLike | None, mappings: dict[str, str] | None =
         if source.is_dir():
             raise InputError("is a directory, not a xacro or URDF file",
                              file=display_path(source))
+        problem = not_regular(source)
+        if problem:
+            raise InputError(problem, file=display_path(source))
         if not os.access(source, os.R_OK):
             raise InputError("permission denied", file=display_path(source))
         check_input_size(source)

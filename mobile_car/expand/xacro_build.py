@@ -23,7 +23,13 @@ from pathlib import Path
 import xacro
 
 from ..errors import BuildError, InputError, UsageError
-from ..load.bounded import NotRegularFile, not_regular, read_input, read_text_quietly
+from ..load.bounded import (
+    NotRegularFile,
+    not_regular,
+    open_regular,
+    read_input,
+    read_text_quietly,
+)
 from ..load.inputs import STDIN_LABEL, check_input_size, check_size, display_path
 from ..packages.search import PackageSearch, enclosing_package
 from .error_location import error_from
@@ -115,6 +121,15 @@ class _Session:
         self.parsing.pop()
         return result
 
+    @staticmethod
+    def _open(file, mode="r"):
+        """xacro's own ``open()`` (``xacro.load_yaml``, and parse where the hook above
+        read nothing): a FIFO or device named there is refused, not waited on."""
+        if set(mode) - set("rbt"):
+            return open(file, mode)  # noqa: SIM115 - xacro closes it
+        handle = open_regular(file)
+        return handle if "b" in mode else io.TextIOWrapper(handle)
+
     def _eval_extension(self, text: str):
         # xacro imports its substitution_args (and PyYAML with it) at the first
         # $(...); $(find) is pointed at our package search only then, as plain xacro would.
@@ -136,6 +151,7 @@ class _Session:
         xacro.parse = self._parse
         xacro.eval_extension = self._eval_extension
         xacro.grab_macro = self._grab_macro
+        xacro.open = self._open  # shadows the builtin for xacro's module only
         xacro.all_includes = []
         xacro.substitution_args_context.clear()
         self._redirect = contextlib.redirect_stderr(self.stderr)
@@ -145,6 +161,7 @@ class _Session:
     def __exit__(self, *exc):
         self._redirect.__exit__(*exc)
         xacro.parse, xacro.eval_extension, xacro.grab_macro = self._saved
+        del xacro.open
         if self._subst_saved is not None:
             subst, subst._eval_find, subst._eval_dict["find"] = self._subst_saved
         return False

@@ -96,6 +96,22 @@ def test_fifo_as_include_is_refused_like_a_missing_include(run_mcar, fifo, tmp_p
     assert not (tmp_path / "out.urdf").exists()
 
 
+@pytest.mark.parametrize("sandbox", [[], ["--no-sandbox"]], ids=["sandboxed", "trusted"])
+def test_fifo_as_xacro_load_yaml_is_refused(run_mcar, fifo, tmp_path, sandbox):
+    """xacro opens a YAML file itself (``xacro.load_yaml``): refused there too."""
+    fifo("dims.yaml")
+    (tmp_path / "robot.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <link name="a"/>\n'
+        """  <xacro:property name="dims" value="${xacro.load_yaml('dims.yaml')}"/>\n"""
+        '  <link name="${dims.name}"/>\n</robot>\n')
+    result = _run_quickly(run_mcar, "build", "robot.urdf.xacro", *sandbox, cwd=tmp_path)
+    assert result.returncode == 1, result.stderr
+    first = result.stderr.splitlines()[0]
+    assert first.startswith("robot.urdf.xacro:3: error: dims.yaml: is a FIFO, not a "
+                            "regular file"), result.stderr
+
+
 def test_fifo_included_by_a_file_in_a_folder_fails_that_file_only(run_mcar, fifo, tmp_path):
     """A folder holding a FIFO among its robot files: the FIFO is no robot file (it is
     never read to find out), and a file including one fails alone."""

@@ -436,6 +436,46 @@ def section_batch(rows: list[str], work: Path, quick: bool) -> None:
     progress(f"batch: check_urdf x {count} {fmt_time(peer)}, mcar {fmt_time(ours.wall)}")
 
 
+def section_folder(rows: list[str], work: Path, quick: bool) -> None:
+    """`mcar check` and `mcar build` of one folder of N one-link robots, at N and 2N: both
+    linear in the files (build checked each output against every input: 1,000 robots
+    took ~45 s)."""
+    sizes = (25, 50) if quick else (500, 1000)
+    rows += ["## A folder of robots", "",
+             "`mcar check DIR` and `mcar build DIR -o OUT/` of a folder of one-link robots, "
+             "at two sizes. A URDF is only read by check but goes through the sandboxed "
+             "xacro child in build (one fork per file); a `.xacro` goes through it in both. "
+             "Target: linear, the time per file at 2N at most 1.3x that at N.", "",
+             "| robots | mcar check | mcar build | build / check | build per file | exit "
+             "(check / build) | target |", "|---|---:|---:|---:|---:|---|---|"]
+    for kind, suffix in (("URDF", ".urdf"), ("xacro", ".urdf.xacro")):
+        per_file = None
+        for count in sizes:
+            folder = work / f"{kind}_{count}"
+            folder.mkdir()
+            for i in range(count):
+                (folder / f"r{i:04d}{suffix}").write_text(
+                    f'<robot name="r{i}" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                    '  <link name="base"/>\n</robot>\n')
+            results = measure_rounds(
+                {"check": [MCAR, "check", str(folder)],
+                 "build": [MCAR, "build", str(folder), "-o", f"{work / 'out' / folder.name}/"]},
+                3 if quick else 5)
+            check, build = results["check"], results["build"]
+            ratio = build.wall / check.wall if check.ok and build.ok else None
+            met = None if per_file is None or not build.ok else (
+                build.wall / count <= 1.3 * per_file)
+            per_file = build.wall / count
+            rows.append(f"| {count:,} {kind} | {time_cell(check)} | {time_cell(build)} | "
+                        f"{'-' if ratio is None else f'{ratio:.1f}'} | {fmt_time(per_file)} | "
+                        f"{exit_text(check.codes)} / {exit_text(build.codes)} | "
+                        f"{verdict(met)} |")
+            progress(f"folder {count} {kind}: check {fmt_time(check.wall)}, "
+                     f"build {fmt_time(build.wall)}")
+    rows.append("")
+    rows += notes_for("folder")
+
+
 def section_render(rows: list[str], work: Path, quick: bool) -> None:
     out = work / "renders"
     runs = 1 if quick else 3
@@ -750,8 +790,8 @@ def _sweep_split_rows(results: dict, first, mixed) -> list[str]:
 
 
 SECTIONS = {"check": section_check, "build": section_build, "startup": section_startup,
-            "batch": section_batch, "render": section_render, "noop": section_noop,
-            "sim": section_sim, "sweep": section_sweep}
+            "batch": section_batch, "folder": section_folder, "render": section_render,
+            "noop": section_noop, "sim": section_sim, "sweep": section_sweep}
 NEEDS_CHECK_URDF = {"check", "startup", "batch"}
 
 

@@ -123,7 +123,11 @@ def _build_one(inp, options, stdin, output: str | None, deps: str | None,
 def _build_many(inputs, options, outdir: Path | None, deps: str | None, quiet: bool,
                 output_format: str) -> int:
     """Build every input into outdir, mirrored below its folder; go on past failures."""
-    from mobile_car.load.outputs import refuse_clashes, refuse_overwriting
+    from mobile_car.load.outputs import (
+        refuse_clashes,
+        refuse_overwriting,
+        refuse_overwriting_each,
+    )
     from mobile_car.load.robot import load_robot
 
     deps_only = outdir is None  # --deps without -o: print, build nothing
@@ -132,8 +136,7 @@ def _build_many(inputs, options, outdir: Path | None, deps: str | None, quiet: b
                .with_suffix(suffix) for inp in inputs]
     if not deps_only:
         refuse_clashes(zip(targets, (inp.path for inp in inputs), strict=True))
-        for target in targets:
-            refuse_overwriting(target, [inp.path for inp in inputs])
+        refuse_overwriting_each(targets, [inp.path for inp in inputs])
     codes = []
     for inp, target in zip(inputs, targets, strict=True):
         try:

@@ -242,12 +242,12 @@ def _plan(selection, output: str | None):
     """The jobs, the output folder (None for stdout) and whether to make a contact sheet;
     no picture may be written over an input, nor two inputs to one picture."""
     jobs, outdir, sheet = _jobs(selection, output)
-    from mobile_car.load.outputs import refuse_clashes, refuse_overwriting
+    from mobile_car.load.outputs import refuse_clashes, refuse_overwriting_each
 
     pictures = [(job.target, job.input.path) for job in jobs if job.target is not None]
     refuse_clashes(pictures)
-    for target, _source in pictures:
-        refuse_overwriting(target, [inp.path for inp in selection.inputs])
+    refuse_overwriting_each([target for target, _source in pictures],
+                            [inp.path for inp in selection.inputs])
     if output and len(jobs) == 1 and jobs[0].target == Path(output):
         _refuse_other_formats(output)  # (after: overwriting an input is the worse mistake)
     return jobs, outdir, sheet

@@ -98,6 +98,10 @@ def command(words, varies, samples, seed, scenarios, jobs, scheduler, output, re
             plot_x, plot_y, colour, left, right, package_paths, sets, config_files):
     from mobile_car.sweep.results import results_format
 
+    if scheduler is not None:  # before anything is loaded, and before Dask connects
+        from mobile_car.sweep.execute import check_scheduler_address
+
+        check_scheduler_address(scheduler)
     if jobs and scheduler:
         raise UsageError("--jobs and --scheduler exclude each other: the scheduler's "
                          "workers set the parallelism")

@@ -16,7 +16,6 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import stat
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -33,9 +32,14 @@ RACY_MARGIN_NS = 30_000_000
 
 def file_sha256(path: str | os.PathLike) -> str:
     digest = hashlib.sha256()
-    with open(path, "rb") as handle:
-        if not stat.S_ISREG(os.fstat(handle.fileno()).st_mode):
-            return "not a regular file"  # a device or FIFO never counts as unchanged
+    from .errors import InputError
+    from .load.bounded import open_regular
+
+    try:
+        handle = open_regular(path)
+    except InputError:  # never opened for reading: a FIFO would block
+        return "not a regular file"  # a device or FIFO never counts as unchanged
+    with handle:
         for block in iter(lambda: handle.read(1 << 20), b""):
             digest.update(block)
     return digest.hexdigest()

@@ -91,3 +91,16 @@ def test_quick_sweep_section_times_sweeps_whose_points_all_ran(tmp_path, mcar_bi
     assert stages[-1][2] == "100%"
     assert 98 <= sum(int(cells[2].rstrip("%")) for cells in stages[:-1]) <= 102
     assert re.search(r"two busy processes get \d+\.\d\dx the throughput of one", text)
+
+
+def test_quick_folder_section_times_check_and_build_of_two_sizes(tmp_path, mcar_bin):
+    text = quick_section(tmp_path, "folder", timeout=300)
+    assert "## A folder of robots" in text
+    rows = [line.strip("| ").split(" | ") for line in text.splitlines()
+            if re.match(r"\| \d+ (URDF|xacro) \|", line)]
+    assert [row[0] for row in rows] == ["25 URDF", "50 URDF", "25 xacro", "50 xacro"]
+    for cells in rows:
+        # Both commands exited 0 every time (else "(exit N)" next to the time, no ratio).
+        assert re.fullmatch(r"[\d.]+ m?s", cells[1]) and re.fullmatch(r"[\d.]+ m?s", cells[2])
+        assert re.fullmatch(r"\d+\.\d", cells[3]) and cells[5] == "0 / 0", cells
+    assert all(cells[6] in ("met", "**missed**") for cells in rows[1::2])  # 2N vs N

@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import NamedTuple
 
 from ..errors import InputError, McarError
+from ..load.bounded import not_regular
 from ..load.compressed import broken_errors, compressed_kind, suffix_of
 from ..load.inputs import display_path
 from ..load.mesh_limits import MeshOverLimit, scan_mesh
@@ -64,6 +65,11 @@ def check_meshes(root, base: Path, search: PackageSearch, report: Reporter
         except McarError as error:
             report.add("W207", mesh, f"mesh '{filename}': {error.message}")
             found.append(MeshFile(kind, None, False))
+            continue
+        special = not_regular(path)  # a FIFO would block the loader for ever
+        if special:
+            report.add("W207", mesh, f"mesh '{filename}' {special}")
+            found.append(MeshFile(kind, path, False))
             continue
         if not path.is_file():
             report.add("W207", mesh, f"mesh '{filename}' not found at {os.path.abspath(path)}"

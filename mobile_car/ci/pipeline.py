@@ -114,13 +114,12 @@ def plan(selection: Selection, build_dir: Path, render_dir: Path | None) -> list
 
 def _refuse_destroying(items: list[CiItem], inputs: list[Path]) -> None:
     """No two items written to one file, no output over an input (see load.outputs)."""
-    from ..load.outputs import refuse_clashes, refuse_overwriting
+    from ..load.outputs import refuse_clashes, refuse_overwriting_each
 
     outputs = [(item.urdf, item) for item in items] + \
         [(item.png, item) for item in items if item.png is not None]
     refuse_clashes((path, item.source) for path, item in outputs)
-    for path, _item in outputs:
-        refuse_overwriting(path, inputs)
+    refuse_overwriting_each([path for path, _item in outputs], inputs)
 
 
 def fail(item: CiItem, name: str, message: str, diagnostics=(), exit_code: int = 1,

@@ -15,7 +15,7 @@ from pathlib import Path
 import xacro
 
 from ..errors import BuildError, McarError
-from ..load.bounded import read_text_quietly
+from ..load.bounded import NotRegularFile, read_text_quietly
 from ..load.inputs import display_path
 
 _QUOTED_RE = re.compile(r"'([^']+)'")
@@ -26,6 +26,10 @@ _MAX_STACK_LINES = 8
 def error_from(exc: BaseException, parsing: list, source: Path) -> McarError:
     """Turn whatever xacro raised into one located BuildError (or the McarError inside)."""
     inner = getattr(exc, "exc", None)
+    if isinstance(inner, NotRegularFile):  # an include: said and located as a missing one
+        file, line = _locate(source, [os.path.basename(inner.path)])
+        return BuildError(f"cannot read {display_path(inner.path)}: {inner.message}",
+                          file=file, line=line, details=_stack_details())
     if isinstance(exc, McarError) or isinstance(inner, McarError):
         error = exc if isinstance(exc, McarError) else inner
         if error.file is None:  # say which file asked for the package, and where
@@ -179,7 +183,7 @@ def _encoding_error(path: str, exc) -> tuple[str, int] | None:
 
     try:
         data = read_head(path, 16 * 1024 * 1024)
-    except OSError:
+    except (OSError, McarError):
         return None
     if data.startswith(b"<?xml") and b"encoding" in data[:data.find(b"?>")]:
         return None  # a declared encoding: expat decoded it as declared

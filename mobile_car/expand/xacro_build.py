@@ -23,7 +23,13 @@ from pathlib import Path
 import xacro
 
 from ..errors import BuildError, InputError, UsageError
-from ..load.bounded import read_input, read_text_quietly
+from ..load.bounded import (
+    NotRegularFile,
+    not_regular,
+    open_regular,
+    read_input,
+    read_text_quietly,
+)
 from ..load.inputs import STDIN_LABEL, check_input_size, check_size, display_path
 from ..names import shown
 from ..packages.search import PackageSearch, enclosing_package
@@ -111,9 +117,23 @@ class _Session:
                 inp = io.BytesIO(read_input(os.path.join(xacro.root_dir, filename)))
             except OSError:
                 pass  # xacro opens it again and reports the error its own way
+            except NotRegularFile as error:  # a FIFO: xacro's open() would wait for ever
+                # As xacro reports a missing include: not "in" the file it could not read,
+                # located at the include; not an OSError, so optional="true" skips none.
+                xacro.filestack.pop()
+                raise xacro.XacroException(error.message, exc=error) from None
         result = self._original_parse(inp, filename)
         self.parsing.pop()
         return result
+
+    @staticmethod
+    def _open(file, mode="r"):
+        """xacro's own ``open()`` (``xacro.load_yaml``, and parse where the hook above
+        read nothing): a FIFO or device named there is refused, not waited on."""
+        if set(mode) - set("rbt"):
+            return open(file, mode)  # noqa: SIM115 - xacro closes it
+        handle = open_regular(file)
+        return handle if "b" in mode else io.TextIOWrapper(handle)
 
     def _eval_extension(self, text: str):
         # xacro imports its substitution_args (and PyYAML with it) at the first
@@ -136,6 +156,7 @@ class _Session:
         xacro.parse = self._parse
         xacro.eval_extension = self._eval_extension
         xacro.grab_macro = self._grab_macro
+        xacro.open = self._open  # shadows the builtin for xacro's module only
         xacro.all_includes = []
         xacro.substitution_args_context.clear()
         self._redirect = contextlib.redirect_stderr(self.stderr)
@@ -145,6 +166,7 @@ class _Session:
     def __exit__(self, *exc):
         self._redirect.__exit__(*exc)
         xacro.parse, xacro.eval_extension, xacro.grab_macro = self._saved
+        del xacro.open
         if self._subst_saved is not None:
             subst, subst._eval_find, subst._eval_dict["find"] = self._subst_saved
         return False
@@ -191,6 +213,9 @@ def build_file(path: str | os.PathLike | None, mappings: dict[str, str] | None =
         if source.is_dir():
             raise InputError("is a directory, not a xacro or URDF file",
                              file=display_path(source))
+        problem = not_regular(source)
+        if problem:
+            raise InputError(problem, file=display_path(source))
         if not os.access(source, os.R_OK):
             raise InputError("permission denied", file=display_path(source))
         check_input_size(source)

@@ -36,10 +36,22 @@ def _key(path: Path) -> str:
 def refuse_overwriting(output: Path | str, protected: Iterable[Path | None],
                        what: str = "a file this run reads") -> None:
     """UsageError if ``output`` is (a link to) one of the ``protected`` files."""
-    target = _key(Path(output))
+    refuse_overwriting_each([output], protected, what)
+
+
+def refuse_overwriting_each(outputs: Iterable[Path | str], protected: Iterable[Path | None],
+                            what: str = "a file this run reads") -> None:
+    """refuse_overwriting() for each of ``outputs``, every path resolved once: checking
+    each output against every input made ``mcar build`` of 1000 robots a million
+    realpath() calls (50 s)."""
+    keys: dict[str, Path] = {}
     for path in protected:
-        if path is not None and _key(Path(path)) == target:
-            raise UsageError(f"would overwrite {display_path(path)}, {what}; "
+        if path is not None:
+            keys.setdefault(_key(Path(path)), Path(path))
+    for output in outputs:
+        clash = keys.get(_key(Path(output)))
+        if clash is not None:
+            raise UsageError(f"would overwrite {display_path(clash)}, {what}; "
                              "write the output somewhere else", file=display_path(output))
 
 

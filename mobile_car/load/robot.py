@@ -12,7 +12,8 @@ the same things with the same words and exit codes:
 * xacro arguments or overrides the input cannot take: :class:`~mobile_car.errors.UsageError` (2).
 
 A plain URDF is read as it is (``mcar check`` has no size limit on regular files and never
-imports xacro; a device, pipe or stdin is read within ``MCAR_MAX_INPUT_MB`` by every command);
+imports xacro; stdin is read within ``MCAR_MAX_INPUT_MB`` by every command, and a FIFO,
+socket or device is refused before it is opened);
 with ``through_xacro`` (``mcar build``) it goes through xacro like a ``.xacro`` does.
 """
 
@@ -26,7 +27,7 @@ from typing import TYPE_CHECKING
 
 from ..errors import InputError, UsageError
 from ..packages.search import PackageSearch
-from .bounded import read_input, read_open
+from .bounded import not_regular, read_input, read_open
 from .inputs import RobotInput, display_path
 
 if TYPE_CHECKING:  # checking a plain URDF imports neither xacro nor the config code
@@ -159,6 +160,9 @@ def _require_readable(path: Path) -> None:
         raise InputError("no such file", file=shown)
     if path.is_dir():
         raise InputError("is a directory, not a URDF or xacro file", file=shown)
+    problem = not_regular(path)  # before anything opens it: a FIFO would block
+    if problem:
+        raise InputError(problem, file=shown)
     if not os.access(path, os.R_OK):
         raise InputError("permission denied", file=shown)
 

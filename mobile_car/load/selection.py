@@ -11,6 +11,8 @@ package's root.
 
 from __future__ import annotations
 
+import os
+import stat
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -82,11 +84,27 @@ def _folder(folder: Path) -> list[RobotInput]:
     return require_robot_inputs(folder.resolve(), source_base(own[1]))
 
 
+def _is_own_stdin(name: str) -> bool:
+    """True for ``/dev/stdin`` (``/dev/fd/0``, ...) when standard input is a pipe, a
+    socket or a terminal: read as ``-`` is, since opening it by name would be refused as
+    a FIFO or device. A regular file on stdin is read by its name like any file, and
+    ``/dev/null`` on stdin stays the device it is."""
+    if name == STDIN:
+        return False
+    try:
+        named, ours = os.stat(name), os.fstat(0)
+    except (OSError, ValueError):
+        return False
+    streams = stat.S_ISFIFO(ours.st_mode) or stat.S_ISSOCK(ours.st_mode) or os.isatty(0)
+    return streams and os.path.samestat(named, ours)
+
+
 def select(names: list[str], working) -> Selection:
     """The inputs the words name. ``working()`` gives the WorkingSet a command without
     INPUT (or with part names) works on; it is called only then."""
     if not names:
         return _package(working())
+    names = [STDIN if _is_own_stdin(name) else name for name in names]
     if names.count(STDIN) > 1:
         raise UsageError("- (stdin) can be given only once")
     paths = [None if name == STDIN else Path(name) for name in names]

@@ -12,7 +12,8 @@ import functools
 import re
 from pathlib import Path
 
-from ..load.bounded import read_head, read_text_quietly
+from ..errors import InputError
+from ..load.bounded import open_regular, read_head, read_text_quietly
 from ..load.inputs import input_limit_mb
 
 # Folders of a package that hold outputs or tools, never robot files to take as inputs.
@@ -39,7 +40,7 @@ def root_element(path: Path) -> tuple[str, str | None] | None:
     # The root comes after the prolog: a file of endless blanks (a FIFO) has none.
     left = int(input_limit_mb() * 1024 * 1024)
     try:
-        with open(path, "rb") as handle:
+        with open_regular(path) as handle:
             while not found and left > 0:
                 chunk = handle.read(min(65536, left))
                 left -= len(chunk)
@@ -48,7 +49,7 @@ def root_element(path: Path) -> tuple[str, str | None] | None:
                     break
     except StopIteration:
         pass
-    except (xml.parsers.expat.ExpatError, OSError):
+    except (xml.parsers.expat.ExpatError, OSError, InputError):
         return None
     return found[0] if found else None
 
@@ -61,7 +62,7 @@ def is_robot_file(path: Path) -> bool:
     # A broken robot file is still a robot file: building it reports the error.
     try:
         head = read_head(path, 4096).decode("utf-8", errors="replace")
-    except OSError:
+    except (OSError, InputError):
         return False
     return "<robot" in head and "name=" in head.split("<robot", 1)[1].split(">", 1)[0]
 

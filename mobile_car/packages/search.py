@@ -31,7 +31,7 @@ def package_name(package_xml: Path) -> str | None:
     """The ``<name>`` of a package.xml, or None if it has none or cannot be read."""
     try:
         head = read_head(package_xml, 65536)
-    except OSError:
+    except (OSError, InputError):
         return None
     match = _NAME_RE.search(head)
     return match.group(1).decode("utf-8", "replace") if match else None

@@ -34,6 +34,7 @@ from lxml import etree
 
 from ..errors import McarError, RenderError
 from ..expand.xacro_build import display_path
+from ..load.bounded import not_regular
 from ..packages.search import PackageSearch
 from .assembly import Piece, pieces, unit_primitive
 from .pose import joint_positions
@@ -139,6 +140,9 @@ def _meshes(root: etree._Element, source: ModelSource, search: PackageSearch,
             path = search.resolve_uri(uri, base=source.path.parent)
         except McarError as exc:
             raise RenderError(f"link '{link}': mesh {uri}: {exc.message}", **where) from None
+        special = not_regular(path)  # a FIFO would block the loader for ever
+        if special:
+            raise RenderError(f"link '{link}': mesh {uri} {special}", **where)
         if not path.is_file():
             raise RenderError(f"link '{link}': mesh {uri} not found (looked at "
                               f"{display_path(path)})", **where)

@@ -14,7 +14,7 @@ import signal
 from collections import deque
 from collections.abc import Callable
 
-from ..errors import McarError
+from ..errors import McarError, UsageError
 from .plan import Point
 from .point import SweepJob, empty_row, evaluate_point
 
@@ -130,16 +130,44 @@ def _alone(job: SweepJob, point: Point) -> dict:
     return row
 
 
-def run_dask(job: SweepJob, points: list[Point], address: str,
-             on_row: Callable[[dict], None], wait_workers: float = 30.0) -> None:
-    """The points on the workers of the Dask scheduler at ``address`` (tcp://HOST:PORT).
-    Dask reschedules the point of a worker that died on another one; after the scheduler's
-    ``allowed-failures`` it gives up on that point (KilledWorker): a ``crashed`` row."""
+def check_scheduler_address(address: str) -> None:
+    """UsageError unless ``address`` is one Dask could connect to (``tcp://HOST:PORT``,
+    ``HOST:PORT``, ``tls://``, ``ws://``, ...), read by Dask's own address parser, before
+    any Client exists. A Client whose address Dask cannot parse is left half-made (Dask
+    closes it after a failed connection, not after a ValueError), and at exit its
+    ``__del__`` waited 20 s on a stopped event loop and printed a traceback."""
+    if not address.strip():
+        raise UsageError("--scheduler is empty: give the Dask scheduler's address, "
+                         "tcp://HOST:PORT")
+    _require_distributed()
+    from distributed.comm.addressing import get_address_host_port
+
     try:
-        from distributed import Client, KilledWorker, as_completed
+        _host, port = get_address_host_port(address)
+    except ValueError as error:
+        raise UsageError(f"--scheduler {address}: not a Dask scheduler address ({error}); "
+                         "give tcp://HOST:PORT") from None
+    if not 0 < port < 65536:
+        raise UsageError(f"--scheduler {address}: port {port} is not 1 to 65535")
+
+
+def _require_distributed() -> None:
+    try:
+        import distributed  # noqa: F401
     except ImportError:
         raise ClusterError("--scheduler needs Dask distributed: pip install 'mcar[sweep]'") \
             from None
+
+
+def run_dask(job: SweepJob, points: list[Point], address: str,
+             on_row: Callable[[dict], None], wait_workers: float = 30.0) -> None:
+    """The points on the workers of the Dask scheduler at ``address`` (tcp://HOST:PORT,
+    see check_scheduler_address). Dask reschedules the point of a worker that died on
+    another one; after the scheduler's ``allowed-failures`` it gives up on that point
+    (KilledWorker): a ``crashed`` row."""
+    check_scheduler_address(address)
+    from distributed import Client, KilledWorker, as_completed
+
     try:
         client = Client(address, timeout=10, set_as_default=False)
     except (OSError, TimeoutError, ValueError, TypeError) as error:

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
+from .bounded import open_regular
 from .compressed import (  # noqa: F401 (MeshOverLimit: one name for every limit)
     MAX_MESH_MB_ENV,
     MeshOverLimit,
@@ -97,7 +98,7 @@ def scan_mesh(path: str | os.PathLike, shown: str | None = None) -> MeshScan:
             if compressed_kind(path) is not None:  # counted as decompressed (mesh_reader.py)
                 _scanned[key] = MeshScan()
             else:
-                with open(path, "rb") as handle:
+                with open_regular(path, shown) as handle:  # swapped for a FIFO: no wait
                     _scanned[key] = scan_stream(suffix_of(path.name), handle, info.st_size,
                                                 shown, path.parent)
         except InputError as error:  # check and render both ask: scanned once

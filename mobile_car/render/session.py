@@ -27,6 +27,7 @@ from ..load.outputs import refuse_overwriting
 from ..load.robot import LoadedRobot, LoadOptions
 from .backend import GLProbe, open_renderer
 from .compose import png_bytes
+from .drawing import DrawingFailed
 from .jobs import RenderJob, file_job, picture_name, picture_path, selection_jobs  # noqa: F401
 from .manifest import CONTACT_SHEET, Manifest, input_fingerprint, picture_key
 from .options import RenderOptions
@@ -84,8 +85,8 @@ def _sheet_copy(image: Image.Image) -> Image.Image:
 def _drawing_error(job: RenderJob, exc: Exception) -> RenderError:
     """An unforeseen failure while drawing one robot, as that robot's located error: the
     other robots of the run are still drawn, and the run ends with exit 1."""
-    return RenderError(f"cannot draw this robot: {type(exc).__name__}: {exc}",
-                       file=job.input.label)
+    detail = str(exc) if isinstance(exc, DrawingFailed) else f"{type(exc).__name__}: {exc}"
+    return RenderError(f"cannot draw this robot: {detail}", file=job.input.label)
 
 
 def model_source(loaded: LoadedRobot) -> ModelSource:

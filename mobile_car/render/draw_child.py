@@ -1,10 +1,10 @@
 """The drawing process: one renderer (OpenGL or ray casting) drawing what mcar sends it.
 
-Started by :mod:`mobile_car.render.drawing` as ``python -m mobile_car.render.draw_child
-gl|raycast``. A draw call is one C call (llvmpipe rasterising, Embree tracing) that no
-signal interrupts, and a hostile mesh makes it last for minutes; in this process mcar
-can stop it at once, with SIGKILL, while its own process stays responsive to Ctrl-C and
-SIGTERM. The protocol is :mod:`.wire`: requests on stdin, answers on the stdout it was
+Started by :mod:`mobile_car.render.drawing`, whose ``python -c`` calls :func:`main` with
+the renderer's kind (gl or raycast) as the last argument. A draw is one C call (llvmpipe
+rasterising, Embree tracing) that no signal interrupts, and a hostile mesh makes it last
+for minutes; in this process mcar can stop it at once, with SIGKILL, while its own
+process stays responsive to Ctrl-C and SIGTERM. The protocol is :mod:`.wire`: requests on stdin, answers on the stdout it was
 started with; anything a library prints goes to stderr instead.
 
 Ctrl-C from the terminal reaches this process too: it is ignored here, because mcar
@@ -166,12 +166,8 @@ def main() -> int:
     os.dup2(2, 1)  # print() of a library must not land among the answers
     requests = io.FileIO(0, closefd=False)
     try:
-        status = serve(sys.argv[1], requests, replies)
+        status = serve(sys.argv[-1], requests, replies)
     except (BrokenPipeError, ConnectionResetError):
         status = 0  # mcar has gone
     sys.stderr.flush()
     os._exit(status)  # no interpreter or driver teardown: nothing here needs saving
-
-
-if __name__ == "__main__":
-    main()

@@ -29,9 +29,18 @@ from pathlib import Path
 from ..held_signals import hold_signals, release_signals
 from . import wire
 
-# The folder that holds this copy of mobile_car: the child runs there, so that it imports
-# this same copy, and nothing from the folder mcar was started in (a package under test
-# may hold a numpy.py or moderngl.py).
+# The child's start. Python puts the working folder first on the path of `python -c`
+# (and -m): a package under test holding a numpy.py or moderngl.py would run it. So that
+# entry goes before any import, and the folder that holds this copy of mobile_car comes
+# last, for a mcar run from a source tree.
+_START = """
+import sys
+if sys.path and sys.path[0] in ("", "."):
+    del sys.path[0]
+sys.path.append(sys.argv[1])
+from mobile_car.render.draw_child import main
+main()
+"""
 _PACKAGE_ROOT = Path(__file__).resolve().parents[2]
 READ_CHUNK = 1 << 20
 STDERR_KEPT = 4096
@@ -107,9 +116,9 @@ class DrawingProcess:
         held = hold_signals()  # a signal now would leave a child nobody knows about
         try:
             self._popen = subprocess.Popen(
-                [sys.executable, "-m", "mobile_car.render.draw_child", mode],
+                [sys.executable, "-c", _START, str(_PACKAGE_ROOT), mode],
                 stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                cwd=_PACKAGE_ROOT, env=env)
+                env=env)
         except BaseException:
             release_signals(held)
             raise

@@ -221,3 +221,23 @@ def test_sigterm_ends_mcar_ci_while_it_draws(heavy_package, gl_available, tmp_pa
             "--render-dir", out]
     result = _signal_while_drawing(args, tmp_path, signal.SIGTERM)
     _assert_ended_cleanly(*result, signal.SIGTERM, out, before)
+
+
+@pytest.mark.parametrize("renderer", ["gl", "raycast"])
+def test_the_drawing_process_imports_nothing_from_the_working_folder(
+        run_mcar, repo, tmp_path, renderer, request):
+    """`python -c` puts the working folder first on the module path: a package under test
+    holding a moderngl.py or numpy.py ran it in the GL probe, as the user."""
+    request.getfixturevalue("gl_available" if renderer == "gl" else "raycast_available")
+    folder = tmp_path / "hostile_package"
+    folder.mkdir()
+    marker = tmp_path / "ran"
+    for name in ("moderngl", "numpy", "trimesh", "embreex", "mobile_car"):
+        (folder / f"{name}.py").write_text(
+            f"open({str(marker)!r}, 'a').write({name!r})\nraise ImportError('planted')\n")
+    result = run_mcar("render", repo / "urdf" / "tutorial" / "03_color.urdf", "-o",
+                      tmp_path / "r.png", "--size", "160x120", "--renderer", renderer,
+                      cwd=folder)
+    assert result.returncode == 0, result.stderr
+    assert not marker.exists(), marker.read_text()
+    assert (tmp_path / "r.png").read_bytes().startswith(b"\x89PNG")

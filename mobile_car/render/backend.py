@@ -42,35 +42,45 @@ class GLProbe:
     process is not taken by a renderer (:meth:`take`) is ended by :meth:`cancel`.
     """
 
+    mode = "gl"
+
     def __init__(self, timeout: float | None = None):
-        self.timeout = probe_timeout() if timeout is None else timeout
+        self.timeout = self._default_timeout() if timeout is None else timeout
+        self.answer: dict | None = None  # the drawing process's first word
         self._reason: str | None = None
-        self._done = "gl" in _renderers
+        self._done = self.mode in _renderers
         self._process = None
         if self._done:
             return
         from .drawing import DrawingProcess
 
         try:
-            self._process = DrawingProcess("gl")
+            self._process = DrawingProcess(self.mode)
         except OSError as exc:
             self._done, self._reason = True, f"cannot start a probe process: {exc}"
 
+    @staticmethod
+    def _default_timeout() -> float:
+        return probe_timeout()
+
+    def _timed_out(self) -> str:
+        return f"making an EGL context did not finish within {self.timeout:g} s"
+
     def wait(self) -> str | None:
-        """None if OpenGL works here; otherwise a one-line reason."""
+        """None if the renderer works here; otherwise a one-line reason."""
         if self._done:
             return self._reason
         from .drawing import DrawingFailed
 
         try:
-            answer = self._process.first_answer(self.timeout)
+            self.answer = self._process.first_answer(self.timeout)
         except TimeoutError:
-            self._reason = f"making an EGL context did not finish within {self.timeout:g} s"
+            self._reason = self._timed_out()
         except DrawingFailed as exc:
             self._reason = str(exc)
         else:
-            if not answer["ok"]:
-                self._reason = answer.get("error") or "no error message"
+            if not self.answer["ok"]:
+                self._reason = self.answer.get("error") or "no error message"
         if self._reason is not None:
             self._process = None  # (killed)
         self._done = True
@@ -90,6 +100,26 @@ class GLProbe:
             self._done, self._reason = True, "cancelled"
 
 
+class RaycastProbe(GLProbe):
+    """Starts the ray-casting drawing process early, as :class:`GLProbe` does for OpenGL:
+    it imports trimesh and embreex on the other core while mcar loads the robot."""
+
+    mode = "raycast"
+
+    @staticmethod
+    def _default_timeout() -> float:
+        return RAYCAST_START_TIMEOUT
+
+    def _timed_out(self) -> str:
+        return f"it did not start within {self.timeout:g} s"
+
+
+def start_probe(choice: str) -> GLProbe:
+    """The drawing process ``choice`` (auto, gl, raycast) will most likely draw with, started
+    now; give it to :func:`open_renderer`."""
+    return RaycastProbe() if choice == "raycast" else GLProbe()
+
+
 def _gl_unavailable(reason: str) -> str:
     return (f"OpenGL (EGL) is not available: {reason}. Install the Debian packages "
             f"{GL_DEBIAN_PACKAGES} (and the pip packages {GL_PIP_PACKAGES})")
@@ -98,7 +128,8 @@ def _gl_unavailable(reason: str) -> str:
 def _open_gl(probe: GLProbe | None):
     if "gl" in _renderers:
         return _renderers["gl"]
-    probe = probe or GLProbe()
+    if probe is None or probe.mode != "gl":
+        probe = GLProbe()
     reason = probe.wait()
     if reason is not None:
         raise RendererUnavailableError(_gl_unavailable(reason))
@@ -108,29 +139,21 @@ def _open_gl(probe: GLProbe | None):
     return _renderers["gl"]
 
 
-def _open_raycast():
+def _open_raycast(probe: GLProbe | None = None):
     if "raycast" in _renderers:
         return _renderers["raycast"]
-    from .drawing import DrawingFailed, DrawingProcess, RemoteRenderer
+    if probe is None or probe.mode != "raycast":
+        probe = RaycastProbe()
+    reason = probe.wait()
+    if reason is None:
+        from .drawing import RemoteRenderer
 
-    try:
-        process = DrawingProcess("raycast")
-        answer = process.first_answer(RAYCAST_START_TIMEOUT)
-    except OSError as exc:
-        reason = f"cannot start a drawing process: {exc}"
-    except TimeoutError:
-        reason = f"it did not start within {RAYCAST_START_TIMEOUT:g} s"
-    except DrawingFailed as exc:
-        reason = str(exc)
-    else:
-        if answer["ok"]:
-            _renderers["raycast"] = RemoteRenderer(process, RAYCAST_START_TIMEOUT)
-            return _renderers["raycast"]
-        if answer.get("kind") == "import":
-            raise RendererUnavailableError(
-                f"the ray-casting renderer needs embreex ({answer.get('import_error')}); "
-                f"install it with pip install {RAYCAST_PIP_PACKAGES}")
-        reason = answer.get("error") or "no error message"
+        _renderers["raycast"] = RemoteRenderer(probe.take(), probe.timeout)
+        return _renderers["raycast"]
+    if probe.answer is not None and probe.answer.get("kind") == "import":
+        raise RendererUnavailableError(
+            f"the ray-casting renderer needs embreex ({probe.answer.get('import_error')}); "
+            f"install it with pip install {RAYCAST_PIP_PACKAGES}")
     raise RendererUnavailableError(f"the ray-casting renderer cannot run: {reason}")
 
 
@@ -141,7 +164,7 @@ def open_renderer(choice: str, probe: GLProbe | None = None):
     RendererUnavailableError (exit 2) names what to install when nothing can run.
     """
     if choice == "raycast":
-        return _open_raycast(), []
+        return _open_raycast(probe), []
     if choice == "gl":
         return _open_gl(probe), []
     try:

@@ -25,7 +25,7 @@ from ..errors import CheckFailed, McarError, RenderError, RendererUnavailableErr
 from ..freshness import Stamper, diagnostics_data, diagnostics_from
 from ..load.outputs import refuse_overwriting
 from ..load.robot import LoadedRobot, LoadOptions
-from .backend import GLProbe, open_renderer
+from .backend import GLProbe, open_renderer, start_probe
 from .compose import png_bytes
 from .drawing import DrawingFailed
 from .jobs import RenderJob, file_job, picture_name, picture_path, selection_jobs  # noqa: F401
@@ -119,8 +119,8 @@ class RenderSession:
         self.renderer_choice = renderer
         self.force = force
         self._probe = probe
-        if self._probe is None and renderer != "raycast":
-            self._probe = GLProbe()
+        if self._probe is None:
+            self._probe = start_probe(renderer)
         self.renderer = None
         self.notes: list[str] = []
         self.thumbnails: dict[str, Image.Image] = {}
@@ -133,7 +133,7 @@ class RenderSession:
         self.close()
 
     def close(self) -> None:
-        """Stop an unneeded probe; the GL context stays for the next session."""
+        """Stop an unneeded probe; the drawing process stays for the next session."""
         if self._probe is not None:
             self._probe.cancel()
 

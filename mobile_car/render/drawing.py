@@ -162,6 +162,8 @@ class DrawingProcess:
         try:
             while reply.body is None:
                 self._step(pending, reply, deadline)
+            if pending:  # an answer to a question not yet asked: out of step for good
+                raise wire.WireError("an answer before it had read the request")
         except wire.WireError as error:
             self.kill()
             raise DrawingFailed(f"the drawing process sent {error}") from None

@@ -17,6 +17,7 @@ with a located error; the next picture starts a new child.
 
 from __future__ import annotations
 
+import math
 import os
 import select
 import signal
@@ -129,7 +130,8 @@ class DrawingProcess:
             self.kill()
             raise
         os.set_blocking(self._popen.stdin.fileno(), False)
-        self._err = self._popen.stderr
+        os.set_blocking(self._popen.stderr.fileno(), False)
+        self._err: int | None = self._popen.stderr.fileno()
 
     @property
     def alive(self) -> bool:
@@ -173,18 +175,25 @@ class DrawingProcess:
         return reply.header, reply.body
 
     def _step(self, pending: list, reply: _Reply, deadline: float | None) -> None:
-        answers = self._popen.stdout
-        readers = [answers] + ([self._err] if self._err is not None else [])
-        writers = [self._popen.stdin] if pending else []
-        wait = None if deadline is None else max(0.0, deadline - time.monotonic())
-        readable, writable, _ = select.select(readers, writers, [], wait)
-        if not readable and not writable:
+        """Wait for the child (a signal interrupts the wait), then move what can move:
+        its stderr, the request, the answer. poll, not select: mcar may hold fds past 1024."""
+        answers, requests = self._popen.stdout.fileno(), self._popen.stdin.fileno()
+        poller = select.poll()
+        poller.register(answers, select.POLLIN)
+        if self._err is not None:
+            poller.register(self._err, select.POLLIN)
+        if pending:
+            poller.register(requests, select.POLLOUT)
+        wait = None if deadline is None else max(0, math.ceil(
+            (deadline - time.monotonic()) * 1000))
+        ready = dict(poller.poll(wait))
+        if not ready:
             raise TimeoutError
-        if self._err is not None and self._err in readable:
+        if self._err is not None and self._err in ready:
             self._drain_stderr()
-        if writable:
+        if requests in ready and pending:
             try:
-                sent = os.write(self._popen.stdin.fileno(), pending[0][:READ_CHUNK])
+                sent = os.write(requests, pending[0][:READ_CHUNK])
             except BlockingIOError:
                 sent = 0
             except (BrokenPipeError, ConnectionResetError):
@@ -192,14 +201,18 @@ class DrawingProcess:
             pending[0] = pending[0][sent:]
             if not pending[0]:
                 pending.pop(0)
-        if answers in readable:
-            data = os.read(answers.fileno(), min(reply.wanted(), READ_CHUNK))
+        if answers in ready:
+            data = os.read(answers, min(reply.wanted(), READ_CHUNK))
             if not data:
                 raise DrawingFailed(self._end_reason())
             reply.feed(data)
 
     def _drain_stderr(self) -> None:
-        data = os.read(self._err.fileno(), READ_CHUNK)
+        """Keep the last STDERR_KEPT bytes the child wrote to stderr; None once it closed."""
+        try:
+            data = os.read(self._err, READ_CHUNK)
+        except BlockingIOError:
+            return
         if not data:
             self._err = None
             return
@@ -212,7 +225,9 @@ class DrawingProcess:
         except subprocess.TimeoutExpired:  # it closed its answers and lives on: no more
             self._popen.kill()
             code = self._popen.wait()
-        while self._err is not None and select.select([self._err], [], [], 0)[0]:
+        for _ in range(STDERR_KEPT // 512 + 1):  # what it said last, without waiting
+            if self._err is None:
+                break
             self._drain_stderr()
         if code is not None and code < 0:
             try:

@@ -23,6 +23,7 @@ import select
 import signal
 import subprocess
 import sys
+import threading
 import time
 import weakref
 from pathlib import Path
@@ -253,6 +254,7 @@ class RemoteRenderer:
         self._process = process
         self._start_timeout = start_timeout
         self._sent = None  # a weak reference to the scene the child holds
+        self._turn = threading.Lock()  # one conversation at a time: answers come in order
 
     def _running(self) -> DrawingProcess:
         if not self._process.alive:
@@ -273,6 +275,10 @@ class RemoteRenderer:
 
     def draw(self, scene, camera):
         """The model alone, (H, W, 4) uint8, colour premultiplied by coverage."""
+        with self._turn:
+            return self._draw(scene, camera)
+
+    def _draw(self, scene, camera):
         import numpy as np
 
         process = self._running()

@@ -155,9 +155,12 @@ def _earlier_pictures(folder: Path, names) -> dict[str, bytes]:
 
 def _signal_while_drawing(args, cwd: Path, signum: int, whole_group: bool = False):
     """Run mcar, signal it mid-draw; (exit code, seconds to exit, stderr, drawing pids)."""
+    # The face limit raised so the mesh is drawn: a user with a big mesh raises it too, and
+    # a mesh under any limit can still fill every pixel with every face.
+    env = {**os.environ, "MCAR_MAX_MESH_FACES": str(2 * FACES)}
     process = subprocess.Popen([str(MCAR), *map(str, args)], cwd=cwd, stdin=subprocess.DEVNULL,
                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
-                               start_new_session=True)
+                               start_new_session=True, env=env)
     try:
         drawing = _wait_until_drawing(process)
         sent = time.monotonic()

@@ -175,22 +175,28 @@ def command(words, output, view, size, collision, background, grid, axes, render
         sys.exit(EXIT_OK)
     with prepared_load(selection, mappings, package_paths, sets, config_files) as load:
         load = dataclasses.replace(load, size_limited=True)
-        # Try OpenGL in a child process now, while numpy, trimesh and xacro load here.
-        from mobile_car.render.backend import GLProbe
+        # Start the drawing process now (OpenGL, or the ray caster), while numpy, trimesh
+        # and xacro load here.
+        from mobile_car.held_signals import hold_signals, release_signals
+        from mobile_car.render.backend import start_probe
 
-        probe = GLProbe() if renderer != "raycast" else None
+        probe = start_probe(renderer)
         try:
-            from mobile_car.render.manifest import Manifest
-            from mobile_car.render.session import RenderSession
-
+            # Held over the imports: trimesh imports manifold3d, a nanobind module whose
+            # start aborts the process (SIGABRT, a C++ traceback) when Ctrl-C lands in it.
+            held = hold_signals()
+            try:
+                from mobile_car.render.manifest import Manifest
+                from mobile_car.render.session import RenderSession
+            finally:
+                release_signals(held)  # a signal that came meanwhile unwinds from here
             signals.raise_if_received()  # trimesh's import guards swallow Ctrl-C and SIGTERM
         except BaseException:  # the probe child must not outlive the command
-            if probe is not None:
-                probe.cancel()
+            probe.cancel()
             raise
         with RenderSession(options, renderer=renderer, load=load, force=force, probe=probe,
                            stdin=stdin_for(selection)) as session:
-            # (closing the session stops the GL probe if it was not needed)
+            # (closing the session stops the drawing process's probe if it was not needed)
             manifest = Manifest(outdir) if outdir is not None else None
             outcome = _run(session, jobs, manifest, quiet)
             if output == "-" and outcome.last_png is not None:

@@ -1,39 +1,26 @@
 """Choose the renderer: OpenGL on EGL when a context can be made, else ray casting.
 
-Making an EGL context can fail (no libEGL, no Mesa driver, no access to /dev/dri) and,
-on a broken driver, could block forever inside C code where no Python timeout reaches.
-So a child process tries first (:class:`GLProbe`), started as early as possible so that it
-runs on the other core while the parent imports numpy and expands xacro; the parent waits
-for it at most :data:`PROBE_TIMEOUT` seconds and only then makes its own context.
+Either draws in a drawing process (:mod:`.drawing`), where a draw that takes minutes can
+be stopped at once. Making an EGL context can fail (no libEGL, no Mesa driver, no access to
+/dev/dri) and, on a broken driver, could block forever inside C code; so the GL drawing
+process is started as early as possible (:class:`GLProbe`), to make its context on the
+other core while the parent imports numpy and expands xacro, and the parent waits for it
+at most :data:`PROBE_TIMEOUT` seconds. Once it answers, the same process draws.
 
 This module imports nothing heavy: the command line can start the probe before numpy.
 """
 
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
-
 from ..errors import RendererUnavailableError
 
 PROBE_TIMEOUT = 20.0
 PROBE_TIMEOUT_ENV = "MCAR_GL_TIMEOUT"
+# Importing trimesh and embreex in the ray-casting process: seconds, minutes at most.
+RAYCAST_START_TIMEOUT = 120.0
 GL_DEBIAN_PACKAGES = "libegl1 libegl-mesa0 libgl1-mesa-dri libgl1"
 GL_PIP_PACKAGES = "moderngl glcontext"
 RAYCAST_PIP_PACKAGES = "embreex"
-
-_PROBE_CODE = """
-import sys
-import moderngl
-ctx = moderngl.create_context(standalone=True, backend="egl", require=330)
-sys.stdout.write(ctx.info["GL_RENDERER"])
-"""
-
-
-def _last_line(text: str) -> str:
-    lines = [line.strip() for line in text.strip().splitlines() if line.strip()]
-    return lines[-1] if lines else "no error message"
 
 
 def probe_timeout() -> float:
@@ -43,58 +30,94 @@ def probe_timeout() -> float:
     return env_number(PROBE_TIMEOUT_ENV, PROBE_TIMEOUT, 0.1, 600, "seconds")
 
 
-# The one OpenGL renderer of this process: a context is made once and reused by every
-# session (tests and library users render many times in one process).
-_gl_renderer = None
+# The renderers of this process, by kind: their drawing processes serve every session
+# (tests and library users render many times in one process).
+_renderers: dict = {}
 
 
 class GLProbe:
-    """Tries to make an EGL context in a child process; ``wait()`` says why not, or None.
+    """Starts the GL drawing process; ``wait()`` says why it cannot draw, or None.
 
-    Nothing is started when this process already holds a working context.
+    Nothing is started when this process already has a GL renderer. A probe whose
+    process is not taken by a renderer (:meth:`take`) is ended by :meth:`cancel`.
     """
 
+    mode = "gl"
+
     def __init__(self, timeout: float | None = None):
-        self.timeout = probe_timeout() if timeout is None else timeout
+        self.timeout = self._default_timeout() if timeout is None else timeout
+        self.answer: dict | None = None  # the drawing process's first word
         self._reason: str | None = None
-        self._done = _gl_renderer is not None
+        self._done = self.mode in _renderers
         self._process = None
         if self._done:
             return
-        env = dict(os.environ)
-        env.setdefault("EGL_LOG_LEVEL", "fatal")  # Mesa's own chatter is not our message
+        from .drawing import DrawingProcess
+
         try:
-            self._process = subprocess.Popen(
-                [sys.executable, "-c", _PROBE_CODE], stdin=subprocess.DEVNULL,
-                stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, text=True)
+            self._process = DrawingProcess(self.mode)
         except OSError as exc:
-            self._process = None
             self._done, self._reason = True, f"cannot start a probe process: {exc}"
 
+    @staticmethod
+    def _default_timeout() -> float:
+        return probe_timeout()
+
+    def _timed_out(self) -> str:
+        return f"making an EGL context did not finish within {self.timeout:g} s"
+
     def wait(self) -> str | None:
-        """None if OpenGL works here; otherwise a one-line reason."""
+        """None if the renderer works here; otherwise a one-line reason."""
         if self._done:
             return self._reason
+        from .drawing import DrawingFailed
+
         try:
-            _out, err = self._process.communicate(timeout=self.timeout)
-        except subprocess.TimeoutExpired:
-            self._stop()
-            self._reason = f"making an EGL context did not finish within {self.timeout:g} s"
+            self.answer = self._process.first_answer(self.timeout)
+        except TimeoutError:
+            self._reason = self._timed_out()
+        except DrawingFailed as exc:
+            self._reason = str(exc)
         else:
-            if self._process.returncode != 0:
-                self._reason = _last_line(err)
+            if not self.answer["ok"]:
+                self._reason = self.answer.get("error") or "no error message"
+        if self._reason is not None:
+            self._process = None  # (killed)
         self._done = True
         return self._reason
 
-    def _stop(self) -> None:
-        self._process.kill()
-        self._process.communicate()
+    def take(self):
+        """The drawing process that answered, for the renderer that draws with it."""
+        process, self._process = self._process, None
+        return process
 
     def cancel(self) -> None:
         """Stop the probe if its answer is no longer needed (nothing left to render, Ctrl-C)."""
-        if not self._done and self._process is not None:
-            self._stop()
+        if self._process is not None:
+            self._process.kill()
+            self._process = None
+        if not self._done:
             self._done, self._reason = True, "cancelled"
+
+
+class RaycastProbe(GLProbe):
+    """Starts the ray-casting drawing process early, as :class:`GLProbe` does for OpenGL:
+    it imports trimesh and embreex on the other core while mcar loads the robot."""
+
+    mode = "raycast"
+
+    @staticmethod
+    def _default_timeout() -> float:
+        return RAYCAST_START_TIMEOUT
+
+    def _timed_out(self) -> str:
+        return f"it did not start within {self.timeout:g} s"
+
+
+def start_probe(choice: str) -> GLProbe:
+    """The drawing process ``choice`` (auto, gl, raycast) will most likely draw with, started
+    now; give it to :func:`open_renderer`."""
+    return RaycastProbe() if choice == "raycast" else GLProbe()
 
 
 def _gl_unavailable(reason: str) -> str:
@@ -103,30 +126,35 @@ def _gl_unavailable(reason: str) -> str:
 
 
 def _open_gl(probe: GLProbe | None):
-    global _gl_renderer
-    if _gl_renderer is not None:
-        return _gl_renderer
-    reason = (probe or GLProbe()).wait()
+    if "gl" in _renderers:
+        return _renderers["gl"]
+    if probe is None or probe.mode != "gl":
+        probe = GLProbe()
+    reason = probe.wait()
     if reason is not None:
         raise RendererUnavailableError(_gl_unavailable(reason))
-    try:
-        from .gl import GLRenderer
+    from .drawing import RemoteRenderer
 
-        _gl_renderer = GLRenderer()
-        return _gl_renderer
-    except Exception as exc:  # the driver refused something the probe did not try
+    _renderers["gl"] = RemoteRenderer(probe.take(), probe.timeout)
+    return _renderers["gl"]
+
+
+def _open_raycast(probe: GLProbe | None = None):
+    if "raycast" in _renderers:
+        return _renderers["raycast"]
+    if probe is None or probe.mode != "raycast":
+        probe = RaycastProbe()
+    reason = probe.wait()
+    if reason is None:
+        from .drawing import RemoteRenderer
+
+        _renderers["raycast"] = RemoteRenderer(probe.take(), probe.timeout)
+        return _renderers["raycast"]
+    if probe.answer is not None and probe.answer.get("kind") == "import":
         raise RendererUnavailableError(
-            _gl_unavailable(f"{type(exc).__name__}: {_last_line(str(exc))}")) from None
-
-
-def _open_raycast():
-    try:
-        from .raycast import RaycastRenderer
-    except ImportError as exc:
-        raise RendererUnavailableError(
-            f"the ray-casting renderer needs embreex ({exc}); install it with "
-            f"pip install {RAYCAST_PIP_PACKAGES}") from None
-    return RaycastRenderer()
+            f"the ray-casting renderer needs embreex ({probe.answer.get('import_error')}); "
+            f"install it with pip install {RAYCAST_PIP_PACKAGES}")
+    raise RendererUnavailableError(f"the ray-casting renderer cannot run: {reason}")
 
 
 def open_renderer(choice: str, probe: GLProbe | None = None):
@@ -136,7 +164,7 @@ def open_renderer(choice: str, probe: GLProbe | None = None):
     RendererUnavailableError (exit 2) names what to install when nothing can run.
     """
     if choice == "raycast":
-        return _open_raycast(), []
+        return _open_raycast(probe), []
     if choice == "gl":
         return _open_gl(probe), []
     try:

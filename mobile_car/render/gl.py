@@ -9,12 +9,16 @@ into an off-screen framebuffer and read back as premultiplied RGBA, ready for
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import moderngl
 import numpy as np
 
 from .camera import Camera
 from .lighting import GLSL_SHADE
-from .scene import Scene
+
+if TYPE_CHECKING:  # (the drawing process draws without loading yourdfpy)
+    from .scene import Scene
 
 SAMPLES = 4
 

@@ -12,13 +12,17 @@ at the sample positions of the standard 4x MSAA pattern, averaged.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import trimesh
 from trimesh.ray.ray_pyembree import RayMeshIntersector
 
 from .camera import Camera
 from .lighting import shade
-from .scene import Scene
+
+if TYPE_CHECKING:  # (the drawing process draws without loading yourdfpy)
+    from .scene import Scene
 
 # The standard 4x MSAA sample positions, as offsets from the pixel centre (in pixels).
 MSAA_OFFSETS = np.array([(-2, -6), (6, -2), (-6, 2), (2, 6)], dtype=float) / 16.0

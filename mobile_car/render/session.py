@@ -25,8 +25,9 @@ from ..errors import CheckFailed, McarError, RenderError, RendererUnavailableErr
 from ..freshness import Stamper, diagnostics_data, diagnostics_from
 from ..load.outputs import refuse_overwriting
 from ..load.robot import LoadedRobot, LoadOptions
-from .backend import GLProbe, open_renderer
+from .backend import GLProbe, open_renderer, start_probe
 from .compose import png_bytes
+from .drawing import DrawingFailed
 from .jobs import RenderJob, file_job, picture_name, picture_path, selection_jobs  # noqa: F401
 from .manifest import CONTACT_SHEET, Manifest, input_fingerprint, picture_key
 from .options import RenderOptions
@@ -87,8 +88,8 @@ def _sheet_copy(image: Image.Image) -> Image.Image:
 def _drawing_error(job: RenderJob, exc: Exception) -> RenderError:
     """An unforeseen failure while drawing one robot, as that robot's located error: the
     other robots of the run are still drawn, and the run ends with exit 1."""
-    return RenderError(f"cannot draw this robot: {type(exc).__name__}: {exc}",
-                       file=job.input.label)
+    detail = str(exc) if isinstance(exc, DrawingFailed) else f"{type(exc).__name__}: {exc}"
+    return RenderError(f"cannot draw this robot: {detail}", file=job.input.label)
 
 
 def model_source(loaded: LoadedRobot) -> ModelSource:
@@ -121,8 +122,8 @@ class RenderSession:
         self.renderer_choice = renderer
         self.force = force
         self._probe = probe
-        if self._probe is None and renderer != "raycast":
-            self._probe = GLProbe()
+        if self._probe is None:
+            self._probe = start_probe(renderer)
         self.renderer = None
         self.notes: list[str] = []
         self.thumbnails: dict[str, Image.Image] = {}
@@ -135,7 +136,7 @@ class RenderSession:
         self.close()
 
     def close(self) -> None:
-        """Stop an unneeded probe; the GL context stays for the next session."""
+        """Stop an unneeded probe; the drawing process stays for the next session."""
         if self._probe is not None:
             self._probe.cancel()
 

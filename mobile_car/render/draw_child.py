@@ -4,8 +4,9 @@ Started by :mod:`mobile_car.render.drawing`, whose ``python -c`` calls :func:`ma
 the renderer's kind (gl or raycast) as the last argument. A draw is one C call (llvmpipe
 rasterising, Embree tracing) that no signal interrupts, and a hostile mesh makes it last
 for minutes; in this process mcar can stop it at once, with SIGKILL, while its own
-process stays responsive to Ctrl-C and SIGTERM. The protocol is :mod:`.wire`: requests on stdin, answers on the stdout it was
-started with; anything a library prints goes to stderr instead.
+process stays responsive to Ctrl-C and SIGTERM. The protocol is :mod:`.wire`: requests
+on stdin, answers on the stdout it was started with; anything a library prints goes to
+stderr instead.
 
 Ctrl-C from the terminal reaches this process too: it is ignored here, because mcar
 decides (and kills this process). SIGTERM and SIGHUP keep their default, death; so does

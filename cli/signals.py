@@ -25,6 +25,10 @@ def announcement(signum: int) -> str:
 
 
 def _on_signal(signum, frame):
+    # Nothing is imported here: the signal may have come in the middle of an import.
+    holds = sys.modules.get("mobile_car.held_signals")  # not loaded: nothing is held
+    if holds is not None and holds.defer(signum, _on_signal):
+        return  # a few lines that must not be cut in two: raised when they are done
     if not _armed:  # before or after the command: nothing half-done to clean up
         for stream in (sys.stdout, sys.stderr):
             try:
@@ -77,9 +81,21 @@ def received() -> int | None:
     return _received[0] if _received else None
 
 
+def _unraisable(info) -> None:
+    """A signal's exception raised where Python cannot raise it (a weakref callback of
+    the import system, fork's after-fork callbacks, a ``__del__``) is lost with an
+    "Exception ignored" traceback. The signal is recorded all the same and ends the run
+    at the next check (:func:`raise_if_received`, the command's end): the traceback is
+    noise, and only for mcar's own signals is it left out."""
+    if _received and type(info.exc_value).__name__ in ("KeyboardInterrupt", "Terminated"):
+        return
+    sys.__unraisablehook__(info)
+
+
 def install() -> None:
     if sys.stdout is not sys.__stdout__:
         return
+    sys.unraisablehook = _unraisable
     for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
         try:
             signal.signal(signum, _on_signal)

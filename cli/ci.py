@@ -247,10 +247,12 @@ def _render(checked, items, manifest, renderer: str, basis) -> None:
         return
     from mobile_car.ci import pipeline
     from mobile_car.ci.cache import item_basis
+    from mobile_car.held_signals import import_held
     from mobile_car.render.options import RenderOptions
-    from mobile_car.render.session import RenderSession
 
-    with RenderSession(RenderOptions(), renderer=renderer) as session:
+    # Held: trimesh's import (through yourdfpy) aborts the process if a signal lands in it.
+    session_module = import_held("mobile_car.render.session")
+    with session_module.RenderSession(RenderOptions(), renderer=renderer) as session:
         try:
             for item in checked:
                 pipeline.render_step(item, session, manifest, item_basis(item, basis))

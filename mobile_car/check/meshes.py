@@ -156,7 +156,10 @@ def _sound_binary_stl(path: Path) -> bool:
 
 
 def _try_load(path: Path, shown: str) -> tuple[str | None, list[Path]]:
-    import trimesh  # heavy (numpy): only for meshes the cheap test above cannot vouch for
+    from ..held_signals import import_held
+
+    # heavy (numpy): only for meshes the cheap test above cannot vouch for
+    trimesh = import_held("trimesh")
 
     from ..load.mesh_reader import load_mesh
 

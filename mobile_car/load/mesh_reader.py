@@ -12,17 +12,25 @@ Imports trimesh: only the commands that read meshes import this module.
 from __future__ import annotations
 
 import io
+import logging
 import os
 import stat
 import zipfile
 from pathlib import Path
 
-import trimesh
 from PIL import Image
 
 from ..errors import InputError
+from ..held_signals import import_held
 from .compressed import ZIP_FORMATS, compressed_kind, decompressed_members, max_mesh_bytes
 from .mesh_limits import MeshOverLimit, scan_bytes, scan_mesh, suffix_of
+
+trimesh = import_held("trimesh")  # see import_held: a signal in its start aborts
+# trimesh logs what it recovers from (a sparse product cut by Ctrl-C, a bad texture) with
+# a traceback, and with no handler logging's last resort prints it on stderr: a library
+# must not print, and a signal trimesh swallowed is raised again by mcar's command line.
+logging.getLogger("trimesh").addHandler(logging.NullHandler())
+logging.getLogger("trimesh").propagate = False
 
 _IMAGES = (".png", ".jpg", ".jpeg", ".bmp", ".tga", ".tif", ".tiff", ".gif", ".webp")
 

@@ -209,8 +209,11 @@ def test_an_output_that_cannot_be_written(case, writer):
         user = 65534
     with TARGETS[case](SUFFIX[writer]) as (target, reason, earlier):
         done = _run(WRITERS[writer](target), cwd="/", user=user)
-        assert _lines(done.stderr) == [f"{target}: error: cannot write: {reason}"], \
-            done.stderr.decode()
+        # Here Python lives where nobody may not start it again (a 0700 home): render
+        # says once that it draws in its own process; that is not this test's matter.
+        lines = [line for line in _lines(done.stderr)
+                 if not line.startswith("mcar: warning: the drawing process could not")]
+        assert lines == [f"{target}: error: cannot write: {reason}"], done.stderr.decode()
         assert done.returncode == 2
         if earlier is not None:
             assert earlier.read_bytes() == GOOD

@@ -54,9 +54,11 @@ class GLProbe:
             return
         from .drawing import DrawingProcess
 
+        self.start_error: OSError | None = None
         try:
             self._process = DrawingProcess(self.mode)
         except OSError as exc:
+            self.start_error = exc
             self._done, self._reason = True, f"cannot start a probe process: {exc}"
 
     @staticmethod
@@ -140,8 +142,11 @@ def _open_gl(probe: GLProbe | None):
 
 
 def _open_raycast(probe: GLProbe | None = None):
+    """The ray-casting renderer and notes for the user: in its drawing process, or, where
+    no process can be started (a Python this user may run but not start again, a sandbox
+    that forbids it), in this one, where a draw cannot be cut short by a signal."""
     if "raycast" in _renderers:
-        return _renderers["raycast"]
+        return _renderers["raycast"], []
     if probe is None or probe.mode != "raycast":
         probe = RaycastProbe()
     reason = probe.wait()
@@ -149,7 +154,17 @@ def _open_raycast(probe: GLProbe | None = None):
         from .drawing import RemoteRenderer
 
         _renderers["raycast"] = RemoteRenderer(probe.take(), probe.timeout)
-        return _renderers["raycast"]
+        return _renderers["raycast"], []
+    if getattr(probe, "start_error", None) is not None:
+        try:
+            from .raycast import RaycastRenderer
+        except ImportError as exc:
+            reason = f"{reason}; and in this process: {exc}"
+        else:
+            _renderers["raycast"] = RaycastRenderer()
+            return _renderers["raycast"], [
+                f"the drawing process could not be started ({probe.start_error}); drawing "
+                "in this process, where Ctrl-C waits for the picture being drawn"]
     if probe.answer is not None and probe.answer.get("kind") == "import":
         raise RendererUnavailableError(
             f"the ray-casting renderer needs embreex ({probe.answer.get('import_error')}); "
@@ -164,16 +179,17 @@ def open_renderer(choice: str, probe: GLProbe | None = None):
     RendererUnavailableError (exit 2) names what to install when nothing can run.
     """
     if choice == "raycast":
-        return _open_raycast(probe), []
+        return _open_raycast(probe)
     if choice == "gl":
         return _open_gl(probe), []
     try:
         return _open_gl(probe), []
     except RendererUnavailableError as gl_error:
         try:
-            renderer = _open_raycast()
+            renderer, notes = _open_raycast()
         except RendererUnavailableError as raycast_error:
             raise RendererUnavailableError(
                 f"no renderer can run here. {gl_error.message}; or {raycast_error.message}"
             ) from None
-        return renderer, [f"{gl_error.message}; using the ray-casting fallback instead"]
+        return renderer, [f"{gl_error.message}; using the ray-casting fallback instead",
+                          *notes]

@@ -164,7 +164,7 @@ def main() -> int:
 
     die_with_parent()
     replies = os.dup(1)
-    os.dup2(2, 1)  # print() of a library must not land among the answers
+    os.dup2(2, 1)  # what a library prints must not land among the answers
     requests = io.FileIO(0, closefd=False)
     try:
         status = serve(sys.argv[-1], requests, replies)

@@ -329,9 +329,11 @@ def run_drive(sim: SimModel, frame=None) -> ScenarioResult:
             result.problems.append(f"the motors' effort limit ({efforts}) cannot turn the "
                                    f"wheels at {omega:.4g} rad/s")
         else:
+            gains = ", ".join(f"{w.gain:.4g}" for w in (sim.left, sim.right))
             result.problems.append(f"the wheels do not reach {omega:.4g} rad/s, though the "
                                    f"motors ({efforts}) are below their effort limit: "
-                                   "something holds them (contact, a joint limit)")
+                                   "something holds them back (a contact, a joint limit, "
+                                   f"a load too heavy for the servo gain {gains} N·m·s/rad)")
     for wheel in (sim.left, sim.right):
         axis = axes[wheel.joint]
         if abs(axis[1]) < 0.9:

@@ -28,7 +28,8 @@ def real_robots() -> Path | None:
     else:
         candidates = [REPO.parent / "shared" / "real-robots"]
     dot_git = REPO / ".git"
-    if not os.environ.get("MCAR_REAL_ROBOTS") and dot_git.is_file():  # a worktree: "gitdir: MAIN/.git/worktrees/NAME"
+    # a worktree: .git is a file, "gitdir: MAIN/.git/worktrees/NAME"
+    if not os.environ.get("MCAR_REAL_ROBOTS") and dot_git.is_file():
         text = dot_git.read_text().strip()
         if text.startswith("gitdir:"):
             main = Path(text.removeprefix("gitdir:").strip()).parent.parent.parent
@@ -94,10 +95,11 @@ def test_a_turtlebot3_drives_and_spins_at_the_commanded_rates(turtlebot_runs, ro
     omega, radius, track = drive["command_speed"], drive["wheel_radius"], drive["track"]
     figures = {s["name"]: {f["name"]: f["value"] for f in s["figures"]}
                for s in entry["scenarios"]}
-    # distance error is |measured - r·ω·t| / r·ω·t in %; yaw rate error likewise of 2·r·ω/track
+    # in %: distance error of r·ω·t, yaw rate error of 2·r·ω/track
     assert figures["drive"]["distance error"] < 5
     assert figures["spin"]["yaw rate error"] < 10
-    assert 2 * radius * omega / track > 1  # the spin asked for is a real turn (rad/s)
+    assert omega == 10 and radius * omega == pytest.approx(0.33)  # no speed limit: 10 rad/s
+    assert 2 * radius * omega / track == pytest.approx(0.66 / TURTLEBOTS[robot][1])
 
 
 @needs_folder

@@ -49,6 +49,11 @@ The drive wheels are the continuous joints with collision geometry, one on each 
 robot without drive wheels runs drop only, and says why. Of a package or folder, only
 the robot files with drive wheels are simulated.
 
+The motors' effort and speed limits come from the joint's <limit>, else its
+<ros2_control> command interfaces, else the <gazebo> diff-drive plugin, else --effort
+and --speed, else a default (the torque that holds the robot on a 10 degree slope; no
+speed limit); the report says which.
+
 Every robot is checked first, as by `mcar check`: one with errors is reported with
 check's diagnostics (exit 1). The <gazebo> DiffDrive plugin's wheel separation, radius
 and joints are compared with the geometry (E301-E303), and links whose mass a simulator
@@ -88,10 +93,14 @@ def scenario_list(ctx, param, value):
               help="Write an animation of the runs (one INPUT only); MP4 is refused.")
 @click.option("--left", metavar="JOINT", help="The left drive wheel's joint.")
 @click.option("--right", metavar="JOINT", help="The right drive wheel's joint.")
+@click.option("--effort", type=click.FloatRange(min=0), metavar="N·M",
+              help="The drive motors' effort limit where the description gives none.")
+@click.option("--speed", type=click.FloatRange(min=0, min_open=True), metavar="RAD/S",
+              help="The drive motors' speed limit where the description gives none.")
 @robot_options
 @handle_errors
-def command(words, scenarios, output_format, record, left, right, package_paths, sets,
-            config_files):
+def command(words, scenarios, output_format, record, left, right, effort, speed, package_paths,
+            sets, config_files):
     if record:
         from mobile_car.sim.record import require_format
 
@@ -120,7 +129,7 @@ def command(words, scenarios, output_format, record, left, right, package_paths,
                 codes.append(EXIT_PROBLEMS)
                 continue
             result = simulate(checked, scenarios, left, right, record=bool(record),
-                              only_if_drives=not explicit)
+                              only_if_drives=not explicit, effort=effort, speed=speed)
             if not result.simulated:
                 click.echo(f"mcar: {result.file}: not simulated: {shown(result.why_no_drive)}",
                            err=True)

@@ -37,14 +37,53 @@ class Body:
     material: dict | None = None  # parts of its <material>, if that has children
 
 
-@dataclass(slots=True)
 class Link:
-    name: str | None
-    element: etree._Element
-    parts: dict                   # name -> first child (lists for visual and collision)
-    visuals: list[Body] = field(default_factory=list)
-    collisions: list[Body] = field(default_factory=list)
-    inertial: dict | None = None  # parts of the first <inertial>
+    """A ``<link>``: its name and element at once; what is inside it (parts, visuals,
+    collisions, inertial) when first asked for.
+
+    ``mcar check`` proves most links clean without reading them into parts
+    (:mod:`mobile_car.check.plain_links`, repeats in :mod:`mobile_car.check.link_bodies`);
+    a later stage (sim, sweep) that asks for a link's collisions or inertial then gets
+    them read here, so that no fast path of check can hide what a link holds.
+    """
+
+    __slots__ = ("name", "element", "_parts", "_visuals", "_collisions", "_inertial")
+
+    def __init__(self, name: str | None, element: etree._Element):
+        self.name = name
+        self.element = element
+        self._parts: dict | None = None  # None: not read yet
+
+    def read(self, notes: Anomalies) -> None:
+        """Read what is inside the link, noting what the vocabulary does not expect."""
+        _read_link(self, notes)
+
+    def _ensure(self) -> None:
+        # A link check skipped was proved clean: nothing to note (the notes are dropped).
+        if self._parts is None:
+            _read_link(self, Anomalies())
+
+    @property
+    def parts(self) -> dict:
+        """Name -> first child (lists for visual and collision)."""
+        self._ensure()
+        return self._parts
+
+    @property
+    def visuals(self) -> list[Body]:
+        self._ensure()
+        return self._visuals
+
+    @property
+    def collisions(self) -> list[Body]:
+        self._ensure()
+        return self._collisions
+
+    @property
+    def inertial(self) -> dict | None:
+        """Parts of the first ``<inertial>``, or None."""
+        self._ensure()
+        return self._inertial
 
     @property
     def line(self) -> int:
@@ -92,7 +131,7 @@ def read_robot(root) -> Robot:
     for top in root:
         tag = top.tag
         if tag == "link":
-            links.append(Link(top.get("name"), top, {}))
+            links.append(Link(top.get("name"), top))
         elif tag == "joint":
             if not JOINT.attrs_ok(top.keys()):
                 notes.attributes.append(top)
@@ -150,14 +189,13 @@ def _read_link(link: Link, notes: Anomalies) -> None:
     element = link.element
     if not LINK.attrs_ok(element.keys()):
         notes.attributes.append(element)
-    link.parts = parts = _index(element, LINK, notes)
-    for visual in parts.get("visual", ()):
-        link.visuals.append(_read_body(visual, VISUAL, notes))
-    for collision in parts.get("collision", ()):
-        link.collisions.append(_read_body(collision, COLLISION, notes))
+    parts = _index(element, LINK, notes)
+    link._visuals = [_read_body(visual, VISUAL, notes) for visual in parts.get("visual", ())]
+    link._collisions = [_read_body(collision, COLLISION, notes)
+                        for collision in parts.get("collision", ())]
     inertial = parts.get("inertial")
-    if inertial is not None:
-        link.inertial = _index(inertial, INERTIAL, notes)
+    link._inertial = _index(inertial, INERTIAL, notes) if inertial is not None else None
+    link._parts = parts
 
 
 def _read_body(element, spec, notes: Anomalies) -> Body:

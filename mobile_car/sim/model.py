@@ -9,8 +9,15 @@ The simulation-only choices (README, "mcar sim") are made here and nowhere else:
   touches at both tyre edges and scrubs when the car turns in place;
 * friction comes from the description's ``<gazebo reference><mu1>``, with a contact
   priority so the part's own value wins (MuJoCo otherwise takes the larger of the pair's);
+  a castor (a part other than the drive wheels that rests on the floor) without one gets
+  CASTOR_FRICTION: URDF has no rolling ball, descriptions model it as a fixed block
+  (TurtleBot3's box), and a block dragged at MuJoCo's default friction of 1 steers the
+  robot (burger: 2.4 degrees off course in 3 s);
 * a link without ``<inertial>`` is massless, as URDF says (MuJoCo would invent a mass from
   its geometry, Gazebo 1 kg; lint reports such links);
+* a drive joint's motor figures come from the description (:mod:`.motors`), a default
+  torque when it gives none; its velocity servo's gain grows with the load the wheel
+  drives (:func:`servo_gain`), so that a heavy robot follows the speed ramp as the car does;
 * the drive joints get an armature of 1e-4 kg m², about a small gear motor's rotor
   inertia seen through its gearbox (JGA25-370: ~2e-7 kg m² x 21²): without it the light
   wheels (~2e-5 kg m²) chatter against the stiff velocity servo and the car over-travels
@@ -28,15 +35,24 @@ from lxml import etree
 from ..check.urdf_model import parse_number
 from ..errors import EXIT_PROBLEMS, McarError, UsageError
 from .engine import mujoco
+from .motors import MotorFigures, motor_figures
 
 TIMESTEP = 0.001
 # Above the floor by this much, a part does not rest on it (contacts, ground parts).
 GROUND_TOLERANCE = 0.003
 MESH_FORMATS = (".stl", ".obj", ".msh")
-# kv of the wheel motors' velocity servo (N m s/rad): stiff enough to follow a ramp of
-# a few rad/s², within the effort limit, which clamps it.
+# kv of the wheel motors' velocity servo (N m s/rad) for a wheel driving up to
+# SERVO_REFERENCE_INERTIA: stiff enough to follow a ramp of a few rad/s², within the effort
+# limit, which clamps it. Heavier loads get a gain in proportion (servo_gain), so the
+# servo's time constant stays under 1 ms on every robot (implicitfast integrates the gain
+# implicitly: stable at any size). The reference is above the bundled car's 4.7e-4 kg m²
+# (0.71 kg on 32.5 mm wheels) and its variants', which keep the gain they were tuned with.
 SERVO_GAIN = 0.5
+SERVO_REFERENCE_INERTIA = 1e-3  # kg m²
 WHEEL_ARMATURE = 1e-4  # kg m², see the module's docstring
+# mu of a castor whose description gives none: a ball that rolls freely, modelled as
+# sliding (the bundled car's caster_friction).
+CASTOR_FRICTION = 0.01
 
 
 class SimModelError(McarError):
@@ -57,6 +73,8 @@ class Wheel:
     effort: float | None
     velocity: float | None
     actuator_id: int = -1
+    motor: MotorFigures | None = None  # effort and speed limits with their sources
+    gain: float = SERVO_GAIN
 
 
 @dataclass
@@ -74,6 +92,12 @@ class SimModel:
     clearance: dict[str, float] = field(default_factory=dict)
     floor_geom: int = 0
     notes: list[str] = field(default_factory=list)
+    mass: float = 0.0   # kg, the whole robot
+
+    @property
+    def kind(self) -> str | None:
+        """The drive kind: two driven wheels and what else rests on the floor."""
+        return "differential" if self.drives else None
 
     @property
     def drives(self) -> bool:
@@ -85,12 +109,18 @@ class SimModel:
 
 
 def build_model(urdf: bytes, label: str, base: Path, search, left: str | None = None,
-                right: str | None = None) -> SimModel:
+                right: str | None = None, effort: float | None = None,
+                speed: float | None = None) -> SimModel:
+    """``effort`` (N·m), ``speed`` (rad/s): the drive motors' figures where the
+    description gives none (:mod:`.motors`)."""
     mj = mujoco()
     root = etree.fromstring(urdf, etree.XMLParser(resolve_entities=False, no_network=True))
-    joints = {j.get("name"): j for j in root.iter("joint") if isinstance(j.tag, str)}
+    # The robot's own joints only: a <transmission> or <ros2_control> names joints too.
+    joints = {j.get("name"): j for j in root if j.tag == "joint"}
     friction = _gazebo_friction(root)
     colours = _link_colours(root)
+    # The motor figures' other sources, kept before _prepare takes them out of the tree.
+    root_figures = [e for e in root if e.tag in ("gazebo", "ros2_control")]
     notes = _prepare(root, base, search)
     try:
         spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
@@ -119,6 +149,12 @@ def build_model(urdf: bytes, label: str, base: Path, search, left: str | None = 
     mj.mj_kinematics(shape, data)
     lowest = _lowest_points(mj, shape, data)
     wheels, why = _find_wheels(mj, shape, data, joints, left, right)
+    mass = float(shape.body_mass.sum())
+    for wheel in wheels:
+        wheel.motor = motor_figures(root_figures, joints[wheel.joint], wheel.radius,
+                                    len(wheels), mass, effort, speed)
+        wheel.effort, wheel.velocity = wheel.motor.effort, wheel.motor.velocity
+        wheel.gain = servo_gain(mass, wheel.radius, len(wheels))
     wheels_lowest = [lowest[g] for w in wheels for g in w.geom_ids]
     robot_geoms = [g for g in range(shape.ngeom) if shape.geom_bodyid[g] != 0]
     if not robot_geoms:
@@ -134,12 +170,17 @@ def build_model(urdf: bytes, label: str, base: Path, search, left: str | None = 
             clearance[name] = min(clearance.get(name, np.inf), lowest[g] - ground)
         if body not in wheel_bodies and lowest[g] <= ground + GROUND_TOLERANCE:
             parts[name] = body
+    if wheels:
+        for geom in spec.geoms:
+            if geom.parent.name in parts and geom.parent.name not in friction:
+                geom.friction = [CASTOR_FRICTION, geom.friction[1], geom.friction[2]]
+                geom.priority = 1
     for wheel in wheels:
         _round_tyre(spec, shape, wheel, mj)
         spec.joint(wheel.joint).armature = WHEEL_ARMATURE
         actuator = spec.add_actuator(name=f"mcar_motor_{wheel.joint}", target=wheel.joint,
                                      trntype=mj.mjtTrn.mjTRN_JOINT)
-        actuator.set_to_velocity(kv=SERVO_GAIN)
+        actuator.set_to_velocity(kv=wheel.gain)
         effort = wheel.effort if wheel.effort is not None else 0.0
         # MuJoCo refuses an empty range: a motor of no effort gets a vanishing one.
         effort = max(effort, 1e-12)
@@ -152,7 +193,14 @@ def build_model(urdf: bytes, label: str, base: Path, search, left: str | None = 
     return SimModel(model=model, spec=spec, root=root_body.name,
                     root_body=model.body(root_body.name).id, left=pair[0], right=pair[1],
                     why_no_drive=why, rest_height=-ground, ground_parts=parts, clearance=clearance,
-                    floor_geom=model.geom("mcar_floor").id, notes=notes)
+                    floor_geom=model.geom("mcar_floor").id, notes=notes, mass=mass)
+
+
+def servo_gain(mass: float, radius: float, drive_wheels: int) -> float:
+    """kv for a wheel that accelerates its share of the robot: SERVO_GAIN up to the
+    reference load, in proportion above it."""
+    load = mass * radius ** 2 / max(1, drive_wheels) + WHEEL_ARMATURE
+    return SERVO_GAIN * max(1.0, load / SERVO_REFERENCE_INERTIA)
 
 
 def _gazebo_friction(root) -> dict[str, float]:
@@ -174,7 +222,7 @@ def _link_colours(root) -> dict[str, list[float]]:
         if colour is not None and material.get("name"):
             named[material.get("name")] = colour.get("rgba")
     found = {}
-    for link in root.iter("link"):
+    for link in root.iterchildren("link"):
         for material in link.iterfind("visual/material"):
             colour = material.find("color")
             text = colour.get("rgba") if colour is not None else named.get(material.get("name"))

@@ -39,11 +39,13 @@ class SimReport:
 
 
 def simulate(checked, names, left=None, right=None, record: bool = False,
-             only_if_drives: bool = False) -> SimReport:
+             only_if_drives: bool = False, effort: float | None = None,
+             speed: float | None = None) -> SimReport:
     """Lint and run ``names`` on a robot that passed ``mcar check`` (a CheckResult);
     ``record``: keep a GIF of the runs; ``only_if_drives``: a robot that is not a vehicle
     (:func:`not_a_vehicle`, or no drive wheel on a side) is not simulated (``simulated``
-    False), as for the files of a package and in ``mcar ci``."""
+    False), as for the files of a package and in ``mcar ci``; ``effort``, ``speed``: the
+    drive motors' figures where the description gives none (:mod:`.motors`)."""
     from .model import SimModelError, build_model
 
     started = time.perf_counter()
@@ -69,7 +71,8 @@ def simulate(checked, names, left=None, right=None, record: bool = False,
         report.error = "a link MuJoCo must move has no mass (E305 above)"
         return report
     try:
-        sim = build_model(loaded.urdf, checked.file, loaded.base, loaded.search, left, right)
+        sim = build_model(loaded.urdf, checked.file, loaded.base, loaded.search, left, right,
+                          effort, speed)
     except SimModelError as error:
         report.error = error.message
         return report
@@ -79,10 +82,13 @@ def simulate(checked, names, left=None, right=None, record: bool = False,
     report.notes = list(sim.notes)
     report.diagnostics = lint(checked, sim)
     if sim.drives:
-        report.drive = {"left": sim.left.joint, "right": sim.right.joint,
+        report.drive = {"kind": sim.kind, "left": sim.left.joint, "right": sim.right.joint,
                         "wheel_radius": round(sim.left.radius, 6),
                         "track": round(sim.track, 6),
-                        "command_speed": round(command_speed(sim), 6)}
+                        "command_speed": round(command_speed(sim), 6),
+                        "castors": sorted(sim.ground_parts), "mass": round(sim.mass, 6),
+                        "motors": {w.joint: {**w.motor.as_json(), "servo_gain": round(w.gain, 6)}
+                                   for w in (sim.left, sim.right)}}
     report.why_no_drive = sim.why_no_drive
     recorder = None
     if record:
@@ -152,9 +158,16 @@ def text_table(report: SimReport) -> list[str]:
     lines = [f"{report.file} ({report.robot})"]
     if report.drive:
         d = report.drive
-        lines.append(f"  drive wheels {d['left']} (left), {d['right']} (right): radius "
-                     f"{d['wheel_radius']:g} m, track {d['track']:g} m, command "
-                     f"{d['command_speed']:g} rad/s")
+        castors = ", ".join(d["castors"]) or "none"
+        lines.append(f"  {d['kind']} drive wheels {d['left']} (left), {d['right']} (right): "
+                     f"radius {d['wheel_radius']:g} m, track {d['track']:g} m, command "
+                     f"{d['command_speed']:g} rad/s; on the floor too: {castors}; "
+                     f"mass {d['mass']:.4g} kg")
+        for joint, motor in d["motors"].items():
+            speed = ("no limit" if motor["velocity"] is None else
+                     f"{motor['velocity']:g} rad/s ({motor['velocity_from']})")
+            lines.append(f"  motor {joint}: {motor['effort']:.4g} N·m ({motor['effort_from']}), "
+                         f"{speed}, servo gain {motor['servo_gain']:.4g} N·m·s/rad")
     elif report.why_no_drive:
         lines.append(f"  {report.why_no_drive}: drop only")
     if report.lint_errors or report.error:

@@ -20,7 +20,8 @@ SETTLE_TIME = 0.5        # s on the floor before drive and spin start
 RAMP_TIME = 0.5          # s for the wheels' speed to ramp linearly up to the command
 DRIVE_TIME = 3.0         # s
 SPIN_TIME = 2.5          # s
-DEFAULT_SPEED = 10.0     # rad/s when the joints give no velocity limit
+DEFAULT_SPEED = 10.0     # rad/s when the joints give no velocity limit ...
+DEFAULT_LINEAR_SPEED = 0.5  # m/s: ... or less on large wheels, a walking pace
 # Bounds (README, "mcar sim").
 REST_HEIGHT_BOUND = 0.001          # m
 TILT_BOUND = 1.0                   # degrees, roll and pitch
@@ -32,6 +33,10 @@ WHEEL_SPEED_BOUND = 0.02           # of the command
 YAW_RATE_BOUND = 0.05              # of 2·r·ω/track
 CENTRE_BOUND = 0.01                # m
 OFF_FLOOR_BOUND = 0.0              # s a wheel may spend off the floor while driving
+# A wheel is off the floor when its tyre is higher than this share of its radius above it
+# for at least BOUNCE_TIME: a shorter or smaller bounce is contact noise, not a lift-off.
+BOUNCE_HEIGHT = 0.01               # of the wheel radius
+BOUNCE_TIME = 0.020                # s
 
 
 @dataclass
@@ -153,6 +158,18 @@ class Run:
                 touching.add(int(self.model.geom_bodyid[contact.geom1]))
         return touching
 
+    def at_effort_limit(self, wheel) -> bool:
+        limit = self.model.actuator_forcerange[wheel.actuator_id][1]
+        return abs(float(self.data.actuator_force[wheel.actuator_id])) >= 0.99 * limit
+
+    def tyre_gap(self, wheel) -> float | None:
+        """Height of the wheel's lowest sphere (its tyre) above the floor, or None when
+        its geometry is no sphere (then contacts tell)."""
+        gaps = [float(self.data.geom_xpos[g][2] - self.model.geom_size[g][0])
+                for g in wheel.geom_ids
+                if self.model.geom_type[g] == self.mj.mjtGeom.mjGEOM_SPHERE]
+        return min(gaps) if gaps else None
+
     def wheel_speed(self, wheel) -> float:
         return float(self.data.qvel[self.model.jnt_dofadr[wheel.joint_id]])
 
@@ -162,9 +179,13 @@ class Run:
 
 
 def command_speed(sim: SimModel) -> float:
-    """Half the smaller velocity limit of the two drive joints (rad/s)."""
+    """Half the smaller velocity limit of the two drive joints (rad/s); without one,
+    DEFAULT_SPEED or DEFAULT_LINEAR_SPEED, whichever is slower on these wheels."""
     limits = [w.velocity for w in (sim.left, sim.right) if w.velocity and w.velocity > 0]
-    return 0.5 * min(limits) if limits else DEFAULT_SPEED
+    if limits:
+        return 0.5 * min(limits)
+    radius = max(sim.left.radius, sim.right.radius)
+    return min(DEFAULT_SPEED, DEFAULT_LINEAR_SPEED / radius) if radius > 0 else DEFAULT_SPEED
 
 
 def run_drop(sim: SimModel, frame=None) -> ScenarioResult:
@@ -192,6 +213,10 @@ def run_drop(sim: SimModel, frame=None) -> ScenarioResult:
                        "height_error_m": float(abs(height - sim.rest_height)),
                        "tilt_deg": max(abs(math.degrees(roll)), abs(math.degrees(pitch)))}
     touching = run.on_floor()
+    for wheel in (sim.left, sim.right):  # a wheel in a small bounce still stands
+        gap = run.tyre_gap(wheel) if wheel is not None else None
+        if gap is not None and gap <= BOUNCE_HEIGHT * wheel.radius:
+            touching.add(wheel.body_id)
     expected = {w.link: w.body_id for w in (sim.left, sim.right) if w is not None}
     expected.update(sim.ground_parts)
     missing = sorted(name for name, body in expected.items() if body not in touching)
@@ -225,6 +250,40 @@ def forward_sign(run: Run, wheel) -> float:
     return 1.0 if axis[1] >= 0 else -1.0
 
 
+class OffFloor:
+    """Called once per step: the time the wheels spend off the floor, counting only
+    lift-offs higher than BOUNCE_HEIGHT of the radius and lasting BOUNCE_TIME or more."""
+
+    def __init__(self, run: Run, wheels):
+        self.run, self.wheels = run, wheels
+        self.height = BOUNCE_HEIGHT * min(w.radius for w in wheels)
+        self.step = run.model.opt.timestep
+        self.current, self.total = 0, 0
+
+    def __call__(self) -> None:
+        touching = None
+        for wheel in self.wheels:
+            gap = self.run.tyre_gap(wheel)
+            if gap is None:
+                touching = self.run.on_floor() if touching is None else touching
+                up = wheel.body_id not in touching
+            else:
+                up = gap > self.height
+            if up:
+                self.current += 1
+                return
+        self.finish()
+
+    def finish(self) -> None:
+        if self.current * self.step >= BOUNCE_TIME - 1e-9:
+            self.total += self.current
+        self.current = 0
+
+    @property
+    def seconds(self) -> float:
+        return self.total * self.step
+
+
 def run_drive(sim: SimModel, frame=None) -> ScenarioResult:
     result = ScenarioResult("drive", seconds=SETTLE_TIME + DRIVE_TIME)
     run = Run(sim, frame=frame)
@@ -233,16 +292,17 @@ def run_drive(sim: SimModel, frame=None) -> ScenarioResult:
     control, signs = _drive_control(run, sim, omega, spin=False)
     run.step(SETTLE_TIME, control)
     start, (_, _, yaw0) = run.position, run.euler()
-    off = {"steps": 0}
-    wheels = {sim.left.body_id, sim.right.body_id}
+    off = OffFloor(run, (sim.left, sim.right))
+    run.step(DRIVE_TIME - 0.5, control, off)
+    late, clamped = [], {"steps": 0}
 
-    def each():
-        if not wheels <= run.on_floor():
-            off["steps"] += 1
-    run.step(DRIVE_TIME - 0.5, control, each)
-    late = []
-    run.step(0.5, control, lambda: (each(), late.append(
-        (abs(run.wheel_speed(sim.left)), abs(run.wheel_speed(sim.right))))))
+    def each_late():
+        off()
+        late.append((abs(run.wheel_speed(sim.left)), abs(run.wheel_speed(sim.right))))
+        if any(run.at_effort_limit(w) for w in (sim.left, sim.right)):
+            clamped["steps"] += 1
+    run.step(0.5, control, each_late)
+    off.finish()
     radius = (sim.left.radius + sim.right.radius) / 2
     ideal = radius * omega * (DRIVE_TIME - RAMP_TIME / 2)
     moved = run.position - start
@@ -256,8 +316,9 @@ def run_drive(sim: SimModel, frame=None) -> ScenarioResult:
                detail=f"{along:.4f} m of r·ω·t = {ideal:.4f} m"),
         Figure("lateral drift", lateral, LATERAL_BOUND * ideal, "m"),
         Figure("heading change", abs(math.degrees(_wrap(yaw - yaw0))), HEADING_BOUND, "deg"),
-        Figure("time off the floor", off["steps"] * sim.model.opt.timestep, OFF_FLOOR_BOUND,
-               "s"),
+        Figure("time off the floor", off.seconds, OFF_FLOOR_BOUND, "s",
+               detail=f"higher than {1000 * off.height:.2f} mm for {1000 * BOUNCE_TIME:g} ms "
+                      "or longer"),
         Figure("wheel speed reached", 100 * reached, 100 * (1 - WHEEL_SPEED_BOUND), "%",
                within="min", detail=f"command {omega:.4g} rad/s"),
     ]
@@ -268,8 +329,15 @@ def run_drive(sim: SimModel, frame=None) -> ScenarioResult:
     if reached < 1 - WHEEL_SPEED_BOUND:
         efforts = ", ".join(f"{w.joint} {w.effort if w.effort is not None else 0:g} N·m"
                             for w in (sim.left, sim.right))
-        result.problems.append(f"the motors' effort limit ({efforts}) cannot turn the wheels "
-                               f"at {omega:.4g} rad/s")
+        if clamped["steps"] * 2 >= len(late):  # the motors pushed at their limit
+            result.problems.append(f"the motors' effort limit ({efforts}) cannot turn the "
+                                   f"wheels at {omega:.4g} rad/s")
+        else:
+            gains = ", ".join(f"{w.gain:.4g}" for w in (sim.left, sim.right))
+            result.problems.append(f"the wheels do not reach {omega:.4g} rad/s, though the "
+                                   f"motors ({efforts}) are below their effort limit: "
+                                   "something holds them back (a contact, a joint limit, "
+                                   f"a load too heavy for the servo gain {gains} N·m·s/rad)")
     for wheel in (sim.left, sim.right):
         axis = axes[wheel.joint]
         if abs(axis[1]) < 0.9:

@@ -13,7 +13,6 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-
 from conftest import REPO
 
 # (robot, wheel radius, track) as SOURCES.md gives them

@@ -1,0 +1,169 @@
+"""A package's own mcar settings: ``mcar.yaml`` at the package root (beside package.xml).
+
+Everything in it is optional; a package without the file works as before. It says what
+mcar cannot find out from the files themselves::
+
+    robots:                 # which files are robots (globs, relative to the package root)
+      include: ["urdf/*.urdf.xacro"]   # only these (default: every robot file found)
+      exclude: ["urdf/custom_example.urdf"]
+    sim:
+      skip:                 # robots ci does not simulate, each with the reason it prints
+        "urdf/arm.urdf.xacro": "an arm on a fixed base, not a vehicle"
+
+Globs are matched against the file's path relative to the package root, written with
+``/``, by :func:`fnmatch.fnmatchcase`: ``*`` also matches across folders, so
+``urdf/*.xacro`` takes ``urdf/wheel/test_wheel.urdf.xacro`` too.
+
+The file is read like every other input: a regular file within the input size bound, by
+the bounded YAML loader (no object tags, no alias bombs, no duplicate keys); an unknown
+key or a value of the wrong type is a one-line error naming the file and line (exit 2),
+so a typo never silently changes what ci tests.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import InputError, UsageError
+
+FILE_NAME = "mcar.yaml"
+# Each section and the keys it takes; a list of globs or a mapping glob -> reason.
+_SCHEMA = {"robots": {"include": list, "exclude": list}, "sim": {"skip": dict}}
+
+
+@dataclass(frozen=True)
+class PackageConfig:
+    """The settings of one package; ``path`` is None when the package has no mcar.yaml."""
+
+    root: Path
+    path: Path | None = None
+    include: tuple[str, ...] = ()
+    exclude: tuple[str, ...] = ()
+    sim_skip: tuple[tuple[str, str], ...] = ()  # (glob, reason), in the file's order
+    lines: dict = field(default_factory=dict, compare=False)  # key path -> line
+
+    def relative(self, path: Path) -> str | None:
+        """``path`` relative to the package root, with ``/``; None outside the package."""
+        try:
+            return Path(path).resolve().relative_to(self.root.resolve()).as_posix()
+        except ValueError:
+            return None
+
+    def selects(self, path: Path) -> tuple[bool, str | None]:
+        """(taken as a robot, why not): ``include`` and ``exclude`` applied to ``path``."""
+        name = self.relative(path)
+        if name is None:
+            return True, None
+        if self.include and not any(fnmatch.fnmatchcase(name, g) for g in self.include):
+            return False, f"not in robots.include of {self._where('robots', 'include')}"
+        for glob in self.exclude:
+            if fnmatch.fnmatchcase(name, glob):
+                return False, f"robots.exclude '{glob}' of {self._where('robots', 'exclude')}"
+        return True, None
+
+    def sim_skip_reason(self, path: Path) -> str | None:
+        """The reason the package gives for not simulating ``path``, or None."""
+        name = self.relative(path)
+        if name is None:
+            return None
+        for glob, reason in self.sim_skip:
+            if fnmatch.fnmatchcase(name, glob):
+                return reason
+        return None
+
+    def _where(self, *keys: str) -> str:
+        line = self.lines.get(keys)
+        name = self.path.name if self.path is not None else FILE_NAME
+        return f"{name}:{line}" if line else name
+
+
+def load_package_config(root: Path) -> PackageConfig:
+    """The settings of the package at ``root`` (empty when it has no mcar.yaml)."""
+    path = Path(root) / FILE_NAME
+    if not path.exists() and not path.is_symlink():
+        return PackageConfig(root=Path(root))
+    return _parse(Path(root), path)
+
+
+def _parse(root: Path, path: Path) -> PackageConfig:
+    import yaml
+
+    from ..config.bounded_yaml import DuplicateKey, TooLarge, compose_and_load, short_repr
+    from ..load.bounded import read_input
+
+    shown = str(path)
+    try:
+        node, data = compose_and_load(read_input(path, shown).decode("utf-8"))
+    except (OSError, UnicodeDecodeError) as error:
+        raise InputError(f"cannot read: {getattr(error, 'strerror', None) or error}",
+                         file=shown) from None
+    except yaml.YAMLError as error:
+        mark = getattr(error, "problem_mark", None)
+        problem = getattr(error, "problem", None) or "not valid YAML"
+        if not isinstance(error, (TooLarge, DuplicateKey)):
+            problem = f"not valid YAML: {problem}"
+        raise UsageError(problem, file=shown, line=mark.line + 1 if mark else None) from None
+    lines = _key_lines(node)
+    if data is None:
+        return PackageConfig(root=root, path=path, lines=lines)
+
+    def fail(message: str, *keys: str):
+        raise UsageError(message, file=shown, line=lines.get(keys))
+
+    if not isinstance(data, dict):
+        fail(f"expected a mapping with {', '.join(_SCHEMA)}, got {short_repr(data)}")
+    found: dict[tuple[str, str], object] = {}
+    for section, value in data.items():
+        if section not in _SCHEMA:
+            fail(f"unknown key '{section}': {FILE_NAME} takes {', '.join(_SCHEMA)}",
+                 str(section))
+        if value is None:
+            continue
+        if not isinstance(value, dict):
+            fail(f"{section}: expected a mapping, got {short_repr(value)}", section)
+        for key, entry in value.items():
+            kind = _SCHEMA[section].get(key)
+            if kind is None:
+                fail(f"unknown key '{section}.{key}': {section} takes "
+                     f"{', '.join(_SCHEMA[section])}", section, str(key))
+            found[(section, key)] = _checked(entry, kind, f"{section}.{key}",
+                                             lambda m, k=(section, str(key)): fail(m, *k))
+    skip = found.get(("sim", "skip"), {})
+    return PackageConfig(root=root, path=path,
+                         include=tuple(found.get(("robots", "include"), ())),
+                         exclude=tuple(found.get(("robots", "exclude"), ())),
+                         sim_skip=tuple(skip.items()), lines=lines)
+
+
+def _checked(entry, kind, name: str, fail):
+    from ..config.bounded_yaml import short_repr
+
+    if entry is None:
+        return kind()
+    if kind is list:
+        if not isinstance(entry, list) or not all(isinstance(g, str) and g for g in entry):
+            fail(f"{name}: expected a list of globs, got {short_repr(entry)}")
+        return list(entry)
+    if not isinstance(entry, dict) or not all(
+            isinstance(g, str) and g and isinstance(r, str) and r.strip()
+            for g, r in entry.items()):
+        fail(f"{name}: expected a mapping of glob to reason (text), got {short_repr(entry)}")
+    return {g: " ".join(r.split()) for g, r in entry.items()}
+
+
+def _key_lines(node) -> dict[tuple[str, ...], int]:
+    """(section,) and (section, key) -> the line the key is written on."""
+    import yaml
+
+    lines: dict[tuple[str, ...], int] = {}
+    if not isinstance(node, yaml.MappingNode):
+        return lines
+    for key, value in node.value:
+        section = str(key.value)
+        lines[(section,)] = key.start_mark.line + 1
+        if isinstance(value, yaml.MappingNode):
+            for inner, _ in value.value:
+                lines[(section, str(inner.value))] = inner.start_mark.line + 1
+    return lines

@@ -23,15 +23,11 @@ import functools
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from ..errors import InputError, UsageError
 from ..packages.search import PackageSearch
 from .bounded import not_regular, read_input, read_open
 from .inputs import RobotInput, display_path
-
-if TYPE_CHECKING:  # checking a plain URDF imports neither xacro nor the config code
-    from ..config.overrides import Overrides
 
 # The xacro argument config.xacro reads overrides from (defined here, not in mobile_car.config,
 # so that loading a robot without overrides imports none of the config code).
@@ -48,7 +44,10 @@ class LoadOptions:
 
     mappings: dict[str, str] = field(default_factory=dict)  # NAME:=VALUE
     package_paths: list[Path] = field(default_factory=list)
-    overrides: Overrides | None = None  # --set/--config, validated and written once
+    # --set/--config, validated and written once: a mobile_car.config.overrides.Overrides,
+    # made by the config stage before loading. The loader reads only its xacro mappings
+    # (``.mappings``), so it depends on nothing of config: --set flows CLI -> config -> here.
+    overrides: object | None = None
     through_xacro: bool = False  # a plain URDF goes through xacro too (mcar build)
     # Refuse inputs over MCAR_MAX_INPUT_MB (xacro always does): for commands that hold
     # ~45x the file in memory (render); `mcar check` reads any size.

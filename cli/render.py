@@ -15,6 +15,7 @@ from mobile_car.names import shown
 from mobile_car.packages.bundled import PACKAGE_NAME
 from mobile_car.render.options import (
     DEFAULT_BACKGROUND,
+    FRAME_CHOICES,
     RENDERER_ENV,
     RENDERERS,
     VIEW_CHOICES,
@@ -148,15 +149,21 @@ def _progress(jobs, quiet: bool):
               help="Draw a joint turned or shifted: radians or metres, or with a unit "
                    "(--joint shoulder=30deg, --joint lift=5cm); within the joint's limits. "
                    "Repeatable; other joints stay at zero. One robot file only.")
+@click.option("--frames", type=click.Choice(FRAME_CHOICES), default="auto", show_default=True,
+              help="Link frames drawn as RViz's TF display draws them (red/green/blue x/y/z "
+                   "axes and the link's name): auto (every link, when the robot has no "
+                   "geometry to draw, like the tutorial's skeleton), bare (links without "
+                   "geometry), all, none.")
 @click.option("--force", is_flag=True, help="Draw every picture, even if unchanged.")
 @click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
 @robot_options
 @handle_errors
 def command(words, output, view, size, collision, background, grid, axes, renderer, joints,
-            force, quiet, package_paths, sets, config_files):
+            frames, force, quiet, package_paths, sets, config_files):
     started = time.perf_counter()
     options = RenderOptions(view=view, width=size[0], height=size[1], collision=collision,
-                            background=background, grid=grid, axes=axes, joints=joints)
+                            background=background, grid=grid, axes=axes, joints=joints,
+                            frames=frames)
     check_pixels(*size, renderer)
     selection, mappings = select_inputs(words, package_paths, sets, config_files)
     if joints and len(selection.inputs) != 1:

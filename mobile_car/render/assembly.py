@@ -41,7 +41,8 @@ class Piece:
     (from a file, in its own frame, coloured) or ``primitive``, the name of a unit box,
     cylinder or sphere (see :func:`unit_primitive`; ``transform`` includes the size) with
     ``rgba``, the 0..255 colour yourdfpy would give it (None: no URDF colour).
-    ``placeholder``: a mesh over a limit, not read; a unit box, sized by the scene."""
+    ``placeholder``: a mesh over a limit, not read; a unit box, sized by the scene.
+    ``overlay``: drawn in ``rgba`` whatever the view colours (a link frame's axis)."""
 
     link: str
     transform: np.ndarray
@@ -49,6 +50,7 @@ class Piece:
     primitive: str | None = None
     rgba: tuple | None = None
     placeholder: bool = False
+    overlay: bool = False
 
 
 def joint_position(joint: yourdfpy.Joint, positions: dict[str, float] | None) -> float:

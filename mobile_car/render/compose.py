@@ -122,8 +122,9 @@ def _overlay_strip(camera: Camera, axes: bool, grid_step: float | None):
 
 
 def compose(model: np.ndarray, camera: Camera, bounds: np.ndarray | None,
-            options: RenderOptions) -> Image.Image:
-    """The final RGB picture: background, grid, the model, then the triad.
+            options: RenderOptions, labels=()) -> Image.Image:
+    """The final RGB picture: background, grid, the model, link names (``labels``:
+    (text, world point) pairs), then the triad.
 
     ``model`` is (H, W, 4) uint8 with colour premultiplied by coverage, as drawn.
     """
@@ -138,6 +139,8 @@ def compose(model: np.ndarray, camera: Camera, bounds: np.ndarray | None,
     # "over" in 8-bit integers, rounded; cannot exceed 255 since colour <= alpha.
     pixels = model[..., :3] + (base * (255 - alpha) + 127) // 255
     image = Image.fromarray(pixels.astype(np.uint8), "RGB")
+    if labels:
+        _draw_labels(image, camera, labels)
     if options.axes or grid_step is not None:
         strip, top = _overlay_strip(camera, options.axes, grid_step)
         box = (0, top, camera.width, camera.height)
@@ -145,6 +148,23 @@ def compose(model: np.ndarray, camera: Camera, bounds: np.ndarray | None,
         region.alpha_composite(strip)
         image.paste(region.convert("RGB"), box)
     return image
+
+
+def _draw_labels(image: Image.Image, camera: Camera, labels) -> None:
+    """Each text just above and right of its point's pixel, on a pale backing so it
+    reads over the model and the grid."""
+    size = max(9, round(min(camera.width, camera.height) / 40))
+    text_font = font(size)
+    draw = ImageDraw.Draw(image, "RGBA")
+    points = camera.to_pixels(np.array([point for _, point in labels], dtype=float))
+    for (text, _), (x, y) in zip(labels, points, strict=True):
+        at = (float(x) + size * 0.6, float(y) - size * 0.6)
+        box = draw.multiline_textbbox(at, text, font=text_font, anchor="ld", spacing=2)
+        pad = max(1, size // 5)
+        draw.rectangle([box[0] - pad, box[1] - pad, box[2] + pad, box[3] + pad],
+                       fill=(255, 255, 255, 190))
+        draw.multiline_text(at, text, fill=TEXT_COLOR, font=text_font, anchor="ld",
+                            spacing=2)
 
 
 def png_bytes(image: Image.Image) -> bytes:

@@ -15,6 +15,8 @@ from ..errors import UsageError
 VIEWS = ("iso", "front", "side", "top")
 VIEW_CHOICES = VIEWS + ("all",)
 RENDERERS = ("auto", "gl", "raycast")
+# Which link frames get axes and names (see frames.py).
+FRAME_CHOICES = ("auto", "bare", "all", "none")
 RENDERER_ENV = "MCAR_RENDERER"
 
 # A light slate grey: white plates and black wheels both stand out against it.
@@ -44,8 +46,12 @@ class RenderOptions:
     grid: bool = True
     axes: bool = True
     joints: tuple = ()  # --joint: (name, value text) pairs; the rest stay at zero
+    frames: str = "auto"  # which link frames get axes and names (frames.FRAME_CHOICES)
 
     def __post_init__(self):
+        if self.frames not in FRAME_CHOICES:
+            raise UsageError(f"unknown --frames '{self.frames}'; choose one of "
+                             f"{', '.join(FRAME_CHOICES)}")
         if self.view not in VIEW_CHOICES:
             raise UsageError(f"unknown view '{self.view}'; choose one of {', '.join(VIEW_CHOICES)}")
         smallest = 2 * MIN_SIZE if self.view == "all" else MIN_SIZE  # all: four frames
@@ -59,6 +65,8 @@ class RenderOptions:
         data = asdict(self)
         if not self.joints:  # pictures at joint zero keep the key they had before --joint
             del data["joints"]
+        if self.frames == "auto":  # (DRAWING_VERSION says the skeleton's picture changed)
+            del data["frames"]
         return data
 
 

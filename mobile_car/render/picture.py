@@ -47,9 +47,11 @@ def draw_views(renderer, scene: Scene, options: RenderOptions) -> list[DrawnView
 
 
 def finish_picture(drawn: list[DrawnView], bounds: np.ndarray | None,
-                   options: RenderOptions) -> Image.Image:
-    """The final RGB picture from what :func:`draw_views` returned."""
-    images = [compose(view.model, view.camera, bounds, view.options) for view in drawn]
+                   options: RenderOptions, labels=()) -> Image.Image:
+    """The final RGB picture from what :func:`draw_views` returned; ``labels``: link
+    names to lay over it (Scene.labels)."""
+    images = [compose(view.model, view.camera, bounds, view.options, labels)
+              for view in drawn]
     if options.view != "all":
         return images[0]
     pairs = zip(drawn, images, strict=False)
@@ -59,4 +61,5 @@ def finish_picture(drawn: list[DrawnView], bounds: np.ndarray | None,
 
 def draw_picture(renderer, scene: Scene, options: RenderOptions) -> Image.Image:
     """The picture ``options`` ask for, in one go."""
-    return finish_picture(draw_views(renderer, scene, options), scene.bounds, options)
+    return finish_picture(draw_views(renderer, scene, options), scene.bounds, options,
+                          scene.labels)

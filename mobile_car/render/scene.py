@@ -36,7 +36,8 @@ from ..errors import McarError, RenderError
 from ..expand.xacro_build import display_path
 from ..load.bounded import not_regular
 from ..packages.search import PackageSearch
-from .assembly import Piece, pieces, unit_primitive
+from .assembly import Piece, link_poses, pieces, unit_primitive
+from .frames import axis_boxes, axis_length, chosen_frames, labels
 from .pose import joint_positions
 
 # Faces meeting at less than this angle are shaded as one smooth surface (cylinder
@@ -71,6 +72,9 @@ class Scene:
     link_names: tuple[str, ...] = ()
     # The files the meshes pulled in (materials, textures), inputs like the meshes.
     reads: tuple[Path, ...] = ()
+    # Link names to lay over the picture: (text, world point) per drawn frame (frames.py).
+    labels: tuple = ()
+    frames_only: bool = False  # nothing but link frames is drawn (a skeleton)
 
     @property
     def triangle_count(self) -> int:
@@ -150,17 +154,18 @@ def _meshes(root: etree._Element, source: ModelSource, search: PackageSearch,
 
 
 def load_scene(source: ModelSource, search: PackageSearch, collision: bool = False,
-               joints=(), with_links: bool = False) -> Scene:
+               joints=(), with_links: bool = False, frames: str = "auto") -> Scene:
     """Pose the robot (joints at zero, or as ``joints``, (name, value text) pairs of
     ``--joint``) and flatten its geometry into triangles; ``with_links`` also notes which
-    link each corner belongs to."""
+    link each corner belongs to; ``frames`` says which link frames get axes and names
+    (:mod:`.frames`)."""
     root = parse_urdf(source)
     mesh_files(root, source, search, collision)  # report a missing mesh before yourdfpy hides it
-    return _load_model(source, search, collision, joints, with_links)
+    return _load_model(source, search, collision, joints, with_links, frames)
 
 
 def _load_model(source: ModelSource, search: PackageSearch, collision: bool,
-                joints=(), with_links: bool = False) -> Scene:
+                joints=(), with_links: bool = False, frames: str = "auto") -> Scene:
     def resolve(fname: str) -> str:
         return str(search.resolve_uri(fname, base=source.path.parent))
 
@@ -179,8 +184,12 @@ def _load_model(source: ModelSource, search: PackageSearch, collision: bool,
         positions = joint_positions(model.robot, joints, display_path(source.path))
         link_colors = _link_colors(model) if collision else {}
         with np.errstate(all="ignore"):  # an overflow is reported below, not as a warning
-            scene = _flatten(pieces(model.robot, resolve, collision, positions, reads),
-                             link_colors, with_links)
+            placed = list(pieces(model.robot, resolve, collision, positions, reads))
+            drawn = chosen_frames(model.robot, link_poses(model.robot, positions),
+                                  {piece.link for piece in placed}, frames)
+            scene = _flatten(placed, link_colors, with_links, drawn)
+        scene.labels = labels(drawn)
+        scene.frames_only = bool(drawn) and not placed
         scene.reads = tuple(dict.fromkeys(reads))
     except McarError:
         raise
@@ -271,7 +280,8 @@ def _face_colors(piece: Piece, link_colors: dict[str, tuple]) -> np.ndarray | No
 def _primitive_corners(piece: Piece, link_colors: dict[str, tuple]) -> tuple:
     """The smoothed corners of a unit primitive, in the piece's colour. The shape is
     smoothed once per process: a primitive has one colour, which smoothing keeps."""
-    colour = PLACEHOLDER_RGBA if piece.placeholder else _face_colors(piece, link_colors)
+    colour = PLACEHOLDER_RGBA if piece.placeholder else \
+        piece.rgba if piece.overlay else _face_colors(piece, link_colors)
     if colour is None:
         colour = piece.rgba if piece.rgba is not None else \
             np.round(np.array(NO_MATERIAL_RGBA) * 255).astype(np.uint8)
@@ -310,12 +320,16 @@ def _sized_markers(markers: list[Piece], bounds) -> list[Piece]:
 
 
 def _flatten(placed: Iterator[Piece], link_colors: dict[str, tuple],
-             with_links: bool = False) -> Scene:
+             with_links: bool = False, frames=()) -> Scene:
     placed = list(placed)
     markers = [piece for piece in placed if piece.placeholder]
     if markers:
         placed = [piece for piece in placed if not piece.placeholder]
         placed += _sized_markers(markers, _flatten(iter(placed), link_colors).bounds)
+    if frames:  # axes sized by the rest of the robot
+        length = axis_length(frames, _flatten(iter(placed), link_colors).bounds)
+        placed += [Piece(frame.link, transform, primitive="box", rgba=rgba, overlay=True)
+                   for frame in frames for transform, rgba in axis_boxes(frame, length)]
     shaped = []
     # Where two faces lie in one plane, the one drawn first shows. Pictures keep the order
     # they had when yourdfpy's scene named the pieces geometry_0, geometry_1, ... and they

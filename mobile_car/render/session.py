@@ -61,6 +61,7 @@ class _Drawn:
     job: RenderJob
     views: list[DrawnView]
     bounds: object
+    labels: tuple  # link names laid over the picture (Scene.labels)
     fingerprint: str
     renderer: str
     warnings: list
@@ -199,12 +200,14 @@ class RenderSession:
                 return JobResult(job, "unchanged", warnings=warnings,
                                  seconds=time.perf_counter() - started)
             scene = load_scene(source, result.loaded.search, collision=self.options.collision,
-                               joints=self.options.joints)
+                               joints=self.options.joints, frames=self.options.frames)
             if job.target is not None:  # what trimesh opened, should the scan have missed it
                 refuse_overwriting(job.target, scene.reads)
             files = [*files, *scene.reads]
             if not scene.triangle_count:
                 warnings.append(f"no {kind} geometry to draw")
+            elif scene.frames_only:
+                warnings.append(f"no {kind} geometry to draw: drew the link frames")
             renderer = self._renderer()
             views = draw_views(renderer, scene, self.options)
         except RendererUnavailableError:
@@ -214,14 +217,14 @@ class RenderSession:
         except Exception as exc:  # trimesh, numpy or GL on input nothing checked for
             return JobResult(job, "failed", error=_drawing_error(job, exc),
                              seconds=time.perf_counter() - started)
-        return _Drawn(job, views, scene.bounds, fingerprint, renderer.name, warnings, started,
-                      key, files)
+        return _Drawn(job, views, scene.bounds, scene.labels, fingerprint, renderer.name,
+                      warnings, started, key, files)
 
     def _finish(self, drawn: _Drawn, manifest: Manifest | None) -> JobResult:
         """Second stage, on any thread: overlays, PNG encoding, atomic write, manifest."""
         job = drawn.job
         try:
-            image = finish_picture(drawn.views, drawn.bounds, self.options)
+            image = finish_picture(drawn.views, drawn.bounds, self.options, drawn.labels)
             png = png_bytes(image)
             if job.target is not None:
                 atomic_write(job.target, png)

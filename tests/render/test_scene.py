@@ -18,14 +18,14 @@ PKG = Path(__file__).parent / "pkg"
 REPO = Path(__file__).parents[2]
 
 
-def scene_of(path: Path, collision=False, text: str | None = None):
+def scene_of(path: Path, collision=False, text: str | None = None, frames: str = "auto"):
     search = PackageSearch(origin=path)
     if text is None:
         loaded = load_robot(RobotInput(path), LoadOptions())
         source, search = model_source(loaded), loaded.search
     else:
         source = ModelSource(text.encode(), path, lines_match=True)
-    return load_scene(source, search, collision=collision)
+    return load_scene(source, search, collision=collision, frames=frames)
 
 
 def colours(scene) -> set[tuple]:
@@ -145,5 +145,14 @@ def test_broken_xacro_is_a_build_error(tmp_path):
 
 
 def test_no_visual_geometry_gives_an_empty_scene():
+    scene = scene_of(REPO / "urdf/tutorial/01_skeleton.urdf", frames="none")
+    assert scene.triangle_count == 0 and scene.bounds is None and scene.labels == ()
+
+
+def test_no_visual_geometry_draws_the_link_frames_instead():
     scene = scene_of(REPO / "urdf/tutorial/01_skeleton.urdf")
-    assert scene.triangle_count == 0 and scene.bounds is None
+    # three axes of 12 triangles (boxes) for each of the five frames, at the origin
+    assert scene.triangle_count == 5 * 3 * 12 and scene.frames_only
+    assert np.allclose(scene.bounds[0], -0.1 / 28) and np.allclose(scene.bounds[1].max(), 0.1)
+    assert scene.labels == (("base_link\n  wheel_1\n  wheel_2\n  wheel_3\n  wheel_4",
+                             (0.0, 0.0, 0.0)),)

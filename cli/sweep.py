@@ -96,8 +96,14 @@ def _positive(ctx, param, value):
 @handle_errors
 def command(words, varies, samples, seed, scenarios, jobs, scheduler, output, resume, plot,
             plot_x, plot_y, colour, left, right, package_paths, sets, config_files):
+    from mobile_car import extras
     from mobile_car.sweep.results import results_format
 
+    # The results table needs pandas (and pyarrow for Parquet); Dask and the plot only
+    # when asked for.
+    extras.require("mcar sweep", "sweep", ("pandas", "pyarrow")
+                   + (("distributed",) if scheduler is not None else ())
+                   + (("matplotlib",) if plot is not None else ()))
     if scheduler is not None:  # before anything is loaded, and before Dask connects
         from mobile_car.sweep.execute import check_scheduler_address
 

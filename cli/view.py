@@ -61,11 +61,9 @@ POLL_SECONDS = 0.3
 
 
 def _require_viser() -> None:
-    try:
-        import viser  # noqa: F401
-    except ImportError:
-        raise UsageError('mcar view needs viser, which is not installed: '
-                         'pip install "mcar[view]"') from None
+    from mobile_car import extras
+
+    extras.require("mcar view", "view")
 
 
 def _choose(selection):

@@ -47,9 +47,13 @@ Exit codes:
 @handle_errors
 def command(path, name):
     from mobile_car.scaffold import create_package
+    from mobile_car.scaffold.install_source import install_source
 
-    written = create_package(Path(path), name)
+    source = install_source()
+    written = create_package(Path(path), name, source.requirement)
     for file in written:
         click.echo(f"created {display_path(file)}", err=True)
+    if source.note:
+        click.echo(f"mcar: note: {source.note}", err=True)
     click.echo(f"next: cd {display_path(Path(path))} && mcar ci   "
                "(then `mcar new part NAME` to add a part)", err=True)

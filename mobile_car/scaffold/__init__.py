@@ -39,12 +39,18 @@ PART_FILES = {"part/part.xacro": "{part}.xacro",
 _NAME_RE = re.compile(r"[a-z][a-z0-9_]*")
 
 
-def create_package(path: Path, name: str | None = None) -> list[Path]:
+def create_package(path: Path, name: str | None = None,
+                   requirement: str | None = None) -> list[Path]:
     """Write a new description package at ``path``; returns the files written. Nothing
-    is written unless all of it can be: see :mod:`.placing`."""
+    is written unless all of it can be: see :mod:`.placing`. ``requirement``: what the
+    GitHub workflow pip-installs mcar as (default: :func:`.install_source.install_source`)."""
+    from .install_source import install_source
+
     name = name or path.resolve().name
     _require_name(name, "package", "--name")
-    files = {destination.format(name=name): _filled(template, {"NAME": name})
+    tokens = {"NAME": name,
+              "MCAR_REQUIREMENT": requirement or install_source().requirement}
+    files = {destination.format(name=name): _filled(template, tokens)
              for template, destination in PACKAGE_FILES.items()}
     files[GITKEEP] = ""
     require_makeable(path, list(files), _length_hint(name, "package", "--name", files))

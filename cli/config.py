@@ -50,25 +50,37 @@ def _text(table: dict) -> str:
         if not entries:  # a package may derive nothing
             continue
         rows.append(f"{title}:")
-        width = max(len(name) for name in entries) + 2
-        for name, item in entries.items():
-            mark = "*" if item.get("overridden") else " "
-            value = f"{item['value']:.6g}"
-            note = item["meaning"]
-            if item.get("overridden"):  # the meaning describes the default, not this value
-                note += f" [stale: said of the default {item['default']:.6g}]"
-            if "expression" in item:
-                note += f"  = {item['expression']}"
-            path, _, line = item["defined"].rpartition(":")
-            where = f"{Path(path).name}:{line}"
-            plausible = item.get("range_text", "")
-            rows.append(f"{mark}{name:<{width}}{value:>10} {item['unit']:<7} "
-                        f"{item['source']:<10}{plausible:<14}{where:<18}{note}")
+        rows += _columns([_cells(name, item) for name, item in entries.items()])
         rows.append("")
     if any(item.get("overridden") for item in table["dimensions"].values()):
         rows.append("* overridden: its meaning was written for the default value")
     rows.append(f"Defined in {display_path(table['config'])}")
     return "\n".join(rows)
+
+
+def _cells(name: str, item: dict) -> list[str]:
+    """One row: mark and name, value, unit, source, range, where defined, meaning."""
+    note = item["meaning"]
+    if item.get("overridden"):  # the meaning describes the default, not this value
+        note += f" [stale: said of the default {item['default']:.6g}]"
+    if "expression" in item:
+        note += f"  = {item['expression']}"
+    path, _, line = item["defined"].rpartition(":")
+    mark = "*" if item.get("overridden") else " "
+    return [mark + name, f"{item['value']:.6g}", item["unit"], item["source"],
+            item.get("range_text", ""), f"{Path(path).name}:{line}", note]
+
+
+def _columns(rows: list[list[str]]) -> list[str]:
+    """Rows aligned in columns as wide as their widest cell, two spaces apart, so no two
+    columns ever touch; the value column right-aligned, the last left ragged."""
+    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]) - 1)]
+    lines = []
+    for row in rows:
+        cells = [cell.rjust(width) if i == 1 else cell.ljust(width)
+                 for i, (cell, width) in enumerate(zip(row, widths, strict=False))]
+        lines.append("  ".join([*cells, row[-1]]).rstrip())
+    return lines
 
 
 @click.command("config", help=HELP, short_help="Show the robot's dimensions.")

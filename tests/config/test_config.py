@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 
 import pytest
 import yaml
@@ -66,6 +67,30 @@ def test_config_text_table_without_overrides_has_no_legend(run_mcar):
     assert not [line for line in result.stdout.splitlines() if line.startswith("*")]
     assert "stale" not in result.stdout
     assert result.stdout.rstrip().splitlines()[-1] == "Defined in urdf/config.xacro"
+
+
+def test_config_text_table_keeps_its_columns_apart(run_mcar):
+    """Every row has its seven cells two or more spaces apart, the same as --format json
+    gives them (a long range once ran into the file name: 10rpm..20000rpmconfig.xacro:67)."""
+    text = run_mcar("config").stdout
+    document = json.loads(run_mcar("config", "--format", "json").stdout)
+    rows = [line for line in text.splitlines() if line.startswith(" ")]
+    assert len(rows) == len(document["dimensions"]) + len(document["derived"])
+    starts = None
+    for row in rows:
+        name = row.split()[0]
+        entry = document["dimensions"].get(name) or document["derived"][name]
+        cells = re.split(r"\s{2,}", row.strip(), maxsplit=5)
+        expected = [name, f"{entry['value']:.6g}", entry["unit"], entry["source"]]
+        if entry.get("range_text"):
+            expected.append(entry["range_text"])
+        assert cells[:len(expected)] == expected, row
+        where = f"config.xacro:{entry['defined'].rpartition(':')[2]}"
+        assert f"  {where}  " in row
+        column = row.index(f"  {where}  ")
+        if name in document["dimensions"]:  # one section: one column for every row
+            starts = column if starts is None else starts
+            assert column == starts, row
 
 
 def test_json_output_round_trips_into_config(run_mcar, tmp_path):

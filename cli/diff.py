@@ -99,7 +99,12 @@ def command(words, fmt, tolerance, picture, renderer, package_paths, sets, confi
         from mobile_car.diff import report
 
         write = report.markdown if fmt == "markdown" else report.text
-        parts = [write(d) for d in diffs]
+        parts, listed = [], []  # config.xacro's changes are listed once, where first shown
+        for d in diffs:
+            key = [(c.field, c.old, c.new) for c in d.dimensions or ()] if d.changed else None
+            parts.append(write(d, dimensions=key not in listed))
+            if key:
+                listed.append(key)
         parts += [f"robot file removed: {name}\n" for name in only_old]
         parts += [f"robot file added: {name}\n" for name in only_new]
         if fmt == "markdown":

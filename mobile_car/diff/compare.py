@@ -79,9 +79,10 @@ class RobotDiff:
 
     @property
     def changed(self) -> bool:
+        """The robot itself changed. A dimension of config.xacro that changed without
+        changing this robot (a part that does not use it) is not a change to it."""
         return bool(self.added or self.removed or self.renamed or self.changes
-                    or self.changed_totals or self.dimensions
-                    or self.old.name != self.new.name)
+                    or self.changed_totals or self.old.name != self.new.name)
 
     def grouped(self, section: str) -> list[tuple[str, list[Change]]]:
         """The changes of one section by subject, the subject with the biggest first."""

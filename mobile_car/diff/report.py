@@ -62,26 +62,33 @@ def delta(change: Change) -> str:
     return parts
 
 
+def counted(count: int, noun: str) -> str:
+    """``1 link``, ``2 links``: the nouns these reports count take a plain -s."""
+    return f"{count} {noun}" + ("" if count == 1 else "s")
+
+
 def summary(diff: RobotDiff) -> str:
     """One line: what kinds of change there are, and the total mass."""
+    if not diff.changed:
+        return "no change to the robot"
     bits = []
     for what, items in (("renamed", diff.renamed), ("added", diff.added),
                         ("removed", diff.removed)):
         if items:
             bits.append(f"{len(items)} {what}")
-    for section, title in (*SECTIONS, ("frame", "frames moved")):
+    for section, noun, verb in (("joint", "joint", "changed"), ("link", "link", "changed"),
+                                ("frame", "frame", "moved")):
         count = len(diff.grouped(section))
         if count:
-            name = title.lower() if section == "frame" else f"{title.lower()} changed"
-            bits.append(f"{count} {name}")
+            bits.append(f"{counted(count, noun)} {verb}")
     if diff.dimensions:
-        bits.append(f"{len(diff.dimensions)} dimensions changed")
+        bits.append(f"{counted(len(diff.dimensions), 'dimension')} changed")
     mass = next((c for c in diff.totals if c.field == "mass"), None)
     if mass is not None:
         moved = mass in diff.changed_totals
         bits.append(f"total mass {show(mass.old)} -> {show(mass.new)} kg" if moved
                     else f"total mass unchanged ({show(mass.new)} kg)")
-    return ", ".join(bits) if diff.changed else "no change to the robot"
+    return ", ".join(bits)
 
 
 def _structure_lines(diff: RobotDiff) -> list[tuple[str, str]]:
@@ -94,7 +101,9 @@ def _structure_lines(diff: RobotDiff) -> list[tuple[str, str]]:
     return rows
 
 
-def text(diff: RobotDiff) -> str:
+def text(diff: RobotDiff, dimensions: bool = True) -> str:
+    """The comparison for a terminal; ``dimensions``: list config.xacro's changed
+    dimensions (False: an earlier robot of the same run listed the same ones)."""
     lines = [f"{diff.old.label} -> {diff.new.label}: {summary(diff)}"]
     if not diff.changed:
         return lines[0] + "\n"
@@ -108,9 +117,11 @@ def text(diff: RobotDiff) -> str:
             for subject, changes in groups:
                 lines.append(f"  {subject}")
                 lines += [_text_row(change, 4) for change in changes]
-    if diff.dimensions:
+    if diff.dimensions and dimensions:
         lines += ["", "Dimensions (config.xacro):"]
         lines += [_text_row(c, 2, c.field) for c in sorted(diff.dimensions, key=lambda c: -c.size)]
+    elif diff.dimensions:
+        lines += ["", "Dimensions (config.xacro): the same changes as above"]
     lines += ["", "Totals:"]
     for change in diff.totals:
         if change in diff.changed_totals:
@@ -141,7 +152,8 @@ def _table(header: list[str], rows: list[list[str]]) -> list[str]:
     return lines
 
 
-def markdown(diff: RobotDiff) -> str:
+def markdown(diff: RobotDiff, dimensions: bool = True) -> str:
+    """The comparison for a pull request; ``dimensions`` as for :func:`text`."""
     lines = [f"### `{diff.old.label}` → `{diff.new.label}`", "", f"**{summary(diff)}**", ""]
     if not diff.changed:
         return "\n".join(lines)
@@ -150,7 +162,9 @@ def markdown(diff: RobotDiff) -> str:
         for subject, changes in diff.grouped(section):
             rows += [[section, f"`{subject}`", label(c), show(c.old), show(c.new), delta(c)]
                      for c in changes]
-    for c in sorted(diff.dimensions or (), key=lambda c: -c.size):
+    if diff.dimensions and not dimensions:
+        rows.append(["dimension", "", "the same changes as above", "", "", ""])
+    for c in sorted((diff.dimensions or ()) if dimensions else (), key=lambda c: -c.size):
         rows.append(["dimension", f"`{c.field}`", _scale_unit(c.kind)[1], show(c.old),
                      show(c.new), delta(c)])
     if rows:

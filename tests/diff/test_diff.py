@@ -236,10 +236,25 @@ def test_diff_of_two_revisions_and_of_the_whole_package(run_mcar, two_commits):
     assert whole.returncode == 1, whole.stderr
     robots = {r["new"]["file"]: r for r in json.loads(whole.stdout)["robots"]}
     assert robots["urdf/mobile_robot.xacro"]["changes"] != []
-    # The laser has no wheel: nothing of it moved, yet the config it reads changed.
+    # The laser has no wheel: nothing of it moved. The config it reads changed, which the
+    # JSON keeps, but the laser itself did not: no change to report for it.
     laser = robots["urdf/laser/test_laser.urdf.xacro"]
-    assert laser["changes"] == [] and laser["changed"] is True
+    assert laser["changes"] == [] and laser["changed"] is False
     assert "wheel_radius" in {d["field"] for d in laser["dimensions"]}
+    text = run_mcar("diff", "HEAD~1", cwd=two_commits).stdout
+    assert "urdf/laser/test_laser.urdf.xacro: no change to the robot\n" in text
+    # config.xacro's changes are listed once, under the first robot they change
+    assert text.count("Dimensions (config.xacro):\n") == 1
+    assert text.count("Dimensions (config.xacro): the same changes as above") == \
+        sum(1 for r in robots.values() if r["changed"]) - 1
+
+
+@pytest.mark.parametrize("count, noun, shown", [(1, "link", "1 link"), (2, "link", "2 links"),
+                                                (0, "frame", "0 frames")])
+def test_counts_agree_with_their_nouns(count, noun, shown):
+    from mobile_car.diff.report import counted
+
+    assert counted(count, noun) == shown
 
 
 def test_a_robot_file_added_since_the_revision(run_mcar, two_commits):

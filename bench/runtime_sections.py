@@ -35,7 +35,8 @@ def section_render(rows: list[str], work: Path, quick: bool) -> None:
     walls, codes = [], []
     for _ in range(runs):
         shutil.rmtree(out, ignore_errors=True)
-        wall, code = run_timed([MCAR, "render", "--force", "-o", str(out), "--quiet"], cwd=work)
+        wall, code = run_timed([MCAR, "render", "--bundled", "--force", "-o", str(out), "--quiet"],
+                               cwd=work)
         walls.append(wall)
         codes.append(code)
     images = [p for p in out.rglob("*.png") if p.name != "index.png"]

@@ -44,10 +44,34 @@ INPUT is what every command takes: a .urdf or .xacro file, a folder (its .urdf f
 and robot .xacro files, in urdf/, robots/, xacro/, description/ or itself), - for
 stdin, or the name of a part folder of the package (wheel, chassis). None means the
 package you stand in (the nearest package.xml above), else every package of the
-workspace you stand in (here or in src/), else the bundled mobile car; stderr says
-which. NAME:=VALUE words set xacro arguments."""
+workspace you stand in (here or in src/); stderr says which. Anywhere else, name the
+robot, or give --bundled for the mobile car bundled with mcar. NAME:=VALUE words set
+xacro arguments."""
 
 _color: bool | None = None  # --color/--no-color of this run; None: the NO_COLOR/TTY rule
+_bundled = False  # --bundled of this run: outside any package, the bundled car is meant
+
+
+def _set_bundled(ctx, param, value):
+    global _bundled
+    _bundled = value
+    return value
+
+
+def working_here(package_paths):
+    """What a command without INPUT (or with part names) works on: the package or workspace
+    you stand in. Outside both, the bundled car only when asked for with --bundled: a CI job
+    started in the wrong folder must not go green on mcar's own robot."""
+    from mobile_car.load.package import working_set
+
+    def working():
+        found = working_set(Path.cwd(), package_paths)
+        if found.kind == "bundled" and not _bundled:
+            raise UsageError(f"no robot package here: {Path.cwd()} has no package.xml above "
+                             "it and no packages in it or its src/; name a robot file or "
+                             "folder, or give --bundled for the mobile car bundled with mcar")
+        return found
+    return working
 
 
 def _set_color(ctx, param, value):
@@ -71,6 +95,9 @@ def robot_options(func):
                         callback=_set_color, is_eager=True,
                         help="Colour the severity of problems (default: on a terminal, "
                              "unless NO_COLOR is set).")(func)
+    func = click.option("--bundled", is_flag=True, expose_value=False, callback=_set_bundled,
+                        help="With no INPUT outside any package: work on the mobile car "
+                             "bundled with mcar (without it, that is an error).")(func)
     func = click.option("--no-sandbox", is_flag=True, expose_value=False,
                         callback=_no_sandbox,
                         help="Expand xacro without the sandbox (no seccomp, no Landlock): "
@@ -94,14 +121,13 @@ def load_inputs(words, package_paths, sets, config_files, through_xacro: bool = 
 def select_inputs(words, package_paths, sets, config_files, through_xacro: bool = False):
     """The first half of :func:`load_inputs`, which loads nothing: (Selection, mappings)."""
     from mobile_car.load.inputs import split_words
-    from mobile_car.load.package import working_set
     from mobile_car.load.robot import CONFIG_ARG, LoadOptions, refuse_unused_arguments
     from mobile_car.load.selection import select
 
     names, mappings = split_words(words)
     if CONFIG_ARG in mappings and (sets or config_files):
         raise UsageError(f"{CONFIG_ARG}:= and --set/--config both give overrides; use one")
-    selection = select(names, lambda: working_set(Path.cwd(), package_paths))
+    selection = select(names, working_here(package_paths))
     refuse_unused_arguments(selection.inputs, LoadOptions(
         mappings, through_xacro=through_xacro), overriding=bool(sets or config_files))
     return selection, mappings

@@ -194,15 +194,16 @@ def _draw(picture: str, loaded, diff, renderer: str, probe) -> None:
 
 
 def _file_sides(names, package_paths):
-    from mobile_car.load.package import working_set
     from mobile_car.load.selection import select
+
+    from .common import working_here
 
     if len(names) != 2:
         raise UsageError("give OLD and NEW: two robot files, or a git revision "
                          "(mcar diff HEAD~1)")
     sides = []
     for name in names:
-        selection = select([name], lambda: working_set(Path.cwd(), package_paths))
+        selection = select([name], working_here(package_paths))
         if len(selection.inputs) != 1:
             raise UsageError(f"{name} holds {len(selection.inputs)} robot files; OLD and NEW "
                              "are one robot each (with a git revision, a folder may hold many)")

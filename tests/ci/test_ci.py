@@ -20,7 +20,7 @@ def expected_labels() -> list[str]:
 
 
 def test_green_on_the_bundled_package_with_pictures(run_mcar, tmp_path):
-    result = run_mcar("ci", cwd=tmp_path, timeout=300)
+    result = run_mcar("ci", "--bundled", cwd=tmp_path, timeout=300)
     assert result.returncode == 0, result.stderr
     labels = expected_labels()
     rows = result.stdout.splitlines()

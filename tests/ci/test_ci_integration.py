@@ -67,8 +67,8 @@ def test_example_workflow_runs_the_commands_the_readme_documents():
 
 
 def test_ci_example_command_writes_a_junit_file(run_mcar, tmp_path):
-    result = run_mcar("ci", "--format", "github", "--junit-xml", "mcar-junit.xml",
-                      "--no-render", cwd=tmp_path)
+    result = run_mcar("ci", "--bundled", "--format", "github", "--junit-xml",
+                      "mcar-junit.xml", "--no-render", cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     from xml.etree import ElementTree as ET
 

@@ -178,7 +178,7 @@ def test_bad_overrides_exit_2_naming_the_dimension(run_mcar, tmp_path, args, mes
 ])
 def test_bad_config_files_exit_2_naming_file_and_line(run_mcar, tmp_path, content, message):
     (tmp_path / "my.yaml").write_text(content)
-    result = run_mcar("config", "--config", "my.yaml", cwd=tmp_path)
+    result = run_mcar("config", "--bundled", "--config", "my.yaml", cwd=tmp_path)
     assert result.returncode == 2
     assert message in result.stderr
 

@@ -1,5 +1,5 @@
-"""`mcar build` with no arguments, outside any package, builds the description bundled in
-the installed wheel: every robot file of urdf/ into build/, mirroring the tree."""
+"""`mcar build --bundled`, outside any package, builds the description bundled in the
+installed wheel: every robot file of urdf/ into build/, mirroring the tree."""
 
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ def robot_files_of_checkout() -> set[str]:
 
 
 def test_build_without_arguments_writes_every_robot_file(run_mcar, tmp_path, built_dir):
-    done = run_mcar("build", cwd=tmp_path)
+    done = run_mcar("build", "--bundled", cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     assert done.stdout == ""
     out = tmp_path / "build"

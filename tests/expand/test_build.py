@@ -214,8 +214,9 @@ def test_build_folder_mirrors_the_package_and_goes_on_past_failures(run_mcar, tm
 
 
 def test_build_without_input_builds_the_bundled_robot_files(run_mcar, tmp_path):
-    """From a folder that is no package, `mcar build` builds the copy inside the wheel."""
-    result = run_mcar("build", cwd=tmp_path)
+    """From a folder that is no package, `mcar build --bundled` builds the copy inside the
+    wheel."""
+    result = run_mcar("build", "--bundled", cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     built = {str(p.relative_to(tmp_path / "build")) for p in (tmp_path / "build").rglob("*.urdf")}
     sources = {str(p.relative_to(REPO / "urdf")) for p in (REPO / "urdf").rglob("*.xacro")

@@ -41,7 +41,7 @@ def test_the_dimensions_of_a_new_package_are_its_own(run_mcar, tmp_path):
     package = tmp_path / "demo"
     table = run_mcar("config", cwd=package)
     assert table.returncode == 0, table.stderr
-    assert re.search(r"base_length\s+0\.3 m\s+design", table.stdout)
+    assert re.search(r"base_length\s+0\.3\s+m\s+design", table.stdout)
     built = run_mcar("build", "urdf/demo.urdf.xacro", "--set", "base_length=32cm", cwd=package)
     assert built.returncode == 0, built.stderr
     assert '<box size="0.32 0.2 0.05"/>' in built.stdout

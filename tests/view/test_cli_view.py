@@ -140,7 +140,7 @@ def test_view_shows_one_robot(run_mcar, arm_copy):
 
 
 def test_the_bundled_robot_is_the_package_s_top_level_robot(viewer, tmp_path):
-    view = viewer("--port", "0", cwd=tmp_path)
+    view = viewer("--port", "0", "--bundled", cwd=tmp_path)
     line = view.line("out")
     assert "mobile_car/description/urdf/mobile_robot.xacro at http://127.0.0.1:" in line, line
     assert view.stop() == 130

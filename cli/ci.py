@@ -190,6 +190,9 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
             say_which_package(selection)
     finally:
         cache.save()
+    if manifest is not None and selection.kind in ("package", "folder"):
+        # pictures of robot files since deleted leave the contact sheet (render's are kept)
+        manifest.forget_orphans({manifest.key(item.png) for item in items if item.png})
     if manifest is not None and any(item.ok for item in items):
         _render(checked, items, manifest, renderer, basis)
     code = pipeline.exit_code(items)

@@ -210,8 +210,7 @@ def command(words, output, view, size, collision, background, grid, axes, render
                 streams.write(outcome.last_png)
             if sheet:
                 if selection.kind in ("package", "folder"):
-                    manifest.forget_all_but({manifest.key(job.target) for job in jobs}
-                                            | {"index.png"})
+                    manifest.forget_orphans({manifest.key(job.target) for job in jobs})
                 session.write_contact_sheet(manifest)
             if not quiet:
                 _summary(session, outcome, len(jobs), outdir, sheet,
@@ -224,7 +223,7 @@ def _nothing_changed(selection, jobs, outdir: Path, sheet: bool, options, render
     and the contact sheet are current by the stamps of the files they were made from:
     the whole run, decided without loading a robot or importing xacro, numpy or GL."""
     from mobile_car.freshness import diagnostics_from
-    from mobile_car.render.manifest import CONTACT_SHEET, Manifest, picture_key
+    from mobile_car.render.manifest import Manifest, picture_key
 
     manifest = Manifest(outdir)
     if not manifest.entries:
@@ -238,8 +237,8 @@ def _nothing_changed(selection, jobs, outdir: Path, sheet: bool, options, render
             return False
         entries.append(entry)
     if sheet:
-        listed = {manifest.key(job.target) for job in jobs} | {CONTACT_SHEET}
-        if selection.kind in ("package", "folder") and set(manifest.entries) - listed:
+        listed = {manifest.key(job.target) for job in jobs}
+        if selection.kind in ("package", "folder") and manifest.orphans(listed):
             return False  # pictures of robots since removed: the sheet changes
         if not manifest.sheet_is_current():
             return False

@@ -150,6 +150,27 @@ class Manifest:
             del self.entries[key]
         self._changed = self._changed or bool(stale)
 
+    def orphans(self, keys: set[str]) -> set[str]:
+        """The entries no run can make again: not among ``keys`` (this run's outputs) and
+        made from a file that is gone (a robot file deleted, a variant removed) or from
+        files never stamped. The pictures another command drew into the same folder (mcar
+        ci's variants, beside mcar render's pictures) are kept, so that neither command
+        undoes the other's work and both show the same contact sheet."""
+        found = set()
+        for key, entry in self.entries.items():
+            if key in keys or key == CONTACT_SHEET:
+                continue
+            files = entry.get("files")
+            if not isinstance(files, list) or not files or not all(
+                    isinstance(stamp, list) and stamp and isinstance(stamp[0], str)
+                    and os.path.exists(stamp[0]) for stamp in files):
+                found.add(key)
+        return found
+
+    def forget_orphans(self, keys: set[str]) -> None:
+        """Drop :meth:`orphans` (after a full run over a package or folder)."""
+        self.forget_all_but(set(self.entries) - self.orphans(keys))
+
     @staticmethod
     def sheet_caption(key: str) -> str:
         """A picture's caption on the contact sheet: its path below the folder, without

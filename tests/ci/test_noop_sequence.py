@@ -1,0 +1,61 @@
+"""After one full `mcar ci`, render and ci with nothing changed are no-ops for each other in
+any order: each decides from the stamps alone (no xacro, lxml, numpy or GL imported), writes
+no file, and both keep the same contact sheet (ci's variant pictures included). Before, each
+command's run made the other's record stale: render forgot ci's variant pictures, so the
+next ci built and drew them again (3.1 s), and render then redrew the sheet (1.2 s)."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+HEAVY = {"xacro", "lxml", "numpy", "trimesh", "moderngl", "yourdfpy", "mujoco"}
+MAIN = "import sys; from mobile_car.cli.main import main; sys.argv[0] = 'mcar'; main()"
+
+
+def files(package):
+    return {p.relative_to(package).as_posix(): (p.stat().st_mtime_ns, p.stat().st_ino)
+            for folder in ("build", "renders") for p in (package / folder).rglob("*")
+            if p.is_file()}
+
+
+def traced(*args, cwd):
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")}
+    done = subprocess.run([sys.executable, "-X", "importtime", "-c", MAIN, *args], cwd=cwd,
+                          env=env, capture_output=True, text=True, timeout=300)
+    imported = {line.split("|")[-1].strip().split(".")[0] for line in done.stderr.splitlines()
+                if line.startswith("import time:") and "|" in line}
+    said = [line for line in done.stderr.splitlines() if not line.startswith("import time:")]
+    return done.returncode, imported, said
+
+
+def test_render_and_ci_are_no_ops_for_each_other(run_mcar, package_copy):
+    full = run_mcar("ci", cwd=package_copy, timeout=300)
+    assert full.returncode == 0, full.stderr
+    before = files(package_copy)
+    assert any(name.startswith("renders/variants/") for name in before)
+    for command in ("render", "ci", "render", "render", "ci", "ci", "render"):
+        code, imported, said = traced(command, cwd=package_copy)
+        assert code == 0, said
+        assert imported & HEAVY == set(), (command, imported & HEAVY)
+        assert files(package_copy) == before, command
+        if command == "render":
+            assert said[-1].startswith("13 pictures in renders: 0 rendered, 13 unchanged"), said
+        else:
+            assert said[-1].startswith("mcar ci: 15 of 15 files passed"), said
+
+
+def test_a_deleted_robot_file_leaves_the_contact_sheet_of_both(run_mcar, package_copy):
+    assert run_mcar("ci", cwd=package_copy, timeout=300).returncode == 0
+    (package_copy / "urdf" / "tutorial" / "02_visual.urdf").unlink()
+    sheet = (package_copy / "renders" / "index.png").stat().st_mtime_ns
+    assert run_mcar("render", cwd=package_copy).returncode == 0
+    after_render = (package_copy / "renders" / "index.png").stat().st_mtime_ns
+    assert after_render != sheet  # redrawn without the deleted robot's picture
+    manifest = (package_copy / "renders" / ".mcar-render.json").read_text()
+    assert "tutorial/02_visual.png" not in manifest
+    code, imported, _ = traced("ci", cwd=package_copy)
+    assert code == 0 and "xacro" not in imported  # the rest is replayed
+    assert (package_copy / "renders" / "index.png").stat().st_mtime_ns == after_render

@@ -75,7 +75,7 @@ def test_a_turtlebot3_passes_drop_drive_and_spin(turtlebot_runs, robot):
     (entry,) = document["files"]
     drive = entry["drive"]
     assert (drive["kind"], drive["left"], drive["right"]) == \
-        ("differential", "wheel_left_joint", "wheel_right_joint")
+        ("differential", ["wheel_left_joint"], ["wheel_right_joint"])
     radius, track = TURTLEBOTS[robot]
     assert drive["wheel_radius"] == pytest.approx(radius, rel=1e-3)
     assert drive["track"] == pytest.approx(track, rel=1e-3)

@@ -92,7 +92,7 @@ def simulate(checked, names=None, left=None, right=None, record: bool = False,
     report.notes = list(sim.notes)
     report.held = list(sim.held)
     report.diagnostics = lint(checked, sim)
-    report.why_no_drive = sim.why_no_drive
+    report.why_no_drive = str(why_not) if why_not else sim.why_no_drive
     delta = None
     if sim.drives:
         report.drive = drive_summary(sim)

@@ -42,7 +42,7 @@ def run_drop(sim: SimModel, frame=None) -> ScenarioResult:
     speed = float(np.linalg.norm(run.data.qvel[:3]))
     result.figures = [
         Figure("height error", float(abs(height - sim.rest_height)), REST_HEIGHT_BOUND, "m",
-               detail=f"rest height {sim.rest_height:.4f} m, measured {height:.4f} m"),
+               detail=f"rest height {_mm(sim.rest_height)} m, measured {_mm(height)} m"),
         Figure("roll", abs(math.degrees(roll)), TILT_BOUND, "deg"),
         Figure("pitch", abs(math.degrees(pitch)), TILT_BOUND, "deg"),
         Figure("speed", speed, REST_SPEED_BOUND, "m/s"),
@@ -75,6 +75,11 @@ def run_drop(sim: SimModel, frame=None) -> ScenarioResult:
     if not math.isfinite(height) or height < sim.rest_height - 0.05:
         result.problems.insert(0, "fell through the floor")
     return result
+
+
+def _mm(value: float) -> str:
+    """Metres to 4 decimals, never "-0.0000"."""
+    return f"{round(value, 4) + 0.0:.4f}"
 
 
 def scenarios_for(sim: SimModel, names=None) -> list[str]:

@@ -20,10 +20,16 @@ def _cylinder_y_inertia(m, r, width):
             f'izz="{side:.6g}"/>')
 
 
-def _body(mass, size, lift, colour="0.8 0.1 0.1 1"):
+def _body(mass, size, lift, colour="0.8 0.1 0.1 1", axle=0.0):
+    """A box ``lift`` above the axles, under a massless base_footprint ``axle`` below them
+    (a root with an inertia is lost on KDL: check --strict warns, W208)."""
     x, y, z = size
     return f"""
   <material name="body_colour"><color rgba="{colour}"/></material>
+  <link name="base_footprint"/>
+  <joint name="base_joint" type="fixed">
+    <parent link="base_footprint"/><child link="base_link"/><origin xyz="0 0 {axle:.6g}"/>
+  </joint>
   <link name="base_link">
     <visual><origin xyz="0 0 {z / 2 + lift:.6g}"/>
       <geometry><box size="{x:.6g} {y:.6g} {z:.6g}"/></geometry>
@@ -108,7 +114,7 @@ def skid_steer(per_side: int = 2, mass: float = 20.0, wheelbase: float = 0.4,
     xs = [wheelbase / 2 - i * wheelbase / (per_side - 1) for i in range(per_side)]
     names = ["front", "middle", "rear"] if per_side == 3 else ["front", "rear"]
     parts = [f'<?xml version="1.0"?>\n<robot name="skid_steer_{2 * per_side}">',
-             _body(body_mass, body, 0.2 * radius)]
+             _body(body_mass, body, 0.2 * radius, axle=radius)]
     for name, x in zip(names, xs, strict=False):
         for side, sign in (("left", 1), ("right", -1)):
             parts.append(_wheel(f"{name}_{side}_wheel", "base_link", (x, sign * track / 2, 0),
@@ -129,7 +135,7 @@ def ackermann(mass: float = 8.0, wheelbase: float = 0.5, track: float = 0.4,
     body_mass = mass - 4 * wheel_mass - 2 * knuckle_mass
     body = (wheelbase + 2 * radius, track - width - 0.06, 0.6 * radius)
     parts = ['<?xml version="1.0"?>\n<robot name="ackermann_car">',
-             _body(body_mass, body, 0.2 * radius, "0.1 0.3 0.9 1")]
+             _body(body_mass, body, 0.2 * radius, "0.1 0.3 0.9 1", axle=radius)]
     knuckle_i = 0.4 * knuckle_mass * 0.02 ** 2
     for side, sign in (("left", 1), ("right", -1)):
         y = sign * track / 2
@@ -172,3 +178,57 @@ def skid_multiplier(wheelbase: float, track: float) -> float:
 
 def turning_radius(wheelbase: float, angle_deg: float) -> float:
     return wheelbase / math.tan(math.radians(angle_deg))
+
+
+def mecanum(mass: float = 10.0, wheelbase: float = 0.4, track: float = 0.4,
+            radius: float = 0.06) -> str:
+    """A box on four mecanum wheels, each carrying two rollers on continuous joints (a
+    real one has ten or more; two make the kind as plain to the tree)."""
+    width = 0.5 * radius
+    wheel_mass, roller_mass = 0.05 * mass, 0.005 * mass
+    body_mass = mass - 4 * wheel_mass - 8 * roller_mass
+    body = (wheelbase, track - width - 0.04, 0.6 * radius)
+    parts = ['<?xml version="1.0"?>\n<robot name="mecanum_base">',
+             _body(body_mass, body, 0.2 * radius, axle=radius)]
+    roller = 0.2 * radius
+    roller_i = 0.4 * roller_mass * roller * roller
+    for end, x in (("front", wheelbase / 2), ("rear", -wheelbase / 2)):
+        for side, sign in (("left", 1), ("right", -1)):
+            name = f"{end}_{side}_wheel"
+            parts.append(_wheel(name, "base_link", (x, sign * track / 2, 0), radius, width,
+                                wheel_mass))
+            for number, z in ((1, radius - roller), (2, roller - radius)):
+                parts.append(f"""
+  <joint name="{name}_roller_{number}" type="continuous">
+    <parent link="{name}_link"/><child link="{name}_roller_{number}_link"/>
+    <origin xyz="0 0 {z:.6g}" rpy="0 0 0.7853982"/><axis xyz="1 0 0"/>
+  </joint>
+  <link name="{name}_roller_{number}_link">
+    <collision><geometry><sphere radius="{roller:.6g}"/></geometry></collision>
+    <inertial><mass value="{roller_mass:.6g}"/><inertia ixx="{roller_i:.6g}" ixy="0" ixz="0"
+      iyy="{roller_i:.6g}" iyz="0" izz="{roller_i:.6g}"/></inertial>
+  </link>""")
+    parts.append("\n</robot>\n")
+    return "".join(parts)
+
+
+def arm(links: int = 3) -> str:
+    """An arm of ``links`` boxes on revolute joints on a fixed base: no wheels."""
+    parts = ['<?xml version="1.0"?>\n<robot name="arm">', _body(5.0, (0.2, 0.2, 0.1), 0.0)]
+    parent = "base_link"
+    for number in range(1, links + 1):
+        parts.append(f"""
+  <joint name="arm_{number}_joint" type="revolute">
+    <parent link="{parent}"/><child link="arm_{number}_link"/>
+    <origin xyz="0 0 {0.1 if number == 1 else 0.3}"/><axis xyz="0 1 0"/>
+    <limit lower="-1.5" upper="1.5" effort="10" velocity="1"/>
+  </joint>
+  <link name="arm_{number}_link">
+    <collision><origin xyz="0 0 0.15"/><geometry><box size="0.05 0.05 0.3"/></geometry>
+    </collision>
+    <inertial><origin xyz="0 0 0.15"/><mass value="0.5"/>{box_inertia(0.5, 0.05, 0.05, 0.3)}
+    </inertial>
+  </link>""")
+        parent = f"arm_{number}_link"
+    parts.append("\n</robot>\n")
+    return "".join(parts)

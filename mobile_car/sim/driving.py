@@ -208,7 +208,7 @@ class TurningCentre:
 
     def __call__(self) -> None:
         data = self.run.data
-        yaw = self.run.euler()[2]
+        yaw = self.run.yaw()
         # the root's linear velocity (world) and yaw rate, carried to the wheels' centre
         root = data.qpos[self.run.free:self.run.free + 3]
         rate = float(data.qvel[self.run.free_dof + 5])

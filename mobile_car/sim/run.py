@@ -61,6 +61,11 @@ class Run:
         yaw = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
         return roll, pitch, yaw
 
+    def yaw(self) -> float:
+        """The root's yaw (rad), for the observers called every step."""
+        w, x, y, z = self.data.qpos[self.free + 3:self.free + 7]
+        return math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+
     def on_floor(self) -> set[int]:
         """Bodies touching the floor now."""
         touching = set()
@@ -95,7 +100,7 @@ class Run:
 
     def centre_of(self, wheels) -> np.ndarray:
         """The mean of the wheels' centres (the axle centre of a differential robot)."""
-        return np.mean([self.data.xpos[w.body_id] for w in wheels], axis=0)
+        return self.data.xpos[[w.body_id for w in wheels]].mean(axis=0)
 
 
 def ramp(t: float) -> float:
@@ -134,19 +139,30 @@ class OffFloor:
         self.height = BOUNCE_HEIGHT * min(w.radius for w in self.wheels)
         self.step = run.model.opt.timestep
         self.current, self.total = 0, 0
+        # Each wheel's tyre spheres, read at once every step (numpy, not a loop per wheel);
+        # a wheel without one is judged by its contacts.
+        sphere = run.mj.mjtGeom.mjGEOM_SPHERE
+        model = run.model
+        pairs = [(i, g) for i, w in enumerate(self.wheels) for g in w.geom_ids
+                 if model.geom_type[g] == sphere]
+        self.owner = np.array([i for i, _ in pairs], dtype=int)
+        self.spheres = np.array([g for _, g in pairs], dtype=int)
+        self.radii = model.geom_size[self.spheres, 0]
+        self.rolling = np.zeros(len(self.wheels), dtype=bool)
+        self.rolling[self.owner] = True
+        self.contact_only = [w for i, w in enumerate(self.wheels) if not self.rolling[i]]
 
     def __call__(self) -> None:
-        touching = None
-        for wheel in self.wheels:
-            gap = self.run.tyre_gap(wheel)
-            if gap is None:
-                touching = self.run.on_floor() if touching is None else touching
-                up = wheel.body_id not in touching
-            else:
-                up = gap > self.height
-            if up:
-                self.current += 1
-                return
+        gaps = self.run.data.geom_xpos[self.spheres, 2] - self.radii
+        lowest = np.full(len(self.wheels), np.inf)
+        np.minimum.at(lowest, self.owner, gaps)  # each wheel's lowest sphere
+        up = bool((lowest[self.rolling] > self.height).any())
+        if not up and self.contact_only:
+            touching = self.run.on_floor()
+            up = any(w.body_id not in touching for w in self.contact_only)
+        if up:
+            self.current += 1
+            return
         self.finish()
 
     def finish(self) -> None:
@@ -165,13 +181,13 @@ class Yaw:
 
     def __init__(self, run: Run, centre):
         self.run, self.centre = run, centre
-        self.last = run.euler()[2]
+        self.last = run.yaw()
         self.turned = 0.0
         self.start = centre()
         self.strayed = 0.0
 
     def __call__(self) -> None:
-        yaw = self.run.euler()[2]
+        yaw = self.run.yaw()
         self.turned += wrap(yaw - self.last)
         self.last = yaw
         self.strayed = max(self.strayed,

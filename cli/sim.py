@@ -189,8 +189,9 @@ def _write_recording(record: str, reports, codes) -> None:
     if reports and reports[0].recording is not None:
         atomic_write(record, reports[0].recording)
         return
+    failed = [s.message() for r in reports for s in r.scenarios if s.status == "failed"]
     why = ("the robot was not simulated" if not reports else
-           reports[0].error or "nothing was simulated to record")
+           reports[0].error or (failed[0] if failed else "nothing was simulated to record"))
     click.echo(f"mcar: --record {shown(record)}: not written: {shown(why)}", err=True)
     if not any(codes):
         codes.append(EXIT_PROBLEMS)

@@ -24,8 +24,11 @@ class Figure:
                     self.value >= self.bound)
 
     def as_json(self) -> dict:
-        return {"name": self.name, "value": _round(self.value), "bound": self.bound,
-                "unit": self.unit, "within": self.within, "ok": self.ok}
+        document = {"name": self.name, "value": _round(self.value), "bound": self.bound,
+                    "unit": self.unit, "within": self.within, "ok": self.ok}
+        if self.detail:
+            document["detail"] = self.detail
+        return document
 
 
 @dataclass

@@ -197,9 +197,12 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
             _limit_force(actuator, steer.effort)
     held = _hold_the_rest(spec, joints, tree, drive)
     model = _compile(spec, label)
+    for wheel in wheels:  # (ids of the final model: held joints are gone from it)
+        wheel.joint_id = model.joint(wheel.joint).id
     for wheel in drive.driven if drive else []:
         wheel.actuator_id = model.actuator(f"mcar_motor_{wheel.joint}").id
     for steer in steering:
+        steer.joint_id = model.joint(steer.joint).id
         steer.actuator_id = model.actuator(f"mcar_steer_{steer.joint}").id
     return SimModel(model=model, spec=spec, root=root_body.name,
                     root_body=model.body(root_body.name).id, drive=drive,

@@ -2,10 +2,10 @@
 offscreen by MuJoCo (EGL, headless) over the checkered floor.
 
 While the scenarios run, the recorder keeps the robot's state every 1/FPS simulated
-second, nothing else; when a scenario is over, its camera is fitted to the whole path the
-robot took (the box its centre swept, grown by the robot's own reach), so the robot stays
-in frame from the first picture to the last, a short path (drop, spin) with the robot at
-the centre, a long one (drive, turn) crossing a still floor. Then the states are drawn.
+second, nothing else. Then each scenario's states are drawn from a still camera fitted to
+the whole path the robot took (grown by the robot's own reach and height), so the robot
+stays in frame from the first picture to the last: a short path (drop, spin) with the
+robot at the centre, a long one (drive, turn) seen from its side, crossing a still floor.
 Lengths in m, angles in degrees.
 """
 
@@ -23,8 +23,9 @@ from .engine import mujoco
 FPS = 15
 WIDTH, HEIGHT = 320, 240
 FORMATS = (".gif",)
-AZIMUTH, ELEVATION = -70.0, -35.0
-MARGIN = 1.15  # the fitted sphere's share of the picture's height, inverted
+AZIMUTH, ELEVATION = -70.0, -35.0  # degrees; a short path (drop, spin) is seen so
+SIDE_ANGLE = 25.0  # degrees off the side of a long path (drive, turn)
+MARGIN = 1.4  # the picture over what must fit in it (perspective: near parts grow)
 
 
 class RecordError(McarError):
@@ -91,17 +92,31 @@ class Recorder:
 
     def camera_for(self, path: np.ndarray):
         """A still camera that sees the robot wherever it is along ``path`` (N x 3, its
-        root's positions): aimed at the middle of the path's box, far enough back that a
-        sphere holding the box and the robot's reach fills the picture's height."""
-        camera = self.mj.MjvCamera()
-        camera.type = self.mj.mjtCamera.mjCAMERA_FREE
-        low, high = path[:, :2].min(axis=0), path[:, :2].max(axis=0)
-        centre = (low + high) / 2
+        root's positions): aimed at the middle of the path, from the side of a long path
+        (three-quarters on, so the path crosses the picture's wider dimension), far
+        enough back that the path, the robot's reach and its height fit MARGIN times."""
+        mj = self.mj
+        camera = mj.MjvCamera()
+        camera.type = mj.mjtCamera.mjCAMERA_FREE
+        points = path[:, :2]
+        along = points[-1] - points[0]
+        long_path = float(np.linalg.norm(along)) > self.reach
+        azimuth = (math.degrees(math.atan2(along[1], along[0])) + 90 - SIDE_ANGLE
+                   if long_path else AZIMUTH)
+        az, el = math.radians(azimuth), math.radians(ELEVATION)
+        forward = np.array([math.cos(az), math.sin(az)])
+        right = np.array([math.sin(az), -math.cos(az)])
+        u, v = points @ right, points @ forward
+        centre = right * (u.max() + u.min()) / 2 + forward * (v.max() + v.min()) / 2
+        half_width = (u.max() - u.min()) / 2 + self.reach
+        half_height = (((v.max() - v.min()) / 2 + self.reach) * abs(math.sin(el))
+                       + self.height * math.cos(el) / 2)
+        fovy = math.radians(self.model.vis.global_.fovy) / 2
+        fovx = math.atan(math.tan(fovy) * WIDTH / HEIGHT)
         camera.lookat[:] = [centre[0], centre[1], self.height / 2]
-        radius = float(np.linalg.norm(high - low)) / 2 + self.reach
-        half_fov = math.radians(self.model.vis.global_.fovy) / 2
-        camera.distance = MARGIN * radius / math.sin(half_fov)
-        camera.azimuth, camera.elevation = AZIMUTH, ELEVATION
+        camera.distance = MARGIN * max(half_width / math.tan(fovx),
+                                       half_height / math.tan(fovy))
+        camera.azimuth, camera.elevation = azimuth, ELEVATION
         return camera
 
     def gif(self) -> bytes:

@@ -645,6 +645,23 @@ def section_sim(rows: list[str], work: Path, quick: bool) -> None:
     progress("sim measured")
 
 
+def section_robots(rows: list[str], work: Path, quick: bool) -> None:
+    """A cold `mcar sim` of TurtleBot3 burger and Husky next to the car (the commands and
+    the table: bench/sim_robots_bench.py)."""
+    import sim_robots_bench as robots
+
+    runs = 3 if quick else 7
+    load_before = os.getloadavg()[0]
+    commands, folder = robots.commands(MCAR, sys.executable, REPO, work)
+    results = measure_rounds(commands, runs, cwd=work)
+    rows += ["## `mcar sim` on real robots", ""]
+    rows += robots.intro(folder, runs, (load_before, os.getloadavg()[0]))
+    rows += robots.table(results, fmt_time, fmt_peak, exit_text, verdict)
+    rows.append("")
+    rows += notes_for("robots")
+    progress("robots measured")
+
+
 def section_sweep(rows: list[str], work: Path, quick: bool) -> None:
     """`mcar sweep` with 1 and 2 local workers and on a 2-worker Dask cluster, against a
     shell loop of `mcar sim` over the same points; then where one point's time goes."""
@@ -793,7 +810,8 @@ def _sweep_split_rows(results: dict, first, mixed) -> list[str]:
 
 SECTIONS = {"check": section_check, "build": section_build, "startup": section_startup,
             "batch": section_batch, "folder": section_folder, "render": section_render,
-            "noop": section_noop, "sim": section_sim, "sweep": section_sweep}
+            "noop": section_noop, "sim": section_sim, "robots": section_robots,
+            "sweep": section_sweep}
 NEEDS_CHECK_URDF = {"check", "startup", "batch"}
 
 

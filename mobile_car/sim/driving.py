@@ -30,7 +30,7 @@ from .run import (
 
 DRIVE_TIME = 3.0         # s
 SPIN_TIME = 2.5          # s
-# Bounds (README, "mcar sim").
+# Bounds (docs/sim.md).
 DISTANCE_BOUND = 0.02              # of r·ω·t
 LATERAL_BOUND = 0.01               # of the distance
 HEADING_BOUND = 2.0                # degrees

@@ -2,7 +2,7 @@
 drive found (:mod:`.drives`), velocity motors on its wheels, position servos on its
 steering, and the heights the scenarios measure against.
 
-The simulation-only choices (README, "mcar sim") are made here and nowhere else:
+The simulation-only choices (docs/sim.md) are made here and nowhere else:
 
 * the root link gets a free joint (MuJoCo's URDF importer otherwise welds it to the world);
 * robot geoms collide with the floor only (Gazebo's default: no self-collision);

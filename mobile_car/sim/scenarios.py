@@ -24,7 +24,7 @@ KIND_SCENARIOS = {"differential": ("drop", "drive", "spin"),
                   "ackermann": ("drop", "drive", "turn")}
 DROP_HEIGHT = 0.005      # m above the rest height it is released from
 DROP_TIME = 2.0          # s
-# Bounds (README, "mcar sim").
+# Bounds (docs/sim.md).
 REST_HEIGHT_BOUND = 0.001          # m
 TILT_BOUND = 1.0                   # degrees, roll and pitch
 REST_SPEED_BOUND = 0.002           # m/s at the end of the drop

@@ -650,7 +650,7 @@ def section_robots(rows: list[str], work: Path, quick: bool) -> None:
     the table: bench/sim_robots_bench.py)."""
     import sim_robots_bench as robots
 
-    runs = 3 if quick else 7
+    runs = 2 if quick else 7
     load_before = os.getloadavg()[0]
     commands, folder = robots.commands(MCAR, sys.executable, REPO, work)
     results = measure_rounds(commands, runs, cwd=work)

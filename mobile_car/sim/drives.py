@@ -80,9 +80,7 @@ class Drive:
     right: list[Wheel]
     free: list[Wheel] = field(default_factory=list)  # wheels that roll undriven
     steering: list[Steering] = field(default_factory=list)  # ackermann: left, right
-    held: list[Steering] = field(default_factory=list)  # steering held straight
-    castor_wheels: list[str] = field(default_factory=list)  # links on a swivel
-    chosen: str = "found from the tree"
+    chosen: str = "found from the tree"  # or "--drive", "--left/--right"
 
     @property
     def driven(self) -> list[Wheel]:
@@ -193,8 +191,7 @@ def choose_drive(tree: Tree, actuated: set[str], left=None, right=None,
         driven = [w for w in tree.wheels if w.steering is None or w.joint in actuated]
         free = [w for w in tree.wheels if w not in driven]
         return Drive("ackermann", _side(driven, 1), _side(driven, -1), free,
-                     _sorted_steering(tree.steering), castor_wheels=tree.castor_wheels,
-                     chosen=chosen), None
+                     _sorted_steering(tree.steering), chosen=chosen), None
     if kind == "differential" and (len(lefts) != 1 or len(rights) != 1):
         raise UsageError(f"--drive differential: {len(lefts)} wheels on the left, "
                          f"{len(rights)} on the right; name the two driven ones with "
@@ -202,8 +199,7 @@ def choose_drive(tree: Tree, actuated: set[str], left=None, right=None,
     if kind == "skid-steer" and (len(lefts) < 2 or len(rights) < 2):
         raise UsageError(f"--drive skid-steer: {len(lefts)} wheel(s) on the left, "
                          f"{len(rights)} on the right; skid-steer drives two or more a side")
-    return Drive(kind, lefts, rights, held=tree.steering, castor_wheels=tree.castor_wheels,
-                 chosen=chosen), None
+    return Drive(kind, lefts, rights, chosen=chosen), None
 
 
 def actuated_joints(root) -> set[str]:
@@ -251,9 +247,7 @@ def _named(tree: Tree, lefts: list[str], rights: list[str], kind: str | None) ->
         raise UsageError("--drive skid-steer drives two or more wheels a side: name them "
                          "with --left A,B --right C,D")
     steering = _sorted_steering(tree.steering) if kind == "ackermann" else []
-    held = [] if kind == "ackermann" else tree.steering
-    return Drive(kind, left, right, free, steering, held, tree.castor_wheels,
-                 chosen="--left/--right")
+    return Drive(kind, left, right, free, steering, chosen="--left/--right")
 
 
 def _named_wheel(tree: Tree, name: str) -> Wheel:

@@ -195,7 +195,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
                                  dampratio=1.0)
         if steer.effort is not None:
             _limit_force(actuator, steer.effort)
-    held = _hold_the_rest(spec, joints, tree, drive)
+    held = _hold_the_rest(spec, joints, drive)
     model = _compile(spec, label)
     for wheel in wheels:  # (ids of the final model: held joints are gone from it)
         wheel.joint_id = model.joint(wheel.joint).id
@@ -217,15 +217,15 @@ def _limit_force(actuator, effort: float | None) -> None:
     actuator.forcerange = [-effort, effort]
 
 
-def _hold_the_rest(spec, joints: dict, tree, drive) -> list[str]:
+def _hold_the_rest(spec, joints: dict, drive) -> list[str]:
     """Revolute and prismatic joints that are not the drive's (an arm, a lift, steering
     held straight) are welded at 0, the pose check and render show: with no motor they
     would fold under gravity. Continuous joints stay free (castor swivels, rollers, a
     spinning sensor)."""
-    ours = {s.joint for s in drive.steering} if drive else set()
+    ours = {s.joint for s in drive.steering} | {w.joint for w in drive.wheels} if drive \
+        else set()
     held = [name for name, element in joints.items()
-            if element.get("type") in ("revolute", "prismatic") and name not in ours
-            and not (drive and name in {w.joint for w in drive.wheels})]
+            if element.get("type") in ("revolute", "prismatic") and name not in ours]
     for name in held:
         joint = spec.joint(name)
         if joint is not None:

@@ -80,15 +80,17 @@ Exit codes:
 
 
 def _table(items) -> list[str]:
-    header = ("FILE", "LINKS", "JOINTS", "WARN", "ERR", "PNG", "RESULT")
+    header = ("FILE", "LINKS", "JOINTS", "WARN", "ERR", "SIM", "PNG", "RESULT")
     rows = []
     for item in items:
         failed = [step.name for step in item.steps if step.status == "failed"]
         png = display_path(item.png) if item.png and any(
             s.name == "render" and s.status == "passed" for s in item.steps) else "-"
+        # the drive kind and its scenarios passed, or why it was not simulated
+        sim = next((s.summary for s in item.steps if s.name == "sim" and s.summary), "-")
         rows.append((item.label, "-" if item.links is None else str(item.links),
                      "-" if item.joints is None else str(item.joints), str(item.warnings),
-                     str(item.errors), png, "ok" if item.ok else f"FAILED ({failed[0]})"))
+                     str(item.errors), sim, png, "ok" if item.ok else f"FAILED ({failed[0]})"))
     widths = [max(len(row[i]) for row in [header, *rows]) for i in range(len(header))]
     right = {1, 2, 3, 4}
 

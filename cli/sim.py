@@ -45,9 +45,9 @@ Scenarios (bounds in docs/sim.md):
          0.5 s ramp accounted for), small drift and heading change, no wheel off
          the floor, the motors' effort limit enough for the speed
   spin   left wheels forward, right wheels back: a differential robot turns at
-         2·r·ω/track (5%), a skid-steer one in place, clockwise, and the report
-         gives its effective track and multiplier; the centre within 1 cm (or 5% of
-         the track)
+         2·r·ω/track (5%) with its axle's centre within 1 cm; a skid-steer one
+         clockwise about a point within its wheels, and the report gives its
+         effective track and multiplier against its X_control package's
   turn   an Ackermann car, front wheels at their Ackermann angles: its turning
          radius within 10% of wheelbase / tan(steering angle)
 
@@ -64,9 +64,10 @@ Anything else (mecanum rollers, wheels on one side) runs drop only and says why.
 wheels roll free.
 
 The motors' effort and speed limits come from the joint's <limit>, else its
-<ros2_control> command interfaces, else the <gazebo> diff-drive plugin, else --effort
-and --speed, else a default (the torque that holds the robot on a 10 degree slope; no
-speed limit); the report says which.
+<ros2_control> command interfaces, else the <gazebo> drive plugin, else --effort and
+--speed, else a default (the torque that holds the robot on a 10 degree slope; a
+skid-steer robot's, the torque that slips its wheels; no speed limit); the report says
+which.
 
 Every robot is checked first, as by `mcar check`: one with errors is reported with
 check's diagnostics (exit 1). The <gazebo> DiffDrive plugin's wheel separation, radius
@@ -98,7 +99,7 @@ def scenario_list(ctx, param, value):
     return [n for n in SCENARIO_NAMES if n in names]
 
 
-@click.command("sim", help=HELP, short_help="Simulate the robot: drop, drive, spin.")
+@click.command("sim", help=HELP, short_help="Simulate the robot: drop, drive, spin or turn.")
 @click.argument("words", nargs=-1, metavar="[INPUT]... [NAME:=VALUE]...")
 @click.option("--scenario", "scenarios", default=None, callback=scenario_list, metavar="LIST",
               help="Scenarios to run, comma-separated (default: the drive kind's: drop, "

@@ -130,6 +130,7 @@ class CiCache:
                 "status": simulated.status, "message": simulated.message,
                 "exit_code": simulated.exit_code, "cases": simulated.cases,
                 "problems": simulated.problems, "skip_kind": simulated.skip_kind,
+                "summary": simulated.summary,
                 "diagnostics": diagnostics_data(simulated.diagnostics)}
 
     def save(self) -> None:
@@ -176,12 +177,12 @@ def _sim_step(data: dict) -> Step:
         raise ValueError("sim testcases damaged")
     if not isinstance(problems, list) or not all(isinstance(p, str) for p in problems):
         raise ValueError("sim problems not lines")
-    skip_kind = data.get("skip_kind") or ""
-    if not isinstance(skip_kind, str):
-        raise ValueError("sim skip kind not text")
+    skip_kind, summary = data.get("skip_kind") or "", data.get("summary") or ""
+    if not isinstance(skip_kind, str) or not isinstance(summary, str):
+        raise ValueError("sim skip kind or summary not text")
     diagnostics = diagnostics_from(data.get("diagnostics") or [], SimDiagnostic)
     return Step("sim", status, message, diagnostics, exit_code=code, cases=list(cases),
-                problems=list(problems), skip_kind=skip_kind)
+                problems=list(problems), skip_kind=skip_kind, summary=summary)
 
 
 def _is_case(case) -> bool:

@@ -43,6 +43,7 @@ class Step:
     cases: list[dict] = field(default_factory=list)
     problems: list[str] = field(default_factory=list)  # its error lines, without the file
     skip_kind: str = ""  # a skipped sim: the kind of reason, one line per kind in the report
+    summary: str = ""  # sim: its cell in the report's table ("skid-steer 3/3", "not a vehicle")
     reads: list[Path] = field(default_factory=list)  # files read besides the build's
 
 

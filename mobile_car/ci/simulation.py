@@ -55,7 +55,8 @@ def sim_step(item: CiItem, skip: str | None = None) -> None:
 
     started = time.perf_counter()
     if skip is not None:
-        item.steps.append(Step("sim", "skipped", f"not simulated: {skip}", skip_kind=skip))
+        item.steps.append(Step("sim", "skipped", f"not simulated: {skip}", skip_kind=skip,
+                               summary="opted out"))
         return
     try:
         result = simulate(item.checked, only_if_drives=True)
@@ -67,7 +68,7 @@ def sim_step(item: CiItem, skip: str | None = None) -> None:
     if not result.simulated:
         why = result.not_a_vehicle
         item.steps.append(Step("sim", "skipped", f"not simulated: {why}", seconds=seconds,
-                               skip_kind=f"not a vehicle: {why.kind}"))
+                               skip_kind=f"not a vehicle: {why.kind}", summary="not a vehicle"))
         return
     cases, problems, code = junit_cases(result), failure_lines(result), result.exit_code
     if result.drive is None and not result.error:  # a vehicle that only stood
@@ -81,9 +82,12 @@ def sim_step(item: CiItem, skip: str | None = None) -> None:
     failed = [case["name"] for case in cases if case["status"] == "failed"]
     ran = ", ".join(case["name"] for case in cases[1:])
     message = f"{', '.join(failed)} failed" if failed else f"{ran} passed"
+    passed = sum(case["status"] == "passed" for case in cases[1:])
+    summary = (f"{result.drive['kind']} {passed}/{len(cases) - 1}" if result.drive else
+               "cannot drive" if not result.error else "failed")
     item.steps.append(Step("sim", "failed" if code else "passed", message,
                            list(result.diagnostics), seconds, code, cases=cases,
-                           problems=problems, reads=list(result.reads)))
+                           problems=problems, reads=list(result.reads), summary=summary))
 
 
 def skip_lines(items: list[CiItem]) -> list[str]:

@@ -54,6 +54,9 @@ def test_skid_steer_and_ackermann_vehicles_are_simulated_with_their_scenarios(
     assert ("mcar.sim.spin", "car.urdf") not in found  # an Ackermann car does not spin
     assert "radius error: " in found[("mcar.sim.turn", "car.urdf")].find("system-out").text
     assert "mcar ci: 2 of 2 files passed (build, check --strict, sim)" in result.stderr
+    # The table's SIM column: each vehicle's kind and the scenarios it passed.
+    rows = {row.split()[0]: row for row in result.stdout.splitlines()[1:]}
+    assert " skid-steer 3/3 " in rows["rover.urdf"] and " ackermann 3/3 " in rows["car.urdf"]
 
 
 @pytest.fixture
@@ -82,7 +85,8 @@ def test_a_vehicle_sim_cannot_drive_fails_ci_with_the_reason(run_mcar, mecanum_p
         "arm_1_joint (revolute), arm_2_joint (revolute), arm_3_joint (revolute))")
     assert "mcar: arm.urdf: not simulated: not a vehicle: no wheels" in result.stderr
     rows = {row.split()[0]: row for row in result.stdout.splitlines()[1:]}
-    assert rows["mecanum.urdf"].endswith("FAILED (sim)") and rows["arm.urdf"].endswith(" ok")
+    assert rows["mecanum.urdf"].split()[5:] == ["cannot", "drive", "-", "FAILED", "(sim)"]
+    assert rows["arm.urdf"].split()[5:] == ["not", "a", "vehicle", "-", "ok"]
 
 
 def test_a_package_opts_a_robot_out_in_mcar_yaml_and_ci_prints_why(run_mcar, mecanum_package,
@@ -96,6 +100,8 @@ def test_a_package_opts_a_robot_out_in_mcar_yaml_and_ci_prints_why(run_mcar, mec
     skipped = found[("mcar.sim", "mecanum.urdf")].find("skipped")
     assert skipped.get("message").startswith("not simulated: mecanum rollers")
     assert not [key for key in found if key[0].startswith("mcar.sim.")]
+    assert "  opted out  " in next(row for row in result.stdout.splitlines()
+                                   if row.startswith("mecanum.urdf"))
     # The opt-out is part of what a no-op run compares: removed, the robot fails again.
     again = run_mcar("ci", mecanum_package, "--no-render", "--build-dir",
                      tmp_path / "report-build", cwd=tmp_path, timeout=300)

@@ -24,7 +24,12 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from measure import HAVE_GNU_TIME, REPO, machine, progress, versions  # noqa: E402
-from runtime_sections import section_noop, section_render, section_sim  # noqa: E402
+from runtime_sections import (  # noqa: E402
+    section_noop,
+    section_render,
+    section_robots,
+    section_sim,
+)
 from static_sections import (  # noqa: E402
     section_batch,
     section_build,
@@ -36,7 +41,8 @@ from sweep_section import section_sweep  # noqa: E402
 
 SECTIONS = {"check": section_check, "build": section_build, "startup": section_startup,
             "batch": section_batch, "folder": section_folder, "render": section_render,
-            "noop": section_noop, "sim": section_sim, "sweep": section_sweep}
+            "noop": section_noop, "sim": section_sim, "robots": section_robots,
+            "sweep": section_sweep}
 NEEDS_CHECK_URDF = {"check", "startup", "batch"}
 
 

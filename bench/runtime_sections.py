@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import shutil
 import statistics
 import subprocess
@@ -21,6 +22,7 @@ from measure import (  # noqa: E402
     fmt_peak,
     fmt_time,
     measure,
+    measure_rounds,
     notes_for,
     progress,
     run_timed,
@@ -196,3 +198,20 @@ def section_sim(rows: list[str], work: Path, quick: bool) -> None:
     rows += notes_for("sim")
     progress("sim measured")
 
+
+
+def section_robots(rows: list[str], work: Path, quick: bool) -> None:
+    """A cold `mcar sim` of TurtleBot3 burger and Husky next to the car (the commands and
+    the table: bench/sim_robots_bench.py)."""
+    import sim_robots_bench as robots
+
+    runs = 2 if quick else 7
+    load_before = os.getloadavg()[0]
+    commands, folder = robots.commands(MCAR, sys.executable, REPO, work)
+    results = measure_rounds(commands, runs, cwd=work)
+    rows += ["## `mcar sim` on real robots", ""]
+    rows += robots.intro(folder, runs, (load_before, os.getloadavg()[0]))
+    rows += robots.table(results, fmt_time, fmt_peak, exit_text, verdict)
+    rows.append("")
+    rows += notes_for("robots")
+    progress("robots measured")

@@ -58,7 +58,7 @@ needs exactly one robot to build.
 
 --format mjcf writes the model `mcar sim` simulates: the robot on a free joint, a
 floor, velocity motors on the drive wheels (limited to their effort) and sim's contact
-choices (README, "mcar sim"); built files are named .xml. Collision meshes are
+choices (docs/sim.md); built files are named .xml. Collision meshes are
 referenced by absolute path, so the file loads from wherever it is written (move the
 meshes with it to use it on another machine). A robot MuJoCo cannot simulate (a root
 or moving link without mass) is an error (exit 1).

@@ -45,10 +45,17 @@ mirroring urdf/; each variant urdf/variants/NAME.yaml is applied to
 the top-level robot files (built into build/variants/NAME/...). A failed build or check
 skips that file's later steps; the other files go on. A summary table ends the run.
 
-Only vehicles are simulated: robots with a pair of drive wheels (continuous joints moving
+Only vehicles are simulated: robots with wheels (two or more continuous joints moving
 collision geometry) and another link with collision geometry to stand on (a castor, a
-body). Any other robot file (a part's test file, the tutorial) is reported "not
-simulated: WHY", which does not fail the run.
+body), each with its drive kind's scenarios. Any other robot file (a part's test file,
+the tutorial) is reported "not simulated, not a vehicle", one line per kind, which does
+not fail the run. A vehicle sim cannot drive (mecanum wheels, wheels on one side) fails
+it, saying why, unless the package's mcar.yaml opts it out with a reason that ci prints:
+
+\b
+  sim:
+    skip:
+      "urdf/mecanum_base.urdf.xacro": "mecanum rollers, tested on the real robot"
 
 Exit 0 only if every step of every file passed; 1 if any file has problems; 2 if the
 run could not be made (no package, no renderer: --no-render skips drawing).
@@ -73,15 +80,17 @@ Exit codes:
 
 
 def _table(items) -> list[str]:
-    header = ("FILE", "LINKS", "JOINTS", "WARN", "ERR", "PNG", "RESULT")
+    header = ("FILE", "LINKS", "JOINTS", "WARN", "ERR", "SIM", "PNG", "RESULT")
     rows = []
     for item in items:
         failed = [step.name for step in item.steps if step.status == "failed"]
         png = display_path(item.png) if item.png and any(
             s.name == "render" and s.status == "passed" for s in item.steps) else "-"
+        # the drive kind and its scenarios passed, or why it was not simulated
+        sim = next((s.summary for s in item.steps if s.name == "sim" and s.summary), "-")
         rows.append((item.label, "-" if item.links is None else str(item.links),
                      "-" if item.joints is None else str(item.joints), str(item.warnings),
-                     str(item.errors), png, "ok" if item.ok else f"FAILED ({failed[0]})"))
+                     str(item.errors), sim, png, "ok" if item.ok else f"FAILED ({failed[0]})"))
     widths = [max(len(row[i]) for row in [header, *rows]) for i in range(len(header))]
     right = {1, 2, 3, 4}
 
@@ -140,6 +149,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
             junit_xml, against, diff_report, quiet, sets, config_files, package_paths):
     from mobile_car.ci import pipeline
     from mobile_car.ci.cache import CiCache
+    from mobile_car.freshness import Basis
 
     started = time.perf_counter()
     # A .urdf is "built" as it is: only xacro files are expanded, as check sees them.
@@ -154,6 +164,9 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
 
             refuse_overwriting(report_file, [inp.path for inp in selection.inputs])
     items = pipeline.plan(selection, build_dir, None if no_render else render_dir)
+    from mobile_car.ci import simulation
+
+    configs = simulation.package_configs(items, selection.root)
     revision = None
     if against:  # a wrong REV is a usage error before anything is built
         from mobile_car.ci.against import resolve_revision
@@ -161,6 +174,10 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
         revision = resolve_revision(against, items[0].source.parent)
     # Items whose inputs, outputs and picture are unchanged are replayed from the record.
     basis = input_basis(mappings, package_paths, sets, config_files)
+    for home, config in configs.items():  # an mcar.yaml made, edited or gone: sim again
+        name = f"package config {home}"
+        basis = (basis.with_file(config.path, name) if config.path is not None else
+                 Basis({**basis.settings, name: None}, basis.files))
     cache = CiCache(build_dir)
     manifest = None
     if not no_render:
@@ -180,7 +197,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
                     if pipeline.build_and_check(item, options, strict):
                         checked.append(item)
                         if not no_sim:
-                            pipeline.sim_step(item)
+                            simulation.sim_step(item, simulation.skip_reason(item, configs))
                     cache.record(item, basis, strict)
                 if revision is not None:
                     from mobile_car.ci.against import diff_items
@@ -288,11 +305,12 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
                     streams.echo(github_annotation("error", str(item.source), None,
                                                  f"mcar ci {step.name}", message))
     else:
+        if not quiet:  # robots not simulated: why, one line per kind
+            from mobile_car.ci.simulation import skip_lines
+
+            for line in skip_lines(items):
+                click.echo(f"mcar: {shown(line)}", err=True)
         for item in items:
-            if not quiet:  # a robot that is not a vehicle: why it was not simulated
-                for step in item.steps:
-                    if step.name == "sim" and step.message.startswith("not simulated"):
-                        click.echo(f"mcar: {item.label}: {shown(step.message)}", err=True)
             for line in _problems(item):
                 if isinstance(line, str):
                     click.echo(line, err=True)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 import click
 
@@ -22,10 +23,11 @@ from .common import (
     use_color,
 )
 
-SCENARIO_NAMES = ("drop", "drive", "spin")
+SCENARIO_NAMES = ("drop", "drive", "spin", "turn")
+DRIVE_KINDS = ("differential", "skid-steer", "ackermann")
 
 HELP = f"""Simulate the robot in MuJoCo, headless, and check that it stands, drives
-straight and turns in place as its geometry says.
+straight and turns as its geometry says.
 
 \b
   mcar sim urdf/mobile_robot.xacro           drop, drive and spin, a table of figures
@@ -35,24 +37,37 @@ straight and turns in place as its geometry says.
   mcar sim ROBOT --record run.gif            an animation of the runs
 
 \b
-Scenarios (bounds in the README, "mcar sim"):
+Scenarios (bounds in docs/sim.md):
   drop   released 5 mm above the floor, after 2 s: at rest at the geometric rest
-         height (1 mm), roll and pitch under 1 degree, both drive wheels and the
-         castor on the floor
-  drive  both wheels at the same speed for 3 s: distance within 2% of r·ω·t (the
+         height (1 mm), roll and pitch under 1 degree, every wheel and castor on
+         the floor
+  drive  every driven wheel at one speed for 3 s: distance within 2% of r·ω·t (the
          0.5 s ramp accounted for), small drift and heading change, no wheel off
          the floor, the motors' effort limit enough for the speed
-  spin   opposite speeds: yaw rate within 5% of 2·r·ω/track, the centre within 1 cm
+  spin   left wheels forward, right wheels back: a differential robot turns at
+         2·r·ω/track (5%) with its axle's centre within 1 cm; a skid-steer one
+         clockwise about a point within its wheels, and the report gives its
+         effective track and multiplier against its X_control package's
+  turn   an Ackermann car, front wheels at their Ackermann angles: its turning
+         radius within 10% of wheelbase / tan(steering angle)
 
-The drive wheels are the continuous joints with collision geometry, one on each side
-(y > 0 left, y < 0 right); name them with --left and --right when there are more. A
-robot without drive wheels runs drop only, and says why. Of a package or folder, only
-the robot files with drive wheels are simulated.
+\b
+Drive kinds, found from the tree (--drive picks another the tree allows):
+  differential  two driven wheels (continuous joints with collision geometry,
+                y > 0 left, y < 0 right) and any castors
+  skid-steer    two or three driven wheels a side
+  ackermann     two front wheels on revolute steering joints (upright axis), one
+                a side; the rear wheels driven (the front too where a
+                <transmission> or <ros2_control> block drives them)
+Anything else (mecanum rollers, wheels on one side) runs drop only and says why.
+--left/--right name the driven joints of each side (A,B for a group); the other
+wheels roll free.
 
 The motors' effort and speed limits come from the joint's <limit>, else its
-<ros2_control> command interfaces, else the <gazebo> diff-drive plugin, else --effort
-and --speed, else a default (the torque that holds the robot on a 10 degree slope; no
-speed limit); the report says which.
+<ros2_control> command interfaces, else the <gazebo> drive plugin, else --effort and
+--speed, else a default (the torque that holds the robot on a 10 degree slope; a
+skid-steer robot's, the torque that slips its wheels; no speed limit); the report says
+which.
 
 Every robot is checked first, as by `mcar check`: one with errors is reported with
 check's diagnostics (exit 1). The <gazebo> DiffDrive plugin's wheel separation, radius
@@ -66,13 +81,16 @@ Exit codes:
   0  every scenario passed
   1  a scenario failed, the robot fails its check, or a sim rule error (E3xx)
   2  usage, I/O or environment error: bad option, missing file, unknown scenario, a
-     --record format that cannot be written
+     --record format that cannot be written, no offscreen renderer for --record
   130  interrupted (Ctrl-C); 143 terminated
 """
 
 
 def scenario_list(ctx, param, value):
-    """--scenario LIST: known names, in the order drop, drive, spin."""
+    """--scenario LIST: known names, in the order drop, drive, spin, turn; None: the
+    drive kind's."""
+    if value is None:
+        return None
     names = [n.strip() for n in value.split(",") if n.strip()]
     unknown = [n for n in names if n not in SCENARIO_NAMES]
     if unknown or not names:
@@ -81,33 +99,41 @@ def scenario_list(ctx, param, value):
     return [n for n in SCENARIO_NAMES if n in names]
 
 
-@click.command("sim", help=HELP, short_help="Simulate the robot: drop, drive, spin.")
+@click.command("sim", help=HELP, short_help="Simulate the robot: drop, drive, spin or turn.")
 @click.argument("words", nargs=-1, metavar="[INPUT]... [NAME:=VALUE]...")
-@click.option("--scenario", "scenarios", default=",".join(SCENARIO_NAMES), show_default=True,
-              callback=scenario_list, metavar="LIST", help="Scenarios to run, comma-separated.")
+@click.option("--scenario", "scenarios", default=None, callback=scenario_list, metavar="LIST",
+              help="Scenarios to run, comma-separated (default: the drive kind's: drop, "
+                   "drive, spin; an Ackermann car's drop, drive, turn).")
 @click.option("--format", "output_format", type=click.Choice(("text", "json", "junit")),
               default="text", show_default=True,
               help="text: a table on stdout, problems on stderr; json: one document; "
                    "junit: JUnit XML, one testcase per scenario.")
 @click.option("--record", metavar="FILE.gif",
               help="Write an animation of the runs (one INPUT only); MP4 is refused.")
-@click.option("--left", metavar="JOINT", help="The left drive wheel's joint.")
-@click.option("--right", metavar="JOINT", help="The right drive wheel's joint.")
+@click.option("--left", metavar="JOINT[,JOINT]", help="The left driven wheels' joints.")
+@click.option("--right", metavar="JOINT[,JOINT]", help="The right driven wheels' joints.")
+@click.option("--drive", "kind", type=click.Choice(DRIVE_KINDS), default=None,
+              help="The drive kind (default: found from the tree).")
+@click.option("--steering-angle", type=click.FloatRange(min=0, max=80, min_open=True,
+                                                        max_open=True), metavar="DEG",
+              help="turn: the Ackermann steering angle (default 15, less where the joints' "
+                   "limits say so).")
 @click.option("--effort", type=click.FloatRange(min=0), metavar="N·M",
               help="The drive motors' effort limit where the description gives none.")
 @click.option("--speed", type=click.FloatRange(min=0, min_open=True), metavar="RAD/S",
               help="The drive motors' speed limit where the description gives none.")
 @robot_options
 @handle_errors
-def command(words, scenarios, output_format, record, left, right, effort, speed, package_paths,
-            sets, config_files):
+def command(words, scenarios, output_format, record, left, right, kind, steering_angle, effort,
+            speed, package_paths, sets, config_files):
     if record:
         from mobile_car.sim.record import require_format
 
         require_format(record)
     if bool(left) != bool(right):
         raise UsageError("--left and --right go together: name both drive joints")
-    reports, codes = [], []
+    steering = None if steering_angle is None else math.radians(steering_angle)
+    reports, codes, skipped = [], [], []
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
         if record and len(selection.inputs) != 1:
             raise UsageError(f"--record writes one animation, but there are "
@@ -129,19 +155,47 @@ def command(words, scenarios, output_format, record, left, right, effort, speed,
                 codes.append(EXIT_PROBLEMS)
                 continue
             result = simulate(checked, scenarios, left, right, record=bool(record),
-                              only_if_drives=not explicit, effort=effort, speed=speed)
+                              only_if_drives=not explicit, effort=effort, speed=speed,
+                              kind=kind, steering=steering)
             if not result.simulated:
-                click.echo(f"mcar: {result.file}: not simulated: {shown(result.why_no_drive)}",
-                           err=True)
+                skipped.append((result.file, result.not_a_vehicle))
                 continue
             reports.append(result)
             codes.append(result.exit_code)
-    if record and reports and reports[0].recording is not None:
-        from mobile_car.atomic import atomic_write
-
-        atomic_write(record, reports[0].recording)
+    say_not_simulated(skipped)
+    if record:
+        _write_recording(record, reports, codes)
     _emit(reports, output_format, combine_exit_codes(codes))
     raise SystemExit(combine_exit_codes(codes))
+
+
+def say_not_simulated(skipped) -> None:
+    """One line per kind of robot not simulated, naming its files (and, for one file,
+    the detail)."""
+    from mobile_car.sim.vehicle import grouped
+
+    for reason, files in grouped(skipped):
+        if len(files) == 1:
+            why = next(w for f, w in skipped if f == files[0])
+            click.echo(f"mcar: {shown(files[0])}: not simulated: {shown(str(why))}", err=True)
+            continue
+        click.echo(f"mcar: not simulated, {shown(reason)}: {len(files)} files: "
+                   f"{', '.join(shown(f) for f in files)}", err=True)
+
+
+def _write_recording(record: str, reports, codes) -> None:
+    """Write the animation, or say why there is none (the exit code is the failure's)."""
+    from mobile_car.atomic import atomic_write
+
+    if reports and reports[0].recording is not None:
+        atomic_write(record, reports[0].recording)
+        return
+    failed = [s.message() for r in reports for s in r.scenarios if s.status == "failed"]
+    why = ("the robot was not simulated" if not reports else
+           reports[0].error or (failed[0] if failed else "nothing was simulated to record"))
+    click.echo(f"mcar: --record {shown(record)}: not written: {shown(why)}", err=True)
+    if not any(codes):
+        codes.append(EXIT_PROBLEMS)
 
 
 def _emit(reports, output_format: str, exit_code: int) -> None:

@@ -104,3 +104,26 @@ def test_quick_folder_section_times_check_and_build_of_two_sizes(tmp_path, mcar_
         assert re.fullmatch(r"[\d.]+ m?s", cells[1]) and re.fullmatch(r"[\d.]+ m?s", cells[2])
         assert re.fullmatch(r"\d+\.\d", cells[3]) and cells[5] == "0 / 0", cells
     assert all(cells[6] in ("met", "**missed**") for cells in rows[1::2])  # 2N vs N
+
+
+def test_quick_robots_section_times_sim_on_real_robots_next_to_the_car(tmp_path, mcar_bin):
+    from sim.test_sim_real_robots import FOLDER
+
+    if FOLDER is None:
+        pytest.skip("the shared real-robots folder is absent (set MCAR_REAL_ROBOTS)")
+    text = quick_section(tmp_path, "robots", timeout=600)
+    assert "## `mcar sim` on real robots" in text
+    rows = {cells[0]: cells for cells in (line.strip("| ").split(" | ")
+                                          for line in text.splitlines()
+                                          if line.startswith("| `"))}
+    sims = ["`mcar sim` bundled car (mobile_robot.xacro)",
+            "`mcar sim` TurtleBot3 burger (built URDF)", "`mcar sim` Husky (husky.urdf.xacro)"]
+    assert list(rows)[:3] == sims
+    for label in sims:
+        cells = rows[label]
+        # Every run exited 0, with a peak memory, a ratio to the car's time and a verdict.
+        assert re.fullmatch(r"[\d.]+ m?s", cells[1]) and cells[4] == "0", cells
+        assert re.fullmatch(r"\d+ MiB|-", cells[2]) and re.fullmatch(r"\d+\.\d\d", cells[3])
+        assert cells[5] in ("met", "**missed**")
+    assert rows[sims[0]][3] == "1.00"
+    assert rows["`mcar check` Husky (husky.urdf.xacro)"][4] == "0"

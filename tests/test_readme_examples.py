@@ -22,6 +22,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
 from conftest import REPO
 
 README = REPO / "README.md"
@@ -102,6 +103,22 @@ def _workspace(tmp: Path) -> Path:
 def test_readme_examples_run_as_written(tmp_path):
     steps = list(_steps(README.read_text(encoding="utf-8")))
     assert len(steps) > 30  # the parser found the examples
+    _run_steps(tmp_path, steps, "README.md")
+
+
+# Reference pages under docs/ whose examples run as the README's do (from the repository's
+# root, in a copy of it).
+DOC_PAGES = ("docs/sim.md",)
+
+
+@pytest.mark.parametrize("page", DOC_PAGES)
+def test_docs_examples_run_as_written(tmp_path, page):
+    steps = list(_steps((REPO / page).read_text(encoding="utf-8")))
+    assert len(steps) >= 5  # the parser found the examples
+    _run_steps(tmp_path, steps, page)
+
+
+def _run_steps(tmp_path, steps, page: str) -> None:
     workspace = _workspace(tmp_path)
     env = {k: v for k, v in os.environ.items()
            if k not in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")}
@@ -114,7 +131,7 @@ def test_readme_examples_run_as_written(tmp_path):
                                 stdin=subprocess.DEVNULL)
         problem = None
         if result.returncode != code:
-            problem = f"exit {result.returncode}, the README says {code}"
+            problem = f"exit {result.returncode}, {page} says {code}"
         elif shown is not None:
             printed = (result.stdout + result.stderr).splitlines()
             expected = shown[:shown.index("...")] if "..." in shown else shown
@@ -122,7 +139,7 @@ def test_readme_examples_run_as_written(tmp_path):
             if got != expected:
                 problem = "printed:\n    " + "\n    ".join(printed[:len(expected) + 2])
         if problem:
-            failures.append(f"README.md:{number}: {command}\n  {problem}\n  stderr: "
+            failures.append(f"{page}:{number}: {command}\n  {problem}\n  stderr: "
                             f"{result.stderr.strip()[-400:]}")
     assert not failures, "\n".join(failures)
 
@@ -133,8 +150,6 @@ BASE_REF = ("${{ github.base_ref }}", "main")
 
 def _git_clone_with_base_branch(folder: Path) -> None:
     """``folder`` as a git clone whose origin/main is its one commit (for --against)."""
-    import pytest
-
     if shutil.which("git") is None:
         pytest.skip("git is not installed: the examples compare with a git revision")
     env = dict(os.environ, GIT_AUTHOR_NAME="t", GIT_AUTHOR_EMAIL="t@example.com",

@@ -104,7 +104,9 @@ class CiCache:
         if check is None or check.status == "skipped":
             self.entries.pop(name, None)
             return
-        files = self.stamper.stamps([*item.deps, *item_basis(item, basis).files],
+        # and what its sim step read (a control package's YAML)
+        reads = [path for step in item.steps for path in step.reads]
+        files = self.stamper.stamps([*item.deps, *item_basis(item, basis).files, *reads],
                                     skip=item.generated)
         try:
             urdf = output_stamp(item.urdf, file_sha256(item.urdf))
@@ -127,7 +129,8 @@ class CiCache:
             self.entries[name]["sim"] = {
                 "status": simulated.status, "message": simulated.message,
                 "exit_code": simulated.exit_code, "cases": simulated.cases,
-                "problems": simulated.problems,
+                "problems": simulated.problems, "skip_kind": simulated.skip_kind,
+                "summary": simulated.summary,
                 "diagnostics": diagnostics_data(simulated.diagnostics)}
 
     def save(self) -> None:
@@ -174,9 +177,12 @@ def _sim_step(data: dict) -> Step:
         raise ValueError("sim testcases damaged")
     if not isinstance(problems, list) or not all(isinstance(p, str) for p in problems):
         raise ValueError("sim problems not lines")
+    skip_kind, summary = data.get("skip_kind") or "", data.get("summary") or ""
+    if not isinstance(skip_kind, str) or not isinstance(summary, str):
+        raise ValueError("sim skip kind or summary not text")
     diagnostics = diagnostics_from(data.get("diagnostics") or [], SimDiagnostic)
     return Step("sim", status, message, diagnostics, exit_code=code, cases=list(cases),
-                problems=list(problems))
+                problems=list(problems), skip_kind=skip_kind, summary=summary)
 
 
 def _is_case(case) -> bool:

@@ -3,10 +3,10 @@
 The plan is every robot file of the package (parts, steps, complete robots) and, for each
 variant file in ``urdf/variants/*.yaml``, the package's top-level robot files (those
 directly in ``urdf/``) built with that variant's dimensions. Each item goes through four
-steps (build, check, sim, render); a failed build or check is recorded and the item's
-later steps are skipped, while the other items go on (a failed sim still lets the robot be
-drawn: the picture helps to see why). Nothing here prints: the command line formats the
-:class:`CiItem` list.
+steps (build, check, sim (:mod:`.simulation`), render); a failed build or check is
+recorded and the item's later steps are skipped, while the other items go on (a failed
+sim still lets the robot be drawn: the picture helps to see why). Nothing here prints: the
+command line formats the :class:`CiItem` list.
 """
 
 from __future__ import annotations
@@ -42,6 +42,9 @@ class Step:
     # name, status, message, text, as mobile_car.sim.report.junit_cases makes them.
     cases: list[dict] = field(default_factory=list)
     problems: list[str] = field(default_factory=list)  # its error lines, without the file
+    skip_kind: str = ""  # a skipped sim: the kind of reason, one line per kind in the report
+    summary: str = ""  # sim: its cell in the report's table ("skid-steer 3/3", "not a vehicle")
+    reads: list[Path] = field(default_factory=list)  # files read besides the build's
 
 
 @dataclass
@@ -186,36 +189,6 @@ def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> 
                            seconds=time.perf_counter() - started))
     item.checked = result
     return True
-
-
-def sim_step(item: CiItem) -> None:
-    """Simulate an item that passed its check, as ``mcar sim`` does the files of a package:
-    a robot that is not a vehicle (``mobile_car.sim.report.not_a_vehicle``) is skipped,
-    saying why; any other runs drop, drive and spin, failing on any scenario or sim rule."""
-    import time
-
-    from ..sim.report import failure_lines, junit_cases, simulate
-    from ..sim.scenarios import SCENARIOS
-
-    started = time.perf_counter()
-    try:
-        result = simulate(item.checked, SCENARIOS, only_if_drives=True)
-    except McarError as error:  # no engine, or drive wheels it cannot tell apart
-        item.steps.append(Step("sim", "failed", str(error), exit_code=error.exit_code,
-                               error=error, seconds=time.perf_counter() - started))
-        return
-    seconds = time.perf_counter() - started
-    if not result.simulated:
-        item.steps.append(Step("sim", "skipped", f"not simulated: {result.why_no_drive}",
-                               seconds=seconds))
-        return
-    cases = junit_cases(result)
-    failed = [case["name"] for case in cases if case["status"] == "failed"]
-    ran = ", ".join(case["name"] for case in cases[1:])
-    message = (f"{', '.join(failed)} failed" if failed else f"{ran} passed")
-    item.steps.append(Step("sim", "failed" if result.exit_code else "passed", message,
-                           list(result.diagnostics), seconds, result.exit_code,
-                           cases=cases, problems=failure_lines(result)))
 
 
 def render_step(item: CiItem, session, manifest, basis=None) -> None:

@@ -11,7 +11,8 @@ ERROR, WARNING = "error", "warning"
 # id -> (name, summary), for the README and --format json.
 SIM_RULES = {
     "E301": ("diffdrive-separation", "the DiffDrive plugin's wheel separation differs from "
-             "the distance between the drive wheels by more than 1%"),
+             "the distance between the drive wheels by more than 1% (not for a skid-steer "
+             "robot, whose plugin may rightly hold its effective track)"),
     "E302": ("diffdrive-radius", "the DiffDrive plugin's wheel radius (or diameter) differs "
              "from the drive wheels' collision radius by more than 1%"),
     "E303": ("diffdrive-joint", "the DiffDrive plugin names a joint that is not a drive "

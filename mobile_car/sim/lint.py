@@ -106,35 +106,37 @@ def _value(element) -> float | None:
 
 def _check_plugin(plugin, sim, locate) -> list[SimDiagnostic]:
     found = []
-    joints = {}
-    for side, tags, wheel in (("left", LEFT_TAGS, sim.left), ("right", RIGHT_TAGS, sim.right)):
-        element = _child(plugin, tags)
-        if element is None:
-            continue
-        name = (element.text or "").strip()
-        joints[side] = name
-        other = sim.right if side == "left" else sim.left
-        if wheel is not None and name == wheel.joint:
-            continue
-        if other is not None and name == other.joint:
-            problem = f"is the {'right' if side == 'left' else 'left'} wheel (y = {other.y:+.4g} m)"
-        elif wheel is None:
-            problem = "is not a drive wheel: the robot has none the simulation could find"
-        else:
-            problem = f"is not the {side} drive wheel, {wheel.joint}"
-        found.append(_at(locate, "E303", element,
-                         f"DiffDrive {element.tag} {name}: {problem}"))
+    drive = sim.drive
+    lefts, rights = (drive.left, drive.right) if drive else ([], [])
+    for side, tags, group, others in (("left", LEFT_TAGS, lefts, rights),
+                                      ("right", RIGHT_TAGS, rights, lefts)):
+        # gz-sim's DiffDrive takes a <left_joint> per wheel of a side (skid-steer).
+        for element in (e for e in plugin if e.tag in tags):
+            name = (element.text or "").strip()
+            if name in {w.joint for w in group}:
+                continue
+            other = next((w for w in others if w.joint == name), None)
+            if other is not None:
+                problem = (f"is the {'right' if side == 'left' else 'left'} wheel "
+                           f"(y = {other.y:+.4g} m)")
+            elif not group:
+                problem = "is not a drive wheel: the robot has none the simulation could find"
+            else:
+                problem = f"is not the {side} drive wheel, {' or '.join(w.joint for w in group)}"
+            found.append(_at(locate, "E303", element,
+                             f"DiffDrive {element.tag} {name}: {problem}"))
     if not sim.drives:
         return found
     separation = _child(plugin, SEPARATION_TAGS)
     value = _value(separation)
-    if value is not None and _differs(value, sim.track):
+    # A skid-steer robot's plugin rightly holds its effective track (spin measures it).
+    if value is not None and drive.kind != "skid-steer" and _differs(value, drive.track):
+        names = " and ".join(", ".join(w.joint for w in g) for g in (lefts, rights))
         found.append(_at(locate, "E301", separation,
                          f"DiffDrive {separation.tag} {value:g} m, but the drive wheels "
-                         f"{sim.left.joint} and {sim.right.joint} are {sim.track:.4g} m "
-                         "apart: odometry and turning rates would be off by "
-                         f"{100 * abs(value - sim.track) / sim.track:.1f}%"))
-    radius = (sim.left.radius + sim.right.radius) / 2
+                         f"{names} are {drive.track:.4g} m apart: odometry and turning rates "
+                         f"would be off by {100 * abs(value - drive.track) / drive.track:.1f}%"))
+    radius = drive.radius
     element = _child(plugin, RADIUS_TAGS)
     value, factor = _value(element), 1.0
     if element is None:

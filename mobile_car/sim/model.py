@@ -1,12 +1,13 @@
 """The robot as MuJoCo simulates it: URDF in, a compiled model on a floor out, with the
-drive wheels found, velocity motors on them and the heights the scenarios measure against.
+drive found (:mod:`.drives`), velocity motors on its wheels, position servos on its
+steering, and the heights the scenarios measure against.
 
-The simulation-only choices (README, "mcar sim") are made here and nowhere else:
+The simulation-only choices (docs/sim.md) are made here and nowhere else:
 
 * the root link gets a free joint (MuJoCo's URDF importer otherwise welds it to the world);
 * robot geoms collide with the floor only (Gazebo's default: no self-collision);
-* a drive wheel touches the floor through a sphere of the tyre's radius: a cylinder
-  touches at both tyre edges and scrubs when the car turns in place;
+* a wheel (driven or rolling free) touches the floor through a sphere of the tyre's
+  radius: a cylinder touches at both tyre edges and scrubs when the car turns in place;
 * friction comes from the description's ``<gazebo reference><mu1>``, with a contact
   priority so the part's own value wins (MuJoCo otherwise takes the larger of the pair's);
   a castor (a part other than the drive wheels that rests on the floor) without one gets
@@ -18,10 +19,16 @@ The simulation-only choices (README, "mcar sim") are made here and nowhere else:
 * a drive joint's motor figures come from the description (:mod:`.motors`), a default
   torque when it gives none; its velocity servo's gain grows with the load the wheel
   drives (:func:`servo_gain`), so that a heavy robot follows the speed ramp as the car does;
-* the drive joints get an armature of 1e-4 kg m², about a small gear motor's rotor
-  inertia seen through its gearbox (JGA25-370: ~2e-7 kg m² x 21²): without it the light
-  wheels (~2e-5 kg m²) chatter against the stiff velocity servo and the car over-travels
-  ~7%; and a 1 ms step (0.6% over-travel, 2% at MuJoCo's default 2 ms).
+* the wheel joints get an armature, the motor's rotor inertia seen through its gearbox:
+  1e-4 kg m² on a small car (JGA25-370: ~2e-7 kg m² x 21²), a quarter of the wheel's
+  share of the robot (m·r²/n) on a larger one (:func:`wheel_armature`; Jackal: 0.011 kg m²),
+  as motors grow with what they drive: without it light wheels chatter against the stiff
+  velocity servo and the robot over-travels as the speed ramps up (the car ~7%, Jackal
+  2.8%); and a 1 ms step (0.6% over-travel, 2% at MuJoCo's default 2 ms);
+* an Ackermann car's steering joints get a position servo stiff enough that a tyre's
+  whole friction moves them by 0.3° at most (:func:`steering_gain`), within the joint's
+  effort limit; other revolute and prismatic joints (an arm, steering held straight
+  when the car is driven as another kind) are welded at 0: with no motor they would fold.
 """
 
 from __future__ import annotations
@@ -33,9 +40,10 @@ import numpy as np
 from lxml import etree
 
 from ..check.urdf_model import parse_number
-from ..errors import EXIT_PROBLEMS, McarError, UsageError
+from ..errors import EXIT_PROBLEMS, McarError
+from .drives import Drive, actuated_joints, choose_drive, find_tree
 from .engine import mujoco
-from .motors import MotorFigures, motor_figures
+from .motors import motor_figures
 
 TIMESTEP = 0.001
 # Above the floor by this much, a part does not rest on it (contacts, ground parts).
@@ -49,7 +57,10 @@ MESH_FORMATS = (".stl", ".obj", ".msh")
 # (0.71 kg on 32.5 mm wheels) and its variants', which keep the gain they were tuned with.
 SERVO_GAIN = 0.5
 SERVO_REFERENCE_INERTIA = 1e-3  # kg m²
-WHEEL_ARMATURE = 1e-4  # kg m², see the module's docstring
+WHEEL_ARMATURE = 1e-4  # kg m², the least, see the module's docstring ...
+ARMATURE_SHARE = 0.25  # ... and of the wheel's share of the robot's m·r², if more
+STEER_STIFFNESS = 0.005  # rad a steering servo yields to a tyre's full friction
+GRAVITY = 9.81
 # mu of a castor whose description gives none: a ball that rolls freely, modelled as
 # sliding (the bundled car's caster_friction).
 CASTOR_FRICTION = 0.01
@@ -62,29 +73,12 @@ class SimModelError(McarError):
 
 
 @dataclass
-class Wheel:
-    joint: str
-    link: str
-    joint_id: int
-    body_id: int
-    geom_ids: list[int]
-    radius: float
-    y: float            # wheel centre in the root frame
-    effort: float | None
-    velocity: float | None
-    actuator_id: int = -1
-    motor: MotorFigures | None = None  # effort and speed limits with their sources
-    gain: float = SERVO_GAIN
-
-
-@dataclass
 class SimModel:
     model: object       # mujoco.MjModel
     spec: object        # mujoco.MjSpec (mcar build --format mjcf writes it)
     root: str
     root_body: int
-    left: Wheel | None
-    right: Wheel | None
+    drive: Drive | None
     why_no_drive: str | None
     rest_height: float  # the root's height when the geometry rests on the floor
     ground_parts: dict[str, int] = field(default_factory=dict)  # link -> body id (castor)
@@ -93,26 +87,29 @@ class SimModel:
     floor_geom: int = 0
     notes: list[str] = field(default_factory=list)
     mass: float = 0.0   # kg, the whole robot
+    held: list[str] = field(default_factory=list)  # joints held still: not the drive's
+    control: object = None  # skid-steer: its control package's ControlConfig, if found
 
     @property
     def kind(self) -> str | None:
-        """The drive kind: two driven wheels and what else rests on the floor."""
-        return "differential" if self.drives else None
+        return self.drive.kind if self.drive else None
 
     @property
     def drives(self) -> bool:
-        return self.left is not None and self.right is not None
+        return self.drive is not None
 
     @property
     def track(self) -> float:
-        return abs(self.left.y - self.right.y)
+        return self.drive.track
 
 
-def build_model(urdf: bytes, label: str, base: Path, search, left: str | None = None,
-                right: str | None = None, effort: float | None = None,
-                speed: float | None = None) -> SimModel:
-    """``effort`` (N·m), ``speed`` (rad/s): the drive motors' figures where the
-    description gives none (:mod:`.motors`)."""
+def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=None,
+                effort: float | None = None, speed: float | None = None,
+                kind: str | None = None) -> SimModel:
+    """``left``, ``right``: the driven joints of each side (a name, comma-separated names
+    or a list), ``kind``: a drive kind (:mod:`.drives`), else found from the tree;
+    ``effort`` (N·m), ``speed`` (rad/s): the drive motors' figures where the description
+    gives none (:mod:`.motors`)."""
     mj = mujoco()
     root = etree.fromstring(urdf, etree.XMLParser(resolve_entities=False, no_network=True))
     # The robot's own joints only: a <transmission> or <ros2_control> names joints too.
@@ -121,6 +118,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left: str | None = 
     colours = _link_colours(root)
     # The motor figures' other sources, kept before _prepare takes them out of the tree.
     root_figures = [e for e in root if e.tag in ("gazebo", "ros2_control")]
+    actuated = actuated_joints(root)
     notes = _prepare(root, base, search)
     try:
         spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
@@ -148,13 +146,17 @@ def build_model(urdf: bytes, label: str, base: Path, search, left: str | None = 
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)
     lowest = _lowest_points(mj, shape, data)
-    wheels, why = _find_wheels(mj, shape, data, joints, left, right)
+    tree = find_tree(mj, shape, data, joints)
+    drive, why = choose_drive(tree, actuated, left, right, kind)
+    wheels = drive.wheels if drive else []
     mass = float(shape.body_mass.sum())
-    for wheel in wheels:
+    for wheel in drive.driven if drive else []:
+        slip = friction.get(wheel.link, 1.0) if drive.kind == "skid-steer" else None
         wheel.motor = motor_figures(root_figures, joints[wheel.joint], wheel.radius,
-                                    len(wheels), mass, effort, speed)
+                                    len(drive.driven), mass, effort, speed, slip)
         wheel.effort, wheel.velocity = wheel.motor.effort, wheel.motor.velocity
-        wheel.gain = servo_gain(mass, wheel.radius, len(wheels))
+        wheel.gain = servo_gain(mass, wheel.radius, len(drive.driven),
+                                wheel_armature(mass, drive.radius, len(drive.wheels)))
     wheels_lowest = [lowest[g] for w in wheels for g in w.geom_ids]
     robot_geoms = [g for g in range(shape.ngeom) if shape.geom_bodyid[g] != 0]
     if not robot_geoms:
@@ -175,31 +177,80 @@ def build_model(urdf: bytes, label: str, base: Path, search, left: str | None = 
             if geom.parent.name in parts and geom.parent.name not in friction:
                 geom.friction = [CASTOR_FRICTION, geom.friction[1], geom.friction[2]]
                 geom.priority = 1
+    armature = wheel_armature(mass, drive.radius, len(drive.wheels)) if drive else 0.0
     for wheel in wheels:
-        _round_tyre(spec, shape, wheel, mj)
-        spec.joint(wheel.joint).armature = WHEEL_ARMATURE
+        _round_tyre(spec, wheel, mj)
+        spec.joint(wheel.joint).armature = armature
+    for wheel in drive.driven if drive else []:
         actuator = spec.add_actuator(name=f"mcar_motor_{wheel.joint}", target=wheel.joint,
                                      trntype=mj.mjtTrn.mjTRN_JOINT)
         actuator.set_to_velocity(kv=wheel.gain)
-        effort = wheel.effort if wheel.effort is not None else 0.0
-        # MuJoCo refuses an empty range: a motor of no effort gets a vanishing one.
-        effort = max(effort, 1e-12)
-        actuator.forcelimited = True
-        actuator.forcerange = [-effort, effort]
+        _limit_force(actuator, wheel.effort)
+    steering = drive.steering if drive else []
+    for steer in steering:
+        spec.joint(steer.joint).armature = armature
+        actuator = spec.add_actuator(name=f"mcar_steer_{steer.joint}", target=steer.joint,
+                                     trntype=mj.mjtTrn.mjTRN_JOINT)
+        actuator.set_to_position(kp=steering_gain(mass, drive.radius, len(drive.wheels)),
+                                 dampratio=1.0)
+        if steer.effort is not None:
+            _limit_force(actuator, steer.effort)
+    held = _hold_the_rest(spec, joints, drive)
     model = _compile(spec, label)
-    for wheel in wheels:
+    for wheel in wheels:  # (ids of the final model: held joints are gone from it)
+        wheel.joint_id = model.joint(wheel.joint).id
+    for wheel in drive.driven if drive else []:
         wheel.actuator_id = model.actuator(f"mcar_motor_{wheel.joint}").id
-    pair = (wheels + [None, None])[:2] if wheels else [None, None]
+    for steer in steering:
+        steer.joint_id = model.joint(steer.joint).id
+        steer.actuator_id = model.actuator(f"mcar_steer_{steer.joint}").id
     return SimModel(model=model, spec=spec, root=root_body.name,
-                    root_body=model.body(root_body.name).id, left=pair[0], right=pair[1],
+                    root_body=model.body(root_body.name).id, drive=drive,
                     why_no_drive=why, rest_height=-ground, ground_parts=parts, clearance=clearance,
-                    floor_geom=model.geom("mcar_floor").id, notes=notes, mass=mass)
+                    floor_geom=model.geom("mcar_floor").id, notes=notes, mass=mass, held=held)
 
 
-def servo_gain(mass: float, radius: float, drive_wheels: int) -> float:
+def _limit_force(actuator, effort: float | None) -> None:
+    # MuJoCo refuses an empty range: a motor of no effort gets a vanishing one.
+    effort = max(effort if effort is not None else 0.0, 1e-12)
+    actuator.forcelimited = True
+    actuator.forcerange = [-effort, effort]
+
+
+def _hold_the_rest(spec, joints: dict, drive) -> list[str]:
+    """Revolute and prismatic joints that are not the drive's (an arm, a lift, steering
+    held straight) are welded at 0, the pose check and render show: with no motor they
+    would fold under gravity. Continuous joints stay free (castor swivels, rollers, a
+    spinning sensor)."""
+    ours = {s.joint for s in drive.steering} | {w.joint for w in drive.wheels} if drive \
+        else set()
+    held = [name for name, element in joints.items()
+            if element.get("type") in ("revolute", "prismatic") and name not in ours]
+    for name in held:
+        joint = spec.joint(name)
+        if joint is not None:
+            spec.delete(joint)
+    return held
+
+
+def steering_gain(mass: float, radius: float, wheels: int) -> float:
+    """kp of a steering servo (N·m/rad): a tyre's whole friction (mu 1) on its share of
+    the weight, pushing at the wheel's radius from the pivot, turns it by STEER_STIFFNESS
+    rad at most."""
+    return mass * GRAVITY * max(radius, 1e-3) / max(1, wheels) / STEER_STIFFNESS
+
+
+def wheel_armature(mass: float, radius: float, wheels: int) -> float:
+    """A wheel joint's armature (kg m²): WHEEL_ARMATURE, or ARMATURE_SHARE of the wheel's
+    share of the robot's m·r² where that is more."""
+    return max(WHEEL_ARMATURE, ARMATURE_SHARE * mass * radius ** 2 / max(1, wheels))
+
+
+def servo_gain(mass: float, radius: float, drive_wheels: int,
+               armature: float = WHEEL_ARMATURE) -> float:
     """kv for a wheel that accelerates its share of the robot: SERVO_GAIN up to the
     reference load, in proportion above it."""
-    load = mass * radius ** 2 / max(1, drive_wheels) + WHEEL_ARMATURE
+    load = mass * radius ** 2 / max(1, drive_wheels) + armature
     return SERVO_GAIN * max(1.0, load / SERVO_REFERENCE_INERTIA)
 
 
@@ -337,67 +388,7 @@ def _lowest_points(mj, model, data) -> dict[int, float]:
     return lowest
 
 
-def _find_wheels(mj, model, data, joints, left, right):
-    """([left, right], None), or ([], why not): named by --left/--right, else the
-    continuous joints whose links have collision geometry, one on each side."""
-    def wheel(name):
-        element = joints[name]
-        joint_id = model.joint(name).id
-        body = int(model.jnt_bodyid[joint_id])
-        geoms = [g for g in range(model.ngeom) if model.geom_bodyid[g] == body]
-        limit = element.find("limit")
-        def number(key):
-            return (parse_number(limit.get(key)) if limit is not None else None)
-        radius = max((_rolling_radius(mj, model, g) for g in geoms), default=0.0)
-        return Wheel(name, model.body(body).name, joint_id, body, geoms, radius,
-                     float(data.xpos[body][1]), number("effort"), number("velocity"))
-
-    if left or right:
-        if not (left and right):
-            raise UsageError("--left and --right go together: name both drive joints")
-        for name in (left, right):
-            if name not in joints:
-                raise UsageError(f"--left/--right {name}: the robot has no joint of that name")
-            if joints[name].get("type") not in ("continuous", "revolute"):
-                raise UsageError(f"--left/--right {name}: a {joints[name].get('type')} joint "
-                                 "cannot drive a wheel")
-        pair = [wheel(left), wheel(right)]
-        for w in pair:
-            if not w.geom_ids:
-                raise UsageError(f"--left/--right {w.joint}: link {w.link} has no <collision> "
-                                 "geometry to roll on")
-        return pair, None
-    found = [wheel(name) for name, j in joints.items() if j.get("type") == "continuous"
-             and name in _model_joints(model)]
-    found = [w for w in found if w.geom_ids]
-    lefts = [w for w in found if w.y > 1e-6]
-    rights = [w for w in found if w.y < -1e-6]
-    if not found:
-        return [], "no drive wheels: no continuous joint moves a link with collision geometry"
-    if not lefts or not rights:
-        side = "left (+y)" if not lefts else "right (-y)"
-        names = ", ".join(w.joint for w in found)
-        return [], f"no drive wheels: none on the {side} side (continuous joints: {names})"
-    if len(lefts) > 1 or len(rights) > 1:
-        names = ", ".join(w.joint for w in found)
-        raise UsageError(f"several continuous joints could drive ({names}): name the drive "
-                         "wheels with --left JOINT --right JOINT")
-    return [lefts[0], rights[0]], None
-
-
-def _model_joints(model) -> set[str]:
-    return {model.joint(j).name for j in range(model.njnt)}
-
-
-def _rolling_radius(mj, model, g) -> float:
-    kind, size = mj.mjtGeom(int(model.geom_type[g])), model.geom_size[g]
-    if kind in (mj.mjtGeom.mjGEOM_CYLINDER, mj.mjtGeom.mjGEOM_SPHERE,
-                mj.mjtGeom.mjGEOM_CAPSULE):
-        return float(size[0])
-    return float(model.geom_rbound[g])
-
-
-def _round_tyre(spec, model, wheel: Wheel, mj) -> None:
+def _round_tyre(spec, wheel, mj) -> None:
     """The wheel's cylinders touch the floor through a sphere of the same radius."""
     for geom in spec.geoms:
         if geom.parent.name == wheel.link and geom.type == mj.mjtGeom.mjGEOM_CYLINDER:

@@ -9,13 +9,16 @@ came from, which the report prints:
    move, and drive says so);
 2. the ``<ros2_control>`` joint of that name: its ``effort`` / ``velocity`` command
    interface's ``max`` (or ``-min``) parameter;
-3. a ``<gazebo>`` diff-drive plugin naming the joint (or naming no joints): the wheel torque
-   (``max_wheel_torque``, ROS 1 ``wheelTorque``) and, of gz-sim's DiffDrive,
-   ``max_linear_velocity`` / wheel radius;
+3. a ``<gazebo>`` diff-drive or skid-steer plugin naming the joint (or naming no joints):
+   the wheel torque (``max_wheel_torque``, ROS 1 ``wheelTorque`` or ``torque``) and, of
+   gz-sim's DiffDrive, ``max_linear_velocity`` / wheel radius;
 4. ``mcar sim --effort`` / ``--speed``;
 5. a default: the torque that holds the robot on a 10 degree slope, shared by the drive
-   wheels (m·g·sin 10°·r / n); no speed limit (the scenarios then command
-   :data:`~mobile_car.sim.scenarios.DEFAULT_SPEED`, slower on large wheels).
+   wheels (m·g·sin 10°·r / n); for a skid-steer robot, which turns by dragging its tyres
+   sideways, the torque that slips its wheels on the floor (mu·m·g·r / n, mu their
+   friction): with the slope's torque, a Husky's wheels stall and it cannot turn (0.01 of
+   the rate it should). No speed limit (the scenarios then command
+   :data:`~mobile_car.sim.run.DEFAULT_SPEED`, slower on large wheels).
 """
 
 from __future__ import annotations
@@ -27,10 +30,13 @@ from ..check.urdf_model import parse_number
 
 SLOPE_DEGREES = 10.0
 GRAVITY = 9.81
-# Parameter names of the diff-drive plugins: ROS 2 gazebo_ros and ROS 1 libgazebo_ros_diff_drive.
-TORQUE_TAGS = ("max_wheel_torque", "wheelTorque")
+# Parameter names of the drive plugins: ROS 2 gazebo_ros, ROS 1 libgazebo_ros_diff_drive and
+# libgazebo_ros_skid_steer_drive.
+TORQUE_TAGS = ("max_wheel_torque", "wheelTorque", "torque")  # the last: skid-steer plugin
 LINEAR_VELOCITY_TAGS = ("max_linear_velocity",)  # gz-sim DiffDrive, in m/s
 JOINT_TAGS = ("left_joint", "right_joint", "leftJoint", "rightJoint")
+# The skid-steer plugin of gazebo_ros (ROS 1) names its four joints so.
+SKID_JOINT_TAGS = ("leftFrontJoint", "rightFrontJoint", "leftRearJoint", "rightRearJoint")
 
 
 @dataclass
@@ -47,10 +53,11 @@ class MotorFigures:
 
 
 def motor_figures(extras, joint, radius: float, drive_wheels: int, mass: float,
-                  effort_flag: float | None = None,
-                  speed_flag: float | None = None) -> MotorFigures:
+                  effort_flag: float | None = None, speed_flag: float | None = None,
+                  slip_friction: float | None = None) -> MotorFigures:
     """The figures of the drive joint element ``joint``; ``extras``: the robot's top-level
-    ``<ros2_control>`` and ``<gazebo>`` elements."""
+    ``<ros2_control>`` and ``<gazebo>`` elements; ``slip_friction``: a skid-steer robot's
+    tyre friction, whose default torque slips the wheels rather than holds the slope."""
     name = joint.get("name")
     efforts, velocities = [], []
     limit = _first(joint, "limit")
@@ -69,7 +76,11 @@ def motor_figures(extras, joint, radius: float, drive_wheels: int, mass: float,
     efforts.append((effort_flag, "--effort"))
     velocities.append((speed_flag, "--speed"))
     effort, effort_from = _first_given(efforts)
-    if effort is None:
+    if effort is None and slip_friction is not None:
+        effort = slip_friction * mass * GRAVITY * radius / max(1, drive_wheels)
+        effort_from = (f"default: slips the wheels of {mass:.3g} kg at mu {slip_friction:g} "
+                       f"(mu·m·g·r / {drive_wheels}, skid-steer)")
+    elif effort is None:
         effort = slope_torque(mass, radius, drive_wheels)
         effort_from = (f"default: holds {mass:.3g} kg on a {SLOPE_DEGREES:g}° slope "
                        f"(m·g·sin {SLOPE_DEGREES:g}°·r / {drive_wheels})")
@@ -126,7 +137,8 @@ def _ros2_control_interfaces(extras, joint_name) -> dict[str, float]:
 
 
 def _diff_drive_plugins(extras, joint_name):
-    """The diff-drive plugins that drive ``joint_name`` (or name no joint at all)."""
+    """The diff-drive and skid-steer plugins that drive ``joint_name`` (or name no joint
+    at all)."""
     for gazebo in extras:
         if gazebo.tag != "gazebo":
             continue
@@ -134,9 +146,11 @@ def _diff_drive_plugins(extras, joint_name):
             if plugin.tag != "plugin":
                 continue
             text = f"{plugin.get('name', '')} {plugin.get('filename', '')}".lower()
-            if not ("diffdrive" in text or "diff_drive" in text or "diff-drive" in text):
+            if not any(word in text for word in ("diffdrive", "diff_drive", "diff-drive",
+                                                 "skid_steer", "skidsteer")):
                 continue
-            named = {(child.text or "").strip() for child in plugin if child.tag in JOINT_TAGS}
+            named = {(child.text or "").strip() for child in plugin
+                     if child.tag in JOINT_TAGS + SKID_JOINT_TAGS}
             if not named or joint_name in named:
                 yield plugin
 

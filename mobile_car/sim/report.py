@@ -3,21 +3,30 @@ a text table, JSON, JUnit. The library builds the strings; the command line prin
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 from xml.etree import ElementTree as ET
 
 from ..errors import EXIT_OK, EXIT_PROBLEMS
 from .junit import junit_case, junit_document
-from .lint import SimDiagnostic, link_mass, lint, moving_links_without_mass
-from .scenarios import ScenarioResult, command_speed, run_scenarios, show_bound, show_value
+from .lint import SimDiagnostic, lint, moving_links_without_mass
+from .scenarios import (
+    ScenarioResult,
+    command_speed,
+    run_scenarios,
+    scenarios_for,
+    show_bound,
+    show_value,
+)
+from .vehicle import NotAVehicle, not_a_vehicle, unsimulable
 
 
 @dataclass
 class SimReport:
     file: str
     robot: str | None
-    drive: dict | None = None            # left, right, radius, track, command speed
+    drive: dict | None = None            # kind, wheel groups, radius, track, command speed
     why_no_drive: str | None = None
     diagnostics: list[SimDiagnostic] = field(default_factory=list)
     scenarios: list[ScenarioResult] = field(default_factory=list)
@@ -25,7 +34,10 @@ class SimReport:
     error: str | None = None             # the model could not be made
     seconds: float = 0.0                 # wall clock
     recording: bytes | None = None       # the GIF, with record=True
-    simulated: bool = True               # False: no drive wheels and only_if_drives
+    simulated: bool = True               # False: not a vehicle, and only_if_drives
+    not_a_vehicle: NotAVehicle | None = None
+    held: list[str] = field(default_factory=list)  # joints welded still: not the drive's
+    reads: list = field(default_factory=list)      # files read besides the robot's (Paths)
 
     @property
     def lint_errors(self) -> list[SimDiagnostic]:
@@ -38,33 +50,34 @@ class SimReport:
         return EXIT_OK
 
 
-def simulate(checked, names, left=None, right=None, record: bool = False,
+def simulate(checked, names=None, left=None, right=None, record: bool = False,
              only_if_drives: bool = False, effort: float | None = None,
-             speed: float | None = None) -> SimReport:
-    """Lint and run ``names`` on a robot that passed ``mcar check`` (a CheckResult);
-    ``record``: keep a GIF of the runs; ``only_if_drives``: a robot that is not a vehicle
-    (:func:`not_a_vehicle`, or no drive wheel on a side) is not simulated (``simulated``
-    False), as for the files of a package and in ``mcar ci``; ``effort``, ``speed``: the
-    drive motors' figures where the description gives none (:mod:`.motors`)."""
+             speed: float | None = None, kind: str | None = None,
+             steering: float | None = None) -> SimReport:
+    """Lint and run ``names`` (default: the drive kind's scenarios) on a robot that passed
+    ``mcar check`` (a CheckResult); ``left``/``right``: the driven joints of each side,
+    ``kind``: the drive kind (:mod:`.drives`; both else found from the tree); ``record``:
+    keep a GIF of the runs; ``only_if_drives``: a robot that is not a vehicle
+    (:func:`.vehicle.not_a_vehicle`) is not simulated (``simulated`` False), as for the
+    files of a package and in ``mcar ci``; ``effort``, ``speed``: the drive motors'
+    figures where the description gives none (:mod:`.motors`); ``steering``: the turn's
+    steering angle (rad)."""
     from .model import SimModelError, build_model
 
     started = time.perf_counter()
     loaded = checked.loaded
     report = SimReport(checked.file, checked.robot.name)
-    if only_if_drives:
-        why_not = not_a_vehicle(checked.robot)
-        if why_not:
-            report.simulated, report.why_no_drive = False, why_not
-            return report
-    unsimulable = _unsimulable(checked.robot)
-    if unsimulable:
-        report.why_no_drive = _no_drive(checked.robot)
-        if only_if_drives:
-            report.simulated = False
-            return report
-        report.scenarios = [ScenarioResult(name, problems=unsimulable) if name == "drop" else
+    why_not = not_a_vehicle(checked.robot)
+    if only_if_drives and why_not:
+        report.simulated, report.not_a_vehicle = False, why_not
+        report.why_no_drive = str(why_not)
+        return report
+    problems = unsimulable(checked.robot)
+    if problems:
+        report.why_no_drive = str(why_not) if why_not else "no drive wheels: " + problems[0]
+        report.scenarios = [ScenarioResult(name, problems=problems) if name == "drop" else
                             ScenarioResult(name, skipped=report.why_no_drive)
-                            for name in names]
+                            for name in (names or ("drop", "drive", "spin"))]
         return report
     report.diagnostics = moving_links_without_mass(checked)
     if report.diagnostics:
@@ -72,33 +85,36 @@ def simulate(checked, names, left=None, right=None, record: bool = False,
         return report
     try:
         sim = build_model(loaded.urdf, checked.file, loaded.base, loaded.search, left, right,
-                          effort, speed)
+                          effort, speed, kind)
     except SimModelError as error:
         report.error = error.message
         return report
-    if only_if_drives and not sim.drives:
-        report.simulated, report.why_no_drive = False, sim.why_no_drive
-        return report
     report.notes = list(sim.notes)
+    report.held = list(sim.held)
     report.diagnostics = lint(checked, sim)
+    report.why_no_drive = str(why_not) if why_not else sim.why_no_drive
+    delta = None
     if sim.drives:
-        report.drive = {"kind": sim.kind, "left": sim.left.joint, "right": sim.right.joint,
-                        "wheel_radius": round(sim.left.radius, 6),
-                        "track": round(sim.track, 6),
-                        "command_speed": round(command_speed(sim), 6),
-                        "castors": sorted(sim.ground_parts), "mass": round(sim.mass, 6),
-                        "motors": {w.joint: {**w.motor.as_json(), "servo_gain": round(w.gain, 6)}
-                                   for w in (sim.left, sim.right)}}
-    report.why_no_drive = sim.why_no_drive
+        report.drive = drive_summary(sim)
+        if sim.kind == "skid-steer":
+            from .control_config import find_control_config
+
+            sim.control, unread = find_control_config(loaded, [w.joint for w in sim.drive.driven])
+            report.notes += unread
+            if sim.control is not None:
+                report.reads.append(sim.control.file)
+        if sim.kind == "ackermann" and "turn" in scenarios_for(sim, names):
+            from .turning import steering_angle
+
+            delta = steering_angle(sim, steering)
+            report.drive["steering_angle_deg"] = round(math.degrees(delta), 6)
     recorder = None
     if record:
         from .record import Recorder
-        from .scenarios import DRIVE_TIME
 
-        reach = sim.left.radius * command_speed(sim) * DRIVE_TIME if sim.drives else 0.3
-        recorder = Recorder(sim, reach)
+        recorder = Recorder(sim, scenarios_for(sim, names))
     try:
-        report.scenarios = run_scenarios(sim, names, recorder)
+        report.scenarios = run_scenarios(sim, names, recorder, delta)
         if recorder is not None:
             report.recording = recorder.gif()
     finally:
@@ -108,68 +124,41 @@ def simulate(checked, names, left=None, right=None, record: bool = False,
     return report
 
 
-def _unsimulable(robot) -> list[str]:
-    """Why the robot cannot even be dropped (the tutorial's visual-only car), or []."""
-    problems = []
-    if not any(link.collisions for link in robot.links):
-        problems.append("no link has <collision> geometry: nothing can rest on the floor, "
-                        "the robot would fall through it")
-    if sum(link_mass(link) for link in robot.links) <= 0:
-        problems.append("no link has mass (<inertial>): there is nothing to simulate")
-    return problems
-
-
-def not_a_vehicle(robot) -> str | None:
-    """Why a robot of a package is not simulated, or None: a vehicle has two or more
-    continuous joints moving collision geometry (drive wheels) and a third link with
-    collision geometry to stand on (a castor, a body). A part's test file (the wheel pair
-    on a bare base_link) is not one; a car whose castor is set too high still is, so that
-    drop fails it. Mass is not asked for here: a car that lost an <inertial> must fail
-    (E305), not go unsimulated."""
-    colliding = {link.name for link in robot.links if link.collisions}
-    wheels = {j.child for j in robot.joints if j.type == "continuous" and j.child in colliding}
-    if len(wheels) < 2:
-        return _no_drive(robot)
-    if not colliding - wheels:
-        return (f"not a vehicle: nothing but the wheels ({', '.join(sorted(wheels))}) has "
-                "collision geometry, no castor or body to stand on")
-    return None
-
-
-def _no_drive(robot) -> str:
-    continuous = [j.name for j in robot.joints if j.type == "continuous"]
-    if continuous:
-        return (f"no drive wheels: continuous joints {', '.join(continuous)}, not a pair "
-                "with collision geometry")
-    joints = ", ".join(f"{j.name} ({j.type})" for j in robot.joints[:6])
-    return f"no drive wheels: no continuous joint{': ' + joints if joints else ''}"
+def drive_summary(sim) -> dict:
+    """The drive as the report gives it: kind, wheel groups, sizes, motors (JSON-ready)."""
+    drive = sim.drive
+    summary = {"kind": drive.kind, "chosen": drive.chosen,
+               "left": [w.joint for w in drive.left], "right": [w.joint for w in drive.right],
+               "free": [w.joint for w in drive.free],
+               "steering": [s.joint for s in drive.steering],
+               "wheel_radius": round(drive.radius, 6), "track": round(drive.track, 6),
+               "command_speed": round(command_speed(sim), 6),
+               "castors": sorted(set(sim.ground_parts) - {w.link for w in drive.wheels}),
+               "mass": round(sim.mass, 6),
+               "motors": {w.joint: {**w.motor.as_json(), "servo_gain": round(w.gain, 6)}
+                          for w in drive.driven}}
+    if drive.kind == "ackermann":
+        summary["wheelbase"] = round(drive.wheelbase, 6)
+    return summary
 
 
 def as_json(report: SimReport) -> dict:
     return {"file": report.file, "robot": report.robot, "drive": report.drive,
-            "why_no_drive": report.why_no_drive, "error": report.error,
+            "why_no_drive": report.why_no_drive, "held": report.held, "error": report.error,
             "diagnostics": [d.as_json() for d in report.diagnostics],
             "scenarios": [s.as_json() for s in report.scenarios],
             "notes": report.notes, "exit_code": report.exit_code}
 
 
 def text_table(report: SimReport) -> list[str]:
-    """The figures of each scenario against their bounds, one line each."""
+    """The drive, then the figures of each scenario against their bounds, one line each."""
     lines = [f"{report.file} ({report.robot})"]
     if report.drive:
-        d = report.drive
-        castors = ", ".join(d["castors"]) or "none"
-        lines.append(f"  {d['kind']} drive wheels {d['left']} (left), {d['right']} (right): "
-                     f"radius {d['wheel_radius']:g} m, track {d['track']:g} m, command "
-                     f"{d['command_speed']:g} rad/s; on the floor too: {castors}; "
-                     f"mass {d['mass']:.4g} kg")
-        for joint, motor in d["motors"].items():
-            speed = ("no limit" if motor["velocity"] is None else
-                     f"{motor['velocity']:g} rad/s ({motor['velocity_from']})")
-            lines.append(f"  motor {joint}: {motor['effort']:.4g} N·m ({motor['effort_from']}), "
-                         f"{speed}, servo gain {motor['servo_gain']:.4g} N·m·s/rad")
+        lines += _drive_lines(report.drive)
     elif report.why_no_drive:
         lines.append(f"  {report.why_no_drive}: drop only")
+    if report.held:
+        lines.append(f"  held still at 0, not simulated: {', '.join(report.held)}")
     if report.lint_errors or report.error:
         lines.append(f"  lint   FAILED  {report.error or ''}" + "; ".join(
             f"{d.rule} {d.message}" for d in report.lint_errors))
@@ -180,6 +169,33 @@ def text_table(report: SimReport) -> list[str]:
             detail = f"  ({f.detail})" if f.detail else ""
             lines.append(f"    {f.name:<20} {show_value(f.value, f.unit):>14}  {show_bound(f):<14} "
                          f"{'ok' if f.ok else 'FAIL'}{detail}")
+        lines += [f"    {finding}" for finding in scenario.findings]
+    return lines
+
+
+def _drive_lines(d: dict) -> list[str]:
+    kind = d["kind"] + ("" if d["chosen"] == "found from the tree" else f" ({d['chosen']})")
+    wheels = f"{', '.join(d['left'])} (left), {', '.join(d['right'])} (right)"
+    if d["free"]:
+        wheels += f", rolling free {', '.join(d['free'])}"
+    if d["steering"]:
+        wheels += f"; steering {', '.join(d['steering'])}"
+    sizes = f"radius {d['wheel_radius']:g} m, track {d['track']:g} m"
+    if "wheelbase" in d:
+        sizes += f", wheelbase {d['wheelbase']:g} m"
+    if "steering_angle_deg" in d:
+        sizes += f", steering angle {d['steering_angle_deg']:.4g}°"
+    castors = ", ".join(d["castors"]) or "none"
+    lines = [f"  {kind} drive wheels {wheels}: {sizes}, command {d['command_speed']:g} rad/s; "
+             f"on the floor too: {castors}; mass {d['mass']:.4g} kg"]
+    alike: dict[str, list[str]] = {}  # one line for the motors that share their figures
+    for joint, motor in d["motors"].items():
+        speed = ("no limit" if motor["velocity"] is None else
+                 f"{motor['velocity']:g} rad/s ({motor['velocity_from']})")
+        text = (f"{motor['effort']:.4g} N·m ({motor['effort_from']}), {speed}, servo gain "
+                f"{motor['servo_gain']:.4g} N·m·s/rad")
+        alike.setdefault(text, []).append(joint)
+    lines += [f"  motor {', '.join(joints)}: {text}" for text, joints in alike.items()]
     return lines
 
 

@@ -24,7 +24,8 @@ def test_green_on_the_bundled_package_with_pictures(run_mcar, tmp_path):
     assert result.returncode == 0, result.stderr
     labels = expected_labels()
     rows = result.stdout.splitlines()
-    assert rows[0].split() == ["FILE", "LINKS", "JOINTS", "WARN", "ERR", "PNG", "RESULT"]
+    assert rows[0].split() == ["FILE", "LINKS", "JOINTS", "WARN", "ERR", "SIM", "PNG",
+                               "RESULT"]
     assert [row.split()[0] for row in rows[1:]] == [label.split(" @ ")[0] for label in labels]
     assert all(row.endswith(" ok") for row in rows[1:])
     robot_row = next(r for r in rows if r.startswith("mobile_robot.xacro "))

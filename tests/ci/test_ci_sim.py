@@ -40,10 +40,11 @@ def test_the_vehicles_pass_each_scenario_and_the_parts_say_why_not(run_mcar, tmp
         assert "distance error: " in found[("mcar.sim.drive", label)].find("system-out").text
     wheel = found[("mcar.sim", "wheel/test_wheel.urdf.xacro")].find("skipped")
     assert wheel.get("message") == (
-        "not simulated: not a vehicle: nothing but the wheels (wheel_left_link, "
-        "wheel_right_link) has collision geometry, no castor or body to stand on")
+        "not simulated: not a vehicle: nothing but its wheels to stand on (only "
+        "wheel_left_link, wheel_right_link have collision geometry, no castor or body)")
     tutorial = found[("mcar.sim", "tutorial/04_xacro.xacro")].find("skipped")
-    assert tutorial.get("message").startswith("not simulated: no drive wheels: no continuous")
+    assert tutorial.get("message").startswith("not simulated: not a vehicle: no wheels (no "
+                                              "continuous joint: joint_base_wheel1 (fixed)")
     simulated = {label for (classname, label) in found if classname.startswith("mcar.sim.")}
     assert simulated == set(VEHICLES)
 

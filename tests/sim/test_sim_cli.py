@@ -105,8 +105,8 @@ def test_the_tutorial_car_runs_drop_only_and_says_why(cli, repo, monkeypatch):
     result = _sim(cli, "urdf/tutorial/04_xacro.xacro", "--format", "json")
     assert result.exit_code == 1
     (entry,) = json.loads(result.stdout)["files"]
-    why = ("no drive wheels: no continuous joint: joint_base_wheel1 (fixed), joint_base_wheel2 "
-           "(fixed), joint_base_wheel3 (fixed), joint_base_wheel4 (fixed)")
+    why = ("not a vehicle: no wheels (no continuous joint: joint_base_wheel1 (fixed), "
+           "joint_base_wheel2 (fixed), joint_base_wheel3 (fixed), joint_base_wheel4 (fixed))")
     assert entry["why_no_drive"] == why
     statuses = {s["name"]: (s["status"], s["message"]) for s in entry["scenarios"]}
     assert statuses["drive"] == statuses["spin"] == ("skipped", why)
@@ -143,17 +143,28 @@ def test_named_drive_wheels_are_used(cli, repo, monkeypatch):
     assert "drive wheels wheel_left_joint (left), wheel_right_joint (right)" in result.stdout
 
 
-def test_a_package_simulates_only_its_robots_with_drive_wheels(cli, repo, monkeypatch):
+def test_a_package_simulates_only_its_vehicles_one_line_per_kind_of_skip(cli, repo,
+                                                                         monkeypatch):
     monkeypatch.chdir(repo)
     result = _sim(cli, "urdf", "--scenario", "drop")
-    assert "mcar: urdf/wheel_castor/test_wheel_castor.urdf.xacro: not simulated: no drive " \
-           "wheels: no continuous joint: caster_joint (fixed)" in result.stderr
+    skipped = [line for line in result.stderr.splitlines() if "not simulated" in line]
+    # The eleven files without wheels on one line, named in the package's order ...
+    assert skipped[0] == (
+        "mcar: not simulated, not a vehicle: no wheels: 11 files: "
+        "urdf/chassis/steps/01_plate.xacro, urdf/chassis/steps/02_brackets.xacro, "
+        "urdf/chassis/steps/03_second_plate.xacro, urdf/chassis/test_chassis.urdf.xacro, "
+        "urdf/laser/test_laser.urdf.xacro, urdf/motor/test_motor.urdf.xacro, "
+        "urdf/tutorial/01_skeleton.urdf, urdf/tutorial/02_visual.urdf, "
+        "urdf/tutorial/03_color.urdf, urdf/tutorial/04_xacro.xacro, "
+        "urdf/wheel_castor/test_wheel_castor.urdf.xacro")
+    # ... and the wheel pair's test file, drive wheels on a bare base_link: a part.
+    assert skipped[1] == (
+        "mcar: urdf/wheel/test_wheel.urdf.xacro: not simulated: not a vehicle: nothing but "
+        "its wheels to stand on (only wheel_left_link, wheel_right_link have collision "
+        "geometry, no castor or body)")
+    assert len(skipped) == 2
     assert result.stdout.count("  drop   PASSED") == 1
     assert "urdf/mobile_robot.xacro (mobile_robot)" in result.stdout
-    # The wheel pair's test file has drive wheels on a bare base_link: a part, not a vehicle.
-    assert "mcar: urdf/wheel/test_wheel.urdf.xacro: not simulated: not a vehicle: nothing but " \
-           "the wheels (wheel_left_link, wheel_right_link) has collision geometry, no castor " \
-           "or body to stand on" in result.stderr
     assert result.exit_code == 0, result.stderr
 
 

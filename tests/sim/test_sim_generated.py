@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 
 import pytest
+from sim.robot_makers import two_wheeler
 
 ROBOT = "urdf/mobile_robot.xacro"
 
@@ -29,57 +30,6 @@ TRANSMISSION = """
 def _json(cli, *args):
     result = cli("sim", *args, "--format", "json", terminal_width=200)
     return result, json.loads(result.stdout)["files"]
-
-
-def _box(m, x, y, z):
-    return (f'<inertia ixx="{m * (y * y + z * z) / 12:.6g}" ixy="0" ixz="0" '
-            f'iyy="{m * (x * x + z * z) / 12:.6g}" iyz="0" izz="{m * (x * x + y * y) / 12:.6g}"/>')
-
-
-def two_wheeler(mass: float = 0.7, scale: float = 1.0, castors: int = 1, limit: str = "",
-                extra: str = "") -> str:
-    """A car of ``mass`` kg: a box body on two drive wheels and ``castors`` ball castors,
-    every length ``scale`` times the bundled car's; ``limit``: the wheel joints' <limit>."""
-    r, width, track = 0.033 * scale, 0.02 * scale, 0.16 * scale
-    body = (0.2 * scale, 0.12 * scale, 0.05 * scale)
-    ball = 0.012 * scale
-    wheel_mass, castor_mass = 0.08 * mass, 0.04 * mass / castors
-    base_mass = mass - 2 * wheel_mass - castors * castor_mass
-    wheel_i = wheel_mass * (3 * r * r + width * width) / 12
-    parts = [f"""<?xml version="1.0"?>
-<robot name="two_wheeler">
-  <link name="base_link">
-    <collision><origin xyz="0 0 {body[2] / 2 + 0.3 * r:.6g}"/>
-      <geometry><box size="{body[0]:.6g} {body[1]:.6g} {body[2]:.6g}"/></geometry></collision>
-    <inertial><origin xyz="0 0 {body[2] / 2 + 0.3 * r:.6g}"/><mass value="{base_mass:.6g}"/>
-      {_box(base_mass, *body)}</inertial>
-  </link>"""]
-    for side, y in (("left", track / 2), ("right", -track / 2)):
-        parts.append(f"""
-  <joint name="wheel_{side}_joint" type="continuous">
-    <parent link="base_link"/><child link="wheel_{side}_link"/>
-    <origin xyz="0 {y:.6g} 0" rpy="-1.5707963 0 0"/><axis xyz="0 0 1"/>{limit}
-  </joint>
-  <link name="wheel_{side}_link">
-    <collision><geometry><cylinder radius="{r:.6g}" length="{width:.6g}"/></geometry></collision>
-    <inertial><mass value="{wheel_mass:.6g}"/><inertia ixx="{wheel_i:.6g}" ixy="0" ixz="0"
-      iyy="{wheel_i:.6g}" iyz="0" izz="{wheel_mass * r * r / 2:.6g}"/></inertial>
-  </link>""")
-    ys = [0.0] if castors == 1 else [body[1] / 3, -body[1] / 3]
-    for number, y in enumerate(ys, 1):
-        parts.append(f"""
-  <joint name="castor_{number}_joint" type="fixed">
-    <parent link="base_link"/><child link="castor_{number}_link"/>
-    <origin xyz="{-0.08 * scale:.6g} {y:.6g} {ball - r:.6g}"/>
-  </joint>
-  <link name="castor_{number}_link">
-    <collision><geometry><sphere radius="{ball:.6g}"/></geometry></collision>
-    <inertial><mass value="{castor_mass:.6g}"/><inertia ixx="{0.4 * castor_mass * ball * ball:.6g}"
-      ixy="0" ixz="0" iyy="{0.4 * castor_mass * ball * ball:.6g}" iyz="0"
-      izz="{0.4 * castor_mass * ball * ball:.6g}"/></inertial>
-  </link>""")
-    parts.append(extra + "\n</robot>\n")
-    return "".join(parts)
 
 
 @pytest.fixture(scope="module")
@@ -119,7 +69,7 @@ def test_a_transmission_block_does_not_replace_the_wheel_joint(cli, package_copy
     result, (entry,) = _json(cli, ROBOT)
     assert result.exit_code == 0, result.stderr
     assert (entry["drive"]["left"], entry["drive"]["right"]) == \
-        ("wheel_left_joint", "wheel_right_joint")
+        (["wheel_left_joint"], ["wheel_right_joint"])
     assert [s["status"] for s in entry["scenarios"]] == ["passed"] * 3
     named = cli("sim", ROBOT, "--left", "wheel_left_joint", "--right", "wheel_right_joint",
                 "--scenario", "drop")
@@ -189,5 +139,6 @@ def test_the_text_report_says_where_each_figure_came_from(cli, generated):
     result = cli("sim", generated["no limit"], "--scenario", "drop", "--effort", "0.5",
                  terminal_width=200)
     assert result.exit_code == 0
-    assert "  motor wheel_left_joint: 0.5 N·m (--effort), no limit, servo gain 0.5 " \
-           "N·m·s/rad" in result.stdout
+    # Motors whose figures agree share one line.
+    assert "  motor wheel_left_joint, wheel_right_joint: 0.5 N·m (--effort), no limit, " \
+           "servo gain 0.5 N·m·s/rad\n" in result.stdout

@@ -1,0 +1,392 @@
+"""Which joints drive and steer a robot, and so its drive kind, found from the tree MuJoCo
+compiled (every joint at 0, the root at the origin: positions in metres in the root frame,
+x forward, y left, z up).
+
+A *wheel* is a ``continuous`` joint whose child link has collision geometry (the URDF has
+no other mark of one); it is on the left if its centre has y > 0, on the right if y < 0.
+Above a wheel (between it and the root) may sit an upright hinge: a ``revolute`` one is a
+steering joint, a ``continuous`` one a castor's swivel (that wheel is a castor, not a
+drive wheel). A wheel below another wheel is a roller of an omni or mecanum wheel. The
+kinds:
+
+* ``differential``: one wheel each side, none steered, any castors (TurtleBot3, Kobuki);
+* ``skid-steer``: two or three wheels each side (4 or 6), none steered, all driven
+  (Husky, Jackal);
+* ``ackermann``: two steered wheels in front, one each side, each on its own steering
+  joint, and unsteered wheels behind them; the rear wheels are driven, the front ones
+  too where a ``<transmission>`` or ``<ros2_control>`` block gives their joint an actuator;
+* anything else (rollers, wheels on one side or on the centre line, steering that is not
+  one Ackermann pair, legs): no drive, with a sentence saying what was found.
+
+``--drive KIND`` picks a kind the tree allows (an Ackermann car driven as skid-steer, its
+steering held straight); ``--left/--right`` name the driven wheels (a joint or a
+comma-separated group per side), the others roll free.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..check.urdf_model import parse_number
+from ..errors import UsageError
+
+KINDS = ("differential", "skid-steer", "ackermann")
+UPRIGHT = 0.9       # |z| of an axis in the root frame above which a hinge steers (or swivels)
+SIDE_EPSILON = 1e-6  # m: a wheel closer than this to the centre line is on neither side
+ACKERMANN_X_TOLERANCE = 0.05  # of the wheelbase: the steering pivots stand side by side
+
+
+@dataclass
+class Wheel:
+    joint: str
+    link: str
+    joint_id: int
+    body_id: int
+    geom_ids: list[int]
+    radius: float       # m
+    x: float            # wheel centre in the root frame (m)
+    y: float
+    effort: float | None = None
+    velocity: float | None = None
+    actuator_id: int = -1
+    motor: object = None  # MotorFigures: effort and speed limits with their sources
+    gain: float = 0.0     # the velocity servo's kv (N·m·s/rad)
+    steering: str | None = None  # the revolute joint that steers it
+
+
+@dataclass
+class Steering:
+    """A steering joint and the wheel it turns; ``sign`` is +1 when a positive joint angle
+    turns the wheel to the left (its axis points up), -1 when it points down."""
+
+    joint: str
+    joint_id: int
+    wheel: Wheel
+    x: float            # pivot in the root frame (m)
+    y: float
+    sign: float
+    lower: float | None  # rad, the joint's <limit>
+    upper: float | None
+    effort: float | None  # N·m, the joint's <limit effort>, None when it gives none
+    actuator_id: int = -1
+
+
+@dataclass
+class Drive:
+    kind: str
+    left: list[Wheel]    # the driven wheels, by side
+    right: list[Wheel]
+    free: list[Wheel] = field(default_factory=list)  # wheels that roll undriven
+    steering: list[Steering] = field(default_factory=list)  # ackermann: left, right
+    chosen: str = "found from the tree"  # or "--drive", "--left/--right"
+
+    @property
+    def driven(self) -> list[Wheel]:
+        return self.left + self.right
+
+    @property
+    def wheels(self) -> list[Wheel]:
+        """Every wheel that rolls on the floor, driven or not."""
+        return self.driven + self.free
+
+    @property
+    def track(self) -> float:
+        """The distance between the left and right driven wheels' centre lines (m)."""
+        return float(np.mean([w.y for w in self.left]) - np.mean([w.y for w in self.right]))
+
+    @property
+    def radius(self) -> float:
+        return float(np.mean([w.radius for w in self.driven]))
+
+    @property
+    def rear(self) -> list[Wheel]:
+        """Ackermann: the unsteered wheels (their axle is the turn's reference)."""
+        return [w for w in self.wheels if w.steering is None]
+
+    @property
+    def wheelbase(self) -> float:
+        """Ackermann: from the rear axle to the steering pivots (m)."""
+        return float(np.mean([s.x for s in self.steering]) - np.mean([w.x for w in self.rear]))
+
+
+@dataclass
+class Tree:
+    """What was found of the robot's wheels before a kind is chosen."""
+
+    wheels: list[Wheel]            # drive candidates: neither rollers nor castors
+    steering: list[Steering]       # revolute upright joints, each above one wheel
+    rollers: list[str]             # wheels below another wheel
+    castor_wheels: list[str]       # links of wheels on a swivel
+    odd_steering: list[str] = field(default_factory=list)  # above several wheels
+    joints: dict = field(default_factory=dict)  # URDF joint name -> element
+    make: object = None            # joint name -> Wheel, for a wheel named on the command line
+
+
+def find_tree(mj, model, data, joints: dict) -> Tree:
+    """The wheels, steering joints, rollers and castor wheels of a compiled model
+    (``joints``: URDF joint name -> element, the robot's own joints)."""
+    names = {model.joint(j).name for j in range(model.njnt)}
+    candidates = [_wheel(mj, model, data, joints, name) for name, element in joints.items()
+                  if element.get("type") == "continuous" and name in names]
+    candidates = [w for w in candidates if w.geom_ids]
+    wheel_bodies = {w.body_id: w for w in candidates}
+    wheels, rollers, castors, above = [], [], [], {}
+    for wheel in candidates:
+        hinge, below_wheel = None, False
+        body = int(model.body_parentid[wheel.body_id])
+        while body > 0:
+            if body in wheel_bodies:
+                below_wheel = True
+                break
+            hinge = hinge or _upright_hinge(mj, model, data, body)
+            body = int(model.body_parentid[body])
+        if below_wheel:
+            rollers.append(wheel.joint)
+        elif hinge is not None and joints[hinge].get("type") == "continuous":
+            castors.append(wheel.link)
+        else:
+            wheel.steering = hinge
+            if hinge is not None:
+                above.setdefault(hinge, []).append(wheel)
+            wheels.append(wheel)
+    steering, odd = [], []
+    for name, under in above.items():
+        if len(under) != 1:
+            odd.append(name)
+            for wheel in under:
+                wheel.steering = None
+            continue
+        steering.append(_steering(model, data, joints[name], name, under[0]))
+    return Tree(wheels, steering, rollers, castors, odd, joints,
+                lambda name: _wheel(mj, model, data, joints, name))
+
+
+def choose_drive(tree: Tree, actuated: set[str], left=None, right=None,
+                 kind: str | None = None) -> tuple[Drive | None, str | None]:
+    """(the drive, None), or (None, why the robot is no vehicle sim can drive);
+    UsageError where --left/--right/--drive ask for what the tree does not allow."""
+    if kind is not None and kind not in KINDS:
+        raise UsageError(f"--drive {kind}: the drive kinds are {', '.join(KINDS)}")
+    if left or right:
+        return _named(tree, _names(left), _names(right), kind), None
+    why = _why_not(tree)
+    if why is not None:
+        if kind is not None:
+            raise UsageError(f"--drive {kind}: {why}")
+        return None, why
+    lefts = [w for w in tree.wheels if w.y > SIDE_EPSILON]
+    rights = [w for w in tree.wheels if w.y < -SIDE_EPSILON]
+    found = _kind_of(tree, lefts, rights)
+    if found is None:
+        why = _no_kind(tree, lefts, rights)
+        if kind is None:
+            return None, why
+    kind = kind or found
+    chosen = "found from the tree" if kind == found else "--drive"
+    if kind == "ackermann":
+        if found != "ackermann":
+            raise UsageError(f"--drive ackermann: {_no_ackermann(tree, lefts, rights)}")
+        driven = [w for w in tree.wheels if w.steering is None or w.joint in actuated]
+        free = [w for w in tree.wheels if w not in driven]
+        return Drive("ackermann", _side(driven, 1), _side(driven, -1), free,
+                     _sorted_steering(tree.steering), chosen=chosen), None
+    if kind == "differential" and (len(lefts) != 1 or len(rights) != 1):
+        raise UsageError(f"--drive differential: {len(lefts)} wheels on the left, "
+                         f"{len(rights)} on the right; name the two driven ones with "
+                         "--left JOINT --right JOINT")
+    if kind == "skid-steer" and (len(lefts) < 2 or len(rights) < 2):
+        raise UsageError(f"--drive skid-steer: {len(lefts)} wheel(s) on the left, "
+                         f"{len(rights)} on the right; skid-steer drives two or more a side")
+    return Drive(kind, lefts, rights, chosen=chosen), None
+
+
+def actuated_joints(root) -> set[str]:
+    """Joints a ``<transmission>`` or a ``<ros2_control>`` command interface drives."""
+    found = set()
+    for block in root:
+        if block.tag == "transmission":
+            found |= {j.get("name") for j in block if j.tag == "joint" and j.get("name")}
+        elif block.tag == "ros2_control":
+            found |= {j.get("name") for j in block if j.tag == "joint" and j.get("name")
+                      and any(c.tag == "command_interface" for c in j)}
+    return found
+
+
+def _names(value) -> list[str]:
+    if not value:
+        return []
+    words = value.split(",") if isinstance(value, str) else list(value)
+    return [w.strip() for w in words if w.strip()]
+
+
+def _named(tree: Tree, lefts: list[str], rights: list[str], kind: str | None) -> Drive:
+    """The drive the user named with --left/--right (and --drive)."""
+    if not (lefts and rights):
+        raise UsageError("--left and --right go together: name the drive joints of each side")
+    if len(set(lefts + rights)) != len(lefts + rights):
+        raise UsageError("--left/--right: a joint is named twice")
+    by_name = {w.joint: w for w in tree.wheels}
+    for name in lefts + rights:
+        if name not in by_name:
+            by_name[name] = _named_wheel(tree, name)
+    left, right = [by_name[n] for n in lefts], [by_name[n] for n in rights]
+    free = [w for w in tree.wheels if w.joint not in lefts + rights]
+    ackermann = _kind_of(tree, _side(tree.wheels, 1), _side(tree.wheels, -1)) == "ackermann"
+    if kind is None:
+        kind = ("ackermann" if ackermann else "differential" if len(left) == len(right) == 1
+                else "skid-steer")
+    if kind == "ackermann" and not ackermann:
+        raise UsageError("--drive ackermann: " + _no_ackermann(
+            tree, _side(tree.wheels, 1), _side(tree.wheels, -1)))
+    if kind == "differential" and (len(left), len(right)) != (1, 1):
+        raise UsageError("--drive differential drives one wheel a side: name one joint "
+                         "each with --left and --right")
+    if kind == "skid-steer" and (len(left) < 2 or len(right) < 2):
+        raise UsageError("--drive skid-steer drives two or more wheels a side: name them "
+                         "with --left A,B --right C,D")
+    steering = _sorted_steering(tree.steering) if kind == "ackermann" else []
+    return Drive(kind, left, right, free, steering, chosen="--left/--right")
+
+
+def _named_wheel(tree: Tree, name: str) -> Wheel:
+    """A joint named with --left/--right that was not found as a wheel: a revolute one
+    may drive, as before; anything else is refused, saying why."""
+    element = tree.joints.get(name)
+    if element is None:
+        raise UsageError(f"--left/--right {name}: the robot has no joint of that name")
+    steering = next((s for s in tree.steering if s.joint == name), None)
+    if steering is not None:
+        raise UsageError(f"--left/--right {name}: a steering joint (it turns "
+                         f"{steering.wheel.joint}) cannot drive a wheel")
+    if name in tree.rollers:
+        raise UsageError(f"--left/--right {name}: a roller of another wheel cannot drive "
+                         "the robot")
+    if element.get("type") not in ("continuous", "revolute"):
+        raise UsageError(f"--left/--right {name}: a {element.get('type')} joint cannot drive "
+                         "a wheel")
+    wheel = tree.make(name)
+    if not wheel.geom_ids:
+        raise UsageError(f"--left/--right {name}: link {wheel.link} has no <collision> "
+                         "geometry to roll on")
+    return wheel
+
+
+def _why_not(tree: Tree) -> str | None:
+    """Why the tree has no drive of any kind, or None."""
+    if tree.rollers:
+        return (f"omni or mecanum wheels (rollers {', '.join(tree.rollers[:4])}"
+                f"{', ...' if len(tree.rollers) > 4 else ''} turn about the wheels): not a drive "
+                f"kind mcar sim drives ({', '.join(KINDS)})")
+    if not tree.wheels:
+        if tree.castor_wheels:
+            return ("no drive wheels: only castor wheels on swivels "
+                    f"({', '.join(tree.castor_wheels)})")
+        return "no drive wheels: no continuous joint moves a link with collision geometry"
+    centre = [w.joint for w in tree.wheels if abs(w.y) <= SIDE_EPSILON]
+    if centre:
+        return (f"a wheel on the centre line ({', '.join(centre)}): not a drive kind mcar sim "
+                f"drives ({', '.join(KINDS)})")
+    return None
+
+
+def _kind_of(tree: Tree, lefts, rights) -> str | None:
+    steered = [w for w in tree.wheels if w.steering is not None]
+    if steered or tree.odd_steering:
+        return "ackermann" if _no_ackermann(tree, lefts, rights) is None else None
+    if len(lefts) == len(rights) == 1:
+        return "differential"
+    if len(lefts) == len(rights) and len(lefts) in (2, 3):
+        return "skid-steer"
+    return None
+
+
+def _no_ackermann(tree: Tree, lefts, rights) -> str | None:
+    """Why the steering is not one Ackermann pair in front, or None when it is."""
+    if tree.odd_steering:
+        return (f"steering joint {', '.join(tree.odd_steering)} turns several wheels at once, "
+                "not one Ackermann pair")
+    steering = tree.steering
+    if not steering:
+        return ("no steering joints: no revolute joint about an upright axis above a wheel")
+    sides = sorted(np.sign(s.y) for s in steering)
+    rear = [w for w in tree.wheels if w.steering is None]
+    if len(steering) != 2 or sides != [-1, 1]:
+        return (f"{len(steering)} steering joint(s) ({', '.join(s.joint for s in steering)}), "
+                "not one each side")
+    if not any(w.y > 0 for w in rear) or not any(w.y < 0 for w in rear):
+        return "steered wheels but no unsteered wheel each side to drive and turn about"
+    base = np.mean([s.x for s in steering]) - np.mean([w.x for w in rear])
+    if base <= 0:
+        return "the steered wheels are not in front of the others"
+    if abs(steering[0].x - steering[1].x) > ACKERMANN_X_TOLERANCE * base:
+        return "the two steering pivots are not side by side"
+    return None
+
+
+def _no_kind(tree: Tree, lefts, rights) -> str:
+    if any(w.steering for w in tree.wheels) or tree.odd_steering:
+        return (f"{_no_ackermann(tree, lefts, rights)}: not a drive kind mcar sim drives "
+                f"({', '.join(KINDS)})")
+    names = (f"{', '.join(w.joint for w in lefts) or 'none'} / "
+             f"{', '.join(w.joint for w in rights) or 'none'}")
+    return (f"{len(lefts)} wheel(s) on the left and {len(rights)} on the right ({names}): not "
+            f"a drive kind mcar sim drives ({', '.join(KINDS)})")
+
+
+def _side(wheels, sign: int) -> list[Wheel]:
+    return [w for w in wheels if w.y * sign > SIDE_EPSILON]
+
+
+def _sorted_steering(steering: list[Steering]) -> list[Steering]:
+    return sorted(steering, key=lambda s: -s.y)  # left first
+
+
+def _wheel(mj, model, data, joints, name) -> Wheel:
+    joint_id = model.joint(name).id
+    body = int(model.jnt_bodyid[joint_id])
+    geoms = [g for g in range(model.ngeom) if model.geom_bodyid[g] == body]
+    limit = _child(joints[name], "limit")
+
+    def number(key):
+        return parse_number(limit.get(key)) if limit is not None else None
+    radius = max((rolling_radius(mj, model, g) for g in geoms), default=0.0)
+    return Wheel(name, model.body(body).name, joint_id, body, geoms, radius,
+                 float(data.xpos[body][0]), float(data.xpos[body][1]), number("effort"),
+                 number("velocity"))
+
+
+def _steering(model, data, element, name: str, wheel: Wheel) -> Steering:
+    joint_id = model.joint(name).id
+    limit = _child(element, "limit")
+
+    def number(key):
+        return parse_number(limit.get(key)) if limit is not None else None
+    anchor = data.xanchor[joint_id]
+    return Steering(name, joint_id, wheel, float(anchor[0]), float(anchor[1]),
+                    1.0 if data.xaxis[joint_id][2] > 0 else -1.0, number("lower"),
+                    number("upper"), number("effort"))
+
+
+def _upright_hinge(mj, model, data, body: int) -> str | None:
+    """The name of a hinge joint on ``body`` whose axis stands upright, or None."""
+    for j in range(model.body_jntadr[body], model.body_jntadr[body] + model.body_jntnum[body]):
+        if model.jnt_type[j] == mj.mjtJoint.mjJNT_HINGE and abs(data.xaxis[j][2]) > UPRIGHT:
+            return model.joint(j).name
+    return None
+
+
+def _child(element, tag):
+    for child in element:
+        if child.tag == tag:
+            return child
+    return None
+
+
+def rolling_radius(mj, model, g) -> float:
+    kind, size = mj.mjtGeom(int(model.geom_type[g])), model.geom_size[g]
+    if kind in (mj.mjtGeom.mjGEOM_CYLINDER, mj.mjtGeom.mjGEOM_SPHERE,
+                mj.mjtGeom.mjGEOM_CAPSULE):
+        return float(size[0])
+    return float(model.geom_rbound[g])

@@ -1,0 +1,74 @@
+"""Whether a robot is a vehicle, read from its checked tree before any engine is started:
+what ``mcar ci`` and ``mcar sim`` of a package decide to simulate.
+
+A vehicle has wheels (continuous joints moving collision geometry, two or more) and
+another link with collision geometry to stand on (a castor, a body). Anything else is
+"not a vehicle", in one of a few kinds (no wheels; wheels and nothing to stand on; one
+wheel), each with the detail of this robot; ci prints one line per kind. A vehicle is
+simulated even when sim then finds no drive kind it can drive (mecanum, wheels on one
+side): that is a failure of ci, not a skip, unless the package opts the robot out
+(``mcar.yaml``, :mod:`mobile_car.packages.package_config`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .lint import link_mass
+
+
+@dataclass(frozen=True)
+class NotAVehicle:
+    kind: str    # "no wheels", "one wheel", "nothing but its wheels to stand on"
+    detail: str  # this robot's joints or links
+
+    def __str__(self) -> str:
+        return f"not a vehicle: {self.kind} ({self.detail})"
+
+
+def not_a_vehicle(robot) -> NotAVehicle | None:
+    """Why a robot is not a vehicle, or None. A part's test file (the wheel pair on a
+    bare base_link) is not one; a car whose castor is set too high still is, so that drop
+    fails it. Mass is not asked for here: a car that lost an <inertial> must fail (E305),
+    not go unsimulated."""
+    colliding = {link.name for link in robot.links if link.collisions}
+    wheels = {j.child for j in robot.joints if j.type == "continuous" and j.child in colliding}
+    if not wheels:
+        return NotAVehicle("no wheels", _no_wheels(robot))
+    if len(wheels) < 2:
+        return NotAVehicle("one wheel", f"{', '.join(sorted(wheels))} on a continuous joint")
+    if not colliding - wheels:
+        return NotAVehicle("nothing but its wheels to stand on",
+                           f"only {', '.join(sorted(wheels))} have collision geometry, no "
+                           "castor or body")
+    return None
+
+
+def _no_wheels(robot) -> str:
+    continuous = [j.name for j in robot.joints if j.type == "continuous"]
+    if continuous:
+        return (f"continuous joints {', '.join(continuous)} move no collision geometry")
+    joints = ", ".join(f"{j.name} ({j.type})" for j in robot.joints[:6])
+    more = ", ..." if len(robot.joints) > 6 else ""
+    return f"no continuous joint{': ' + joints + more if joints else ''}"
+
+
+def unsimulable(robot) -> list[str]:
+    """Why the robot cannot even be dropped (the tutorial's visual-only car), or []."""
+    problems = []
+    if not any(link.collisions for link in robot.links):
+        problems.append("no link has <collision> geometry: nothing can rest on the floor, "
+                        "the robot would fall through it")
+    if sum(link_mass(link) for link in robot.links) <= 0:
+        problems.append("no link has mass (<inertial>): there is nothing to simulate")
+    return problems
+
+
+def grouped(skipped) -> list[tuple[str, list]]:
+    """(reason kind, the items with it) for ``skipped``: (item, NotAVehicle or a package's
+    reason text) pairs, in first-seen order: one line per kind of skip."""
+    groups: dict[str, list] = {}
+    for item, why in skipped:
+        key = f"not a vehicle: {why.kind}" if isinstance(why, NotAVehicle) else str(why)
+        groups.setdefault(key, []).append(item)
+    return list(groups.items())

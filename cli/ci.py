@@ -173,7 +173,9 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
 
         revision = resolve_revision(against, items[0].source.parent)
     # Items whose inputs, outputs and picture are unchanged are replayed from the record.
-    basis = input_basis(mappings, package_paths, sets, config_files)
+    # What decides the pictures: the same as for mcar render, so that each command's
+    # pictures are current for the other. The record's basis adds what decides the sim.
+    pictures = basis = input_basis(mappings, package_paths, sets, config_files)
     for home, config in configs.items():  # an mcar.yaml made, edited or gone: sim again
         name = f"package config {home}"
         basis = (basis.with_file(config.path, name) if config.path is not None else
@@ -184,7 +186,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
         from mobile_car.render.manifest import Manifest
 
         manifest = Manifest(render_dir)
-    fresh = _picture_fresh(manifest, basis, renderer)
+    fresh = _picture_fresh(manifest, pictures, renderer)
     todo = [item for item in items
             if not cache.replay(item, basis, strict, fresh, sim=not no_sim)]
     checked = []
@@ -211,7 +213,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
         # pictures of robot files since deleted leave the contact sheet (render's are kept)
         manifest.forget_orphans({manifest.key(item.png) for item in items if item.png})
     if manifest is not None and any(item.ok for item in items):
-        _render(checked, items, manifest, renderer, basis)
+        _render(checked, items, manifest, renderer, pictures)
     code = pipeline.exit_code(items)
     if junit_xml:
         from mobile_car.atomic import atomic_write

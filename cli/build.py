@@ -17,6 +17,7 @@ from . import streams
 from .common import (
     INPUT_HELP,
     handle_errors,
+    input_basis,
     load_inputs,
     print_warning,
     report,
@@ -121,14 +122,14 @@ def _build_one(inp, options, stdin, output: str | None, deps: str | None,
 
 
 def _build_many(inputs, options, outdir: Path | None, deps: str | None, quiet: bool,
-                output_format: str) -> int:
-    """Build every input into outdir, mirrored below its folder; go on past failures."""
+                output_format: str, basis) -> int:
+    """Build every input into outdir, mirrored below its folder; go on past failures.
+    An output whose build record says it is current is kept, unread and unexpanded."""
+    from mobile_car.load.build_record import BuildRecord, build_key
     from mobile_car.load.outputs import (
         refuse_clashes,
-        refuse_overwriting,
         refuse_overwriting_each,
     )
-    from mobile_car.load.robot import load_robot
 
     deps_only = outdir is None  # --deps without -o: print, build nothing
     suffix = ".xml" if output_format == "mjcf" else ".urdf"
@@ -137,32 +138,65 @@ def _build_many(inputs, options, outdir: Path | None, deps: str | None, quiet: b
     if not deps_only:
         refuse_clashes(zip(targets, (inp.path for inp in inputs), strict=True))
         refuse_overwriting_each(targets, [inp.path for inp in inputs])
-    codes = []
-    for inp, target in zip(inputs, targets, strict=True):
-        try:
-            loaded = load_robot(inp, options)
-            written = b"" if deps_only else _output(loaded, output_format)
-        except UsageError:
-            raise  # the command line is wrong for every file alike
-        except McarError as error:
-            report(error)
-            codes.append(error.exit_code)
-            continue
-        for warning in loaded.warnings:
-            print_warning(inp.label, warning)
-        if not deps_only:
-            refuse_overwriting(target, loaded.deps)
-            atomic_write(target, written)
-        if deps:
-            _print_deps(loaded.deps, deps == "absolute")
-        if deps_only:
-            continue
-        if not quiet:
-            click.echo(f"built {display_path(target)}", err=True)
+    record = BuildRecord(outdir) if outdir is not None and not deps else None
+    key = build_key(output_format, basis.settings)
+    generated = [options.overrides.path] if options.overrides is not None else []
+    codes, kept = [], 0
+    try:
+        for inp, target in zip(inputs, targets, strict=True):
+            warnings = record.fresh(target, key) if record is not None else None
+            if warnings is not None:
+                for warning in warnings:
+                    print_warning(inp.label, warning)
+                kept += 1
+                if not quiet:
+                    click.echo(f"unchanged {display_path(target)}", err=True)
+                continue
+            code = _build_into(inp, None if deps_only else target, options, deps,
+                               output_format, quiet,
+                               (record, key, basis.files, generated))
+            if code:
+                codes.append(code)
+    finally:
+        if record is not None:
+            record.save()
     if not quiet:
         click.echo(f"{len(inputs) - len(codes)} of {len(inputs)} files built"
-                   + ("" if deps_only else f" into {display_path(outdir)}"), err=True)
+                   + ("" if deps_only else f" into {display_path(outdir)}")
+                   + (f" ({kept} unchanged)" if kept else ""), err=True)
     return combine_exit_codes(codes) if codes else EXIT_OK
+
+
+def _build_into(inp, target: Path, options, deps: str | None, output_format: str,
+                quiet: bool, recording) -> int:
+    """Build one input of many into ``target`` (with --deps and no folder, only list what
+    it reads); ``recording``: (BuildRecord or None, key, setting files, generated files).
+    Returns the exit code of its failure, or 0."""
+    from mobile_car.load.outputs import refuse_overwriting
+    from mobile_car.load.robot import load_robot
+
+    record, key, setting_files, generated = recording
+    try:
+        loaded = load_robot(inp, options)
+        written = b"" if target is None else _output(loaded, output_format)
+    except UsageError:
+        raise  # the command line is wrong for every file alike
+    except McarError as error:
+        report(error)
+        return error.exit_code
+    for warning in loaded.warnings:
+        print_warning(inp.label, warning)
+    if target is not None:
+        refuse_overwriting(target, loaded.deps)
+        atomic_write(target, written)
+        if record is not None:
+            record.record(target, key, [*loaded.deps, *setting_files], loaded.warnings,
+                          generated)
+    if deps:
+        _print_deps(loaded.deps, deps == "absolute")
+    if target is not None and not quiet:
+        click.echo(f"built {display_path(target)}", err=True)
+    return 0
 
 
 @click.command("build", help=HELP, short_help="Expand xacro into URDF.")
@@ -208,4 +242,5 @@ def command(words, output, deps, absolute, output_format, quiet, package_paths, 
             raise UsageError(f"-o {output} is one file, but there are {len(inputs)} robot "
                              "files to build; name one INPUT file, or give -o a folder")
         outdir = Path(output) if output else None if deps else selection.output_root / "build"
-        sys.exit(_build_many(inputs, options, outdir, deps, quiet, output_format))
+        basis = input_basis(options.mappings, package_paths, sets, config_files)
+        sys.exit(_build_many(inputs, options, outdir, deps, quiet, output_format, basis))

@@ -181,6 +181,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
         basis = (basis.with_file(config.path, name) if config.path is not None else
                  Basis({**basis.settings, name: None}, basis.files))
     cache = CiCache(build_dir)
+    built = _BuiltFiles(build_dir, pictures)
     manifest = None
     if not no_render:
         from mobile_car.render.manifest import Manifest
@@ -196,7 +197,9 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
             with prepared_load(selection, mappings, package_paths, sets,
                                config_files) as options:
                 for item in todo:
-                    if pipeline.build_and_check(item, options, strict):
+                    passed = pipeline.build_and_check(item, options, strict)
+                    built.note(item)
+                    if passed:
                         checked.append(item)
                         if not no_sim:
                             simulation.sim_step(item, simulation.skip_reason(item, configs))
@@ -209,6 +212,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
             say_which_package(selection)
     finally:
         cache.save()
+        built.record.save()
     if manifest is not None and selection.kind in ("package", "folder"):
         # pictures of robot files since deleted leave the contact sheet (render's are kept)
         manifest.forget_orphans({manifest.key(item.png) for item in items if item.png})
@@ -244,6 +248,27 @@ def _write_diff_report(path: str, compared, revision, items) -> None:
     refuse_overwriting(path, [item.source for item in items]
                        + [dep for item in items for dep in item.deps])
     atomic_write(path, markdown_report(compared, revision))
+
+
+class _BuiltFiles:
+    """The build folder's record (mobile_car.load.build_record), which ci keeps as `mcar
+    build` does, so that a build after ci (and ci after a build) finds its files current."""
+
+    def __init__(self, build_dir, basis):
+        from mobile_car.load.build_record import BuildRecord
+
+        self.record, self.basis = BuildRecord(build_dir), basis
+
+    def note(self, item) -> None:
+        from mobile_car.ci.cache import item_basis
+        from mobile_car.load.build_record import build_key
+
+        if not any(step.name == "build" and step.status == "passed" for step in item.steps):
+            return
+        basis = item_basis(item, self.basis)
+        self.record.record(item.urdf, build_key("urdf", basis.settings),
+                           [*item.deps, *basis.files], item.expansion_warnings,
+                           item.generated)
 
 
 def _picture_fresh(manifest, basis, renderer: str):

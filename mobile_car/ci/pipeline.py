@@ -59,6 +59,7 @@ class CiItem:
     joints: int | None = None
     checked: object = None  # the CheckResult of a passed check step, which render draws
     deps: list[Path] = field(default_factory=list)  # the files its build read
+    expansion_warnings: list[str] = field(default_factory=list)  # xacro's, for the record
     generated: tuple[Path, ...] = ()  # files written for its build (overrides): no inputs
     diff: str | None = None  # with --against: what changed since then ("3 changes")
 
@@ -171,8 +172,9 @@ def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> 
                        item_options.mappings.get(CONFIG_ARG) if item.variant else None]
             item.generated = tuple(Path(p) for p in written if p is not None)
         item.deps = list(loaded.deps)
+        item.expansion_warnings = [str(w) for w in loaded.warnings]
         refuse_overwriting(item.urdf, loaded.deps)
-        atomic_write(item.urdf, loaded.urdf)
+        atomic_write(item.urdf, _built(item, loaded, item_options))
     except McarError as error:
         fail(item, "build", str(error), exit_code=error.exit_code, error=error)
         return False
@@ -189,6 +191,19 @@ def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> 
                            seconds=time.perf_counter() - started))
     item.checked = result
     return True
+
+
+def _built(item: CiItem, loaded, options: LoadOptions) -> bytes:
+    """What the build writes: a xacro's expansion, and for a plain URDF what `mcar build`
+    writes of it (through xacro), so that ci and build leave the same file and neither
+    finds the other's output changed. The check reads the URDF as it is."""
+    if loaded.from_xacro:
+        return loaded.urdf
+    import dataclasses
+
+    from ..load.robot import load_robot
+
+    return load_robot(item.input, dataclasses.replace(options, through_xacro=True)).urdf
 
 
 def render_step(item: CiItem, session, manifest, basis=None) -> None:

@@ -73,7 +73,8 @@ def test_deleted_outputs_and_an_edited_part_are_built_again_and_only_they(packag
     assert (out / "wheel/test_wheel.urdf").is_file()
     assert (tmp_path / "pictures/laser/test_laser.png").is_file()
     after = mtimes(out)
-    assert {name for name in after if after[name] != before.get(name)} - {".mcar-ci.json"} \
+    records = {".mcar-ci.json", ".mcar-build.json"}
+    assert {name for name in after if after[name] != before.get(name)} - records \
         == {"wheel/test_wheel.urdf", "laser/test_laser.urdf"}
 
     motor = package_copy / "urdf/motor/motor.xacro"
@@ -82,7 +83,8 @@ def test_deleted_outputs_and_an_edited_part_are_built_again_and_only_they(packag
     edited = run_ci(package_copy, tmp_path, "edited.xml")
     assert report(edited, tmp_path, "edited.xml") == expected
     after = mtimes(out)
-    assert {name for name in after if after[name] != before.get(name)} - {".mcar-ci.json"} \
+    records = {".mcar-ci.json", ".mcar-build.json"}
+    assert {name for name in after if after[name] != before.get(name)} - records \
         == USES_MOTOR
 
 

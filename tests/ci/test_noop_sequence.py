@@ -1,8 +1,9 @@
-"""After one full `mcar ci`, render and ci with nothing changed are no-ops for each other in
-any order: each decides from the stamps alone (no xacro, lxml, numpy or GL imported), writes
-no file, and both keep the same contact sheet (ci's variant pictures included). Before, each
-command's run made the other's record stale: render forgot ci's variant pictures, so the
-next ci built and drew them again (3.1 s), and render then redrew the sheet (1.2 s)."""
+"""After one full `mcar ci`, build, render and ci with nothing changed are no-ops for each
+other in any order: each decides from the stamps alone (no xacro, lxml, numpy or GL
+imported), writes no file, and render and ci keep the same contact sheet (ci's variant
+pictures included). Before, each command's run made the other's record stale: render forgot
+ci's variant pictures, so the next ci built and drew them again (3.1 s), render then redrew
+the sheet (1.2 s), and build expanded and wrote every file each time."""
 
 from __future__ import annotations
 
@@ -36,15 +37,32 @@ def test_render_and_ci_are_no_ops_for_each_other(run_mcar, package_copy):
     assert full.returncode == 0, full.stderr
     before = files(package_copy)
     assert any(name.startswith("renders/variants/") for name in before)
-    for command in ("render", "ci", "render", "render", "ci", "ci", "render"):
+    for command in ("render", "ci", "build", "render", "render", "build", "ci", "ci", "render",
+                    "build"):
         code, imported, said = traced(command, cwd=package_copy)
         assert code == 0, said
         assert imported & HEAVY == set(), (command, imported & HEAVY)
         assert files(package_copy) == before, command
         if command == "render":
             assert said[-1].startswith("13 pictures in renders: 0 rendered, 13 unchanged"), said
+        elif command == "build":
+            assert said[-1] == "13 of 13 files built into build (13 unchanged)", said
         else:
             assert said[-1].startswith("mcar ci: 15 of 15 files passed"), said
+
+
+def test_a_change_rebuilds_exactly_what_depends_on_it(run_mcar, package_copy):
+    assert run_mcar("ci", cwd=package_copy, timeout=300).returncode == 0
+    before = files(package_copy)
+    wheel = package_copy / "urdf" / "wheel" / "wheel.xacro"
+    wheel.write_text(wheel.read_text().replace("<!--", "<!-- edited:", 1))  # same robot
+    built = run_mcar("build", cwd=package_copy)
+    assert built.returncode == 0, built.stderr
+    changed = {name for name, stamp in files(package_copy).items() if before[name] != stamp}
+    # the files that include the wheel macro were expanded and written again; no other
+    assert changed == {"build/wheel/test_wheel.urdf", "build/mobile_robot.urdf",
+                       "build/.mcar-build.json"}, changed
+    assert "13 of 13 files built into build (11 unchanged)" in built.stderr
 
 
 def test_a_deleted_robot_file_leaves_the_contact_sheet_of_both(run_mcar, package_copy):

@@ -208,7 +208,8 @@ def test_build_folder_mirrors_the_package_and_goes_on_past_failures(run_mcar, tm
     assert "broken.xacro:1: error: name 'x' is not defined" in result.stderr
     assert "1 of 2 files built" in result.stderr
     built = sorted(str(p.relative_to(tmp_path / "out")) for p in (tmp_path / "out").rglob("*"))
-    assert built == ["wheel", "wheel/test_wheel.urdf"]  # the macro file is not a robot
+    # the macro file is not a robot; the build record says what the one output came from
+    assert built == [".mcar-build.json", "wheel", "wheel/test_wheel.urdf"]
     link = parse((tmp_path / "out" / "wheel" / "test_wheel.urdf").read_text()).find("link")
     assert link.get("name") == "wheel"
 

@@ -14,7 +14,10 @@ the same things with the same words and exit codes:
 A plain URDF is read as it is (``mcar check`` has no size limit on regular files and never
 imports xacro; stdin is read within ``MCAR_MAX_INPUT_MB`` by every command, and a FIFO,
 socket or device is refused before it is opened);
-with ``through_xacro`` (``mcar build``) it goes through xacro like a ``.xacro`` does.
+with ``through_xacro`` (``mcar build``) it goes through xacro like a ``.xacro`` does. A
+file not named ``.xacro`` that uses xacro (TurtleBot3's ``.urdf`` files) is expanded by
+every command, as the ``xacro`` command would, with a note
+(:mod:`mobile_car.load.xacro_use`).
 """
 
 from __future__ import annotations
@@ -100,13 +103,29 @@ def load_robot(inp: RobotInput, options: LoadOptions, stdin=None) -> LoadedRobot
             return LoadedRobot(inp, data, search)
         return _expand(inp, options, search, text=data)
     require_robot_file(inp)
-    if not inp.is_xacro and not options.through_xacro:
-        try:
-            data = read_input(inp.path, inp.label, limit_regular=options.size_limited)
-        except OSError as error:
-            raise InputError(f"cannot read: {error.strerror or error}", file=inp.label) from None
+    if inp.named_xacro:
+        return _expand(inp, options, search)
+    if options.through_xacro:  # mcar build: every file goes through xacro
+        _note_xacro_use(inp, inp.xacro_use)
+        return _expand(inp, options, search)
+    try:
+        data = read_input(inp.path, inp.label, limit_regular=options.size_limited)
+    except OSError as error:
+        raise InputError(f"cannot read: {error.strerror or error}", file=inp.label) from None
+    from .xacro_use import xacro_use
+
+    use = xacro_use(data)
+    if use is None:
         return LoadedRobot(inp, data, search, deps=[inp.path])
+    _note_xacro_use(inp, use)
     return _expand(inp, options, search)
+
+
+def _note_xacro_use(inp: RobotInput, use: str | None) -> None:
+    if use is not None:
+        from .xacro_use import note_expanded
+
+        note_expanded(inp.label, use)
 
 
 def _expand(inp: RobotInput, options: LoadOptions, search: PackageSearch,
@@ -147,7 +166,8 @@ def refuse_unused_arguments(inputs: list[RobotInput], options: LoadOptions,
 
 
 def require_robot_file(inp: RobotInput) -> None:
-    """InputError unless the input is a readable file; MacroFileError for a macro file."""
+    """InputError unless the input is a readable file; MacroFileError for a macro file
+    (a nameless ``<robot>`` that uses xacro)."""
     _require_readable(inp.path)
     if inp.is_xacro and is_macro_file(inp.path):
         raise MacroFileError(f"{inp.label} is a macro file: include it from a robot file, "

@@ -182,6 +182,21 @@ def test_stdin(run_mcar, check_urdf):
     assert broken.stderr.startswith("<stdin>:15: error: link 'b' has two parents")
 
 
+@pytest.mark.parametrize("case", sorted(XACRO.glob("stdin_*.urdf")), ids=lambda p: p.name)
+def test_xacro_left_in_a_urdf_from_stdin_is_E105_at_its_line(case, cli):
+    """A file that uses xacro is expanded (tests/load/test_xacro_in_urdf.py); a URDF on
+    stdin is read as it is, and xacro left in it is reported where it is [E105]."""
+    import re
+
+    expected = [int(line) for line in re.findall(r"<!-- expect: E105 line=(\d+) -->",
+                                                 case.read_text())]
+    result = cli("check", "-q", "-", input=case.read_bytes())
+    assert result.exit_code == 1
+    found = [line for line in result.stderr.splitlines() if line.endswith("[E105]")]
+    assert [int(line.split(":")[1]) for line in found] == expected
+    assert all(line.startswith("<stdin>:") for line in found)
+
+
 def test_missing_file_and_folder_without_robots_exit_2(cli, tmp_path):
     result = cli("check", tmp_path / "nope.urdf")
     assert result.exit_code == 2

@@ -204,7 +204,7 @@ def test_missing_file_and_folder_without_robots_exit_2(cli, tmp_path):
     empty = cli("check", tmp_path)
     assert empty.exit_code == 2
     assert empty.stderr == (
-        f"{_shown(tmp_path)}: error: no .urdf or robot .xacro files in this folder (looked in "
+        f"{_shown(tmp_path)}: error: no robot files in this folder (looked in "
         "urdf/, robots/, xacro/, description/ or the folder itself)\n")
     # No INPUT means the package, as for every command: the bundled robot files.
     whole = cli("check", "-q")

@@ -215,9 +215,9 @@ def handle_errors(func):
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
-        from . import signals
-
         from mobile_car.load import xacro_use
+
+        from . import signals
 
         try:
             signals.arm()

@@ -72,6 +72,7 @@ class LoadedRobot:
     deps: list[Path] = field(default_factory=list)  # the files read, the input first
     warnings: list[str] = field(default_factory=list)  # xacro's warnings
     from_xacro: bool = False
+    origins: object = None  # expand.origins.Origins: where each element was written
 
     @property
     def label(self) -> str:
@@ -79,13 +80,13 @@ class LoadedRobot:
 
     @functools.cached_property
     def locate(self):
-        """For an expanded file: a SourceLocator (built element -> xacro source line),
-        made only when a check asks (mcar build never needs one); else None."""
+        """For an expanded file: a SourceLocator (built element -> the file, line and
+        macro calls it was written at), made only when a check asks; else None."""
         if not self.from_xacro or self.input.path is None:
             return None
         from ..expand.source_map import SourceLocator
 
-        return SourceLocator(self.input.path, self.deps)
+        return SourceLocator(self.input.path, self.origins)
 
     @property
     def base(self) -> Path:
@@ -146,7 +147,7 @@ def _expand(inp: RobotInput, options: LoadOptions, search: PackageSearch,
         raise UsageError("--set/--config change config.xacro, which this file does not "
                          "include", file=inp.label)
     return LoadedRobot(inp, built.xml.encode("utf-8"), search, deps=built.deps,
-                       warnings=built.warnings, from_xacro=True)
+                       warnings=built.warnings, from_xacro=True, origins=built.origins)
 
 
 def refuse_unused_arguments(inputs: list[RobotInput], options: LoadOptions,

@@ -45,13 +45,13 @@ def test_xacro_problems_point_into_the_xacro_sources(cli):
     lines = result.stderr.splitlines()
     robot = str((XACRO / "robot.urdf.xacro").relative_to(Path.cwd())) \
         if XACRO.is_relative_to(Path.cwd()) else str(XACRO / "robot.urdf.xacro")
-    # base_link is written literally: found by name, then the <box> below it.
+    # Each element where it is written: the <box> in the robot file...
     assert f"{robot}:11: error: link 'base_link' <visual>: <box size=\"0.3 0.2 0\"> must be > 0 " \
            "[E113]" in lines
-    # wheel_${side} is computed in a macro: found as a template, then the <cylinder> in it.
+    # ...the <cylinder> in the macro that made wheel_${side}, with the call that did.
     parts = robot.replace("robot.urdf.xacro", "parts.xacro")
     assert f"{parts}:8: error: link 'wheel_left' <visual>: <cylinder radius=\"-0.05\"> must " \
-           "be > 0 [E113]" in lines
+           f"be > 0 (in xacro:wheel called at {robot}:16) [E113]" in lines
     assert result.exit_code == 1
     assert result.stdout == ""
 

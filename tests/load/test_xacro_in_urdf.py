@@ -102,6 +102,11 @@ def test_turtlebot3_urdf_checks_and_draws_its_tree_as_it_is(robot):
     assert entry["errors"] == 0, checked.stderr
     assert entry["root"] == "base_footprint"
     assert {"wheel_left_link", "wheel_right_link"} <= {link["name"] for link in entry["links"]}
+    # every link is located in the .urdf itself, at its own tag
+    lines = source.read_text().splitlines()
+    for link in entry["links"]:
+        assert link["file"] == label
+        assert f'<link name="${{namespace}}{link["name"]}"' in lines[link["line"] - 1]
     assert _note(label, "<xacro:arg>") in checked.stderr.splitlines()
     tree = _invoke("tree", source, "namespace:=tb3_")
     assert tree.exit_code == 0, tree.stderr

@@ -37,11 +37,11 @@ class _Found(Exception):
 
 def xacro_use(data: bytes) -> str | None:
     """What in ``data`` is xacro (``<xacro:arg>``, ``${namespace}``), or None."""
-    # Most URDFs say neither word: decided without parsing. Bytes are enough only when
-    # the text is ASCII-compatible (no NUL: UTF-16 and UTF-32 have them) and holds no
-    # character reference (&#36; is $).
+    # Most URDFs say neither word (xacro's prefix is lower case): decided without
+    # parsing. Bytes are enough only when the text is ASCII-compatible (no NUL: UTF-16
+    # and UTF-32 have them) and holds no character reference (&#36; is $).
     if b"\0" not in data and b"&" not in data and b"$" not in data \
-            and b"xacro" not in data.lower():
+            and b"xacro" not in data:
         return None
     parser = xml.parsers.expat.ParserCreate()
     parser.buffer_text = True  # a text comes in one piece: "${" is never split

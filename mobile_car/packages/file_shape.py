@@ -107,7 +107,7 @@ def shape_of(data: bytes) -> FileShape:
 def _plain(data: bytes) -> bool:
     """Nothing xacro in it can hide from a look at the bytes (as in xacro_use)."""
     return b"\0" not in data and b"&" not in data and b"$" not in data \
-        and b"xacro" not in data.lower()
+        and b"xacro" not in data
 
 
 def _root(data: bytes) -> tuple[str, str | None] | None:

@@ -176,12 +176,12 @@ class OriginRecorder:
 
     def handle_macro_call(self, original):
         def handle(node, macros, symbols):
-            mark = node.getAttribute(MARK) if node.tagName.startswith("xacro:") and \
-                node.tagName != "xacro:call" else ""  # xacro:call comes back renamed
-            if not mark:
+            where = self._where(node) if node.tagName.startswith("xacro:") and \
+                node.tagName != "xacro:call" else None  # xacro:call comes back renamed
+            if where is None:
                 return original(node, macros, symbols)
             node.removeAttribute(MARK)  # xacro refuses parameters it does not know
-            file, line = self._where(mark)
+            file, line = where
             for inner in node.getElementsByTagName("*"):  # block arguments: the caller's
                 self._settle(inner)
             name = self._intern(self._names, node.tagName[len("xacro:"):])
@@ -211,9 +211,9 @@ class OriginRecorder:
 
     def _settle(self, node) -> None:
         """Give an element written at (file, line) the calls it is expanded in, once."""
-        mark = node.getAttribute(MARK) if node.nodeType == node.ELEMENT_NODE else ""
-        if mark.startswith("w"):
-            file, line = self._written[int(mark[1:])]
+        mark = self._mark_of(node)
+        if mark is not None and mark[0] == "w":
+            file, line = self._written[mark[1]]
             site = (file, line, self._stack[-1] if self._stack else -1)
             index = self._sites.get(site)
             if index is None:
@@ -221,11 +221,26 @@ class OriginRecorder:
                 self._site_rows.append(site)
             node.setAttribute(MARK, f"s{index}")
 
-    def _where(self, mark: str) -> tuple[int, int]:
-        if mark.startswith("w"):
-            return self._written[int(mark[1:])]
-        file, line, _ = self._site_rows[int(mark[1:])]
-        return file, line
+    def _where(self, node) -> tuple[int, int] | None:
+        """(file, line) an element was written at, or None."""
+        mark = self._mark_of(node)
+        if mark is None:
+            return None
+        return self._written[mark[1]] if mark[0] == "w" else self._site_rows[mark[1]][:2]
+
+    def _mark_of(self, node) -> tuple[str, int] | None:
+        """("w", k) as parsed, ("s", k) settled, or None: no mark, or one that is not
+        ours (a xacro:attribute can write any attribute: it moves nothing but a line)."""
+        if node.nodeType != node.ELEMENT_NODE:
+            return None
+        mark = node.getAttribute(MARK)
+        kind, number = mark[:1], mark[1:]
+        if kind not in ("w", "s") or not (number.isascii() and number.isdigit()) \
+                or len(number) > 12:
+            return None
+        index = int(number)
+        return (kind, index) if index < len(self._written if kind == "w" else
+                                            self._site_rows) else None
 
     @staticmethod
     def _intern(table: dict, key) -> int:
@@ -241,9 +256,9 @@ class OriginRecorder:
         of = []
         for element in [root, *root.getElementsByTagName("*")]:
             self._settle(element)  # nothing evaluated it (xacro does, all): top level
-            mark = element.getAttribute(MARK)
-            if mark:
+            mark = self._mark_of(element)
+            if element.hasAttribute(MARK):
                 element.removeAttribute(MARK)
-            of.append(int(mark[1:]) if mark.startswith("s") else -1)
+            of.append(mark[1] if mark is not None and mark[0] == "s" else -1)
         return Origins(tuple(self._files), tuple(self._names), tuple(self._calls),
                        tuple(self._site_rows), tuple(of))

@@ -144,3 +144,21 @@ def test_the_transcripts_of_docs_locations_are_what_mcar_prints(index, folder, r
     result = run_mcar(*command.removeprefix("$ mcar ").split(), cwd=folder)
     assert result.returncode == 1
     assert result.stderr.splitlines() == shown
+
+
+@pytest.mark.parametrize("value", ["s99999999", "w0", "s²", "garbage", ""])
+def test_a_xacro_that_writes_the_mark_itself_moves_a_line_at_most(tmp_path, run_mcar, value):
+    """The mark is an attribute, and xacro:attribute can write any attribute: whatever a
+    file writes there, the build succeeds, the URDF holds no mark, and nothing crashes."""
+    (tmp_path / "r.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <link name="a">\n'
+        f'    <xacro:attribute name="mcar_origin_" value="{value}"/>\n'
+        '    <visual><geometry><box size="1 1 -1"/></geometry></visual>\n'
+        '  </link>\n</robot>\n')
+    built = run_mcar("build", "r.urdf.xacro", "-o", "r.urdf", cwd=tmp_path)
+    assert built.returncode == 0, built.stderr
+    assert "mcar_origin_" not in (tmp_path / "r.urdf").read_text()
+    checked = run_mcar("check", "r.urdf.xacro", cwd=tmp_path)
+    assert checked.returncode == 1
+    assert re.search(r"^r\.urdf\.xacro:4: error: .*<box size=\"1 1 -1\">", checked.stderr, re.M)

@@ -170,7 +170,7 @@ def _why_not_a_robot(path: Path, shape: FileShape | None, included: dict[Path, P
         return f"included by {_shown_from(by, root)}"
     if shape is None:
         return "not a .urdf or .xacro file"
-    if not shape.well_formed and shape.root is None:
+    if shape.root is None:
         return None  # unreadable or broken: loading it says what is wrong
     if shape.root != "robot":
         return f"its root is <{shape.root}>, not <robot>"
@@ -178,7 +178,7 @@ def _why_not_a_robot(path: Path, shape: FileShape | None, included: dict[Path, P
     if not shape.name and xacro:
         what = "a macro file" if shape.macros else "a fragment to include"
         return f"{what}: its <robot> has no name"
-    if shape.well_formed and not shape.links and not shape.makers:
+    if shape.read_whole and not shape.links and not shape.makers:
         if shape.macros:
             return "defines macros only: no <link> outside <xacro:macro>"
         return "no <link>, and nothing that makes one: a fragment"

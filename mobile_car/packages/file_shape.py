@@ -30,10 +30,11 @@ _MAKERS = frozenset({"include", "element", "insert_block", "call"})
 
 @dataclass
 class FileShape:
-    """The facts about one file; ``well_formed`` False means only that expat gave up (or
-    the file could not be read), and nothing else is known."""
+    """The facts about one file. ``read_whole``: expat read all of it without error;
+    False when it gave up (a broken file), the file could not be read, or a plain URDF
+    with a ``<link>`` needed no more than its root: then nothing past the root is known."""
 
-    well_formed: bool = False
+    read_whole: bool = False
     root: str | None = None  # the root element's tag as written (robot, sdf, xacro:macro)
     name: str | None = None  # the root's name attribute
     links: bool = False  # a <link> outside every <xacro:macro>
@@ -54,18 +55,17 @@ def file_shape(path: Path) -> FileShape:
     return shape_of(data)
 
 
-_LINK_RE = re.compile(rb"<link[\s/>]")
+_LINK_RE = re.compile(rb"<link(?![\w.:-])")
 
 
 def shape_of(data: bytes) -> FileShape:
-    if _plain(data):  # most URDFs: the root, and a look for "<link" in the bytes
-        shape = FileShape(well_formed=True)
+    if _plain(data) and _LINK_RE.search(data):  # most URDFs: a robot if its root says so
         root = _root(data)
         if root is None:
             return FileShape()
-        shape.root, shape.name = root
-        shape.links = _LINK_RE.search(data) is not None
-        return shape
+        return FileShape(root=root[0], name=root[1], links=True)
+    # Read whole: what it includes and defines, and whether a file with no link in
+    # sight is a fragment or broken (a broken file is taken: loading it says where).
     shape = FileShape()
     depth_in_macro = 0  # how many <xacro:macro> bodies enclose the current element
     parser = xml.parsers.expat.ParserCreate()
@@ -99,7 +99,7 @@ def shape_of(data: bytes) -> FileShape:
         parser.Parse(data, True)
     except (xml.parsers.expat.ExpatError, ValueError):
         return FileShape(root=shape.root, name=shape.name)
-    shape.well_formed = True
+    shape.read_whole = True
     shape.uses_xacro = xacro_use(data) is not None
     return shape
 

@@ -79,8 +79,9 @@ def test_ci_lists_what_it_skipped_under_verbose_and_counts_it_otherwise(tmp_path
     shown = CASES.relative_to(tmp_path) if CASES.is_relative_to(tmp_path) else CASES
     assert listed == [f"mcar: skipped {shown}/{name}: {expected[name]}" for name in skipped]
     assert "(-v lists them)" not in verbose.stderr
-    # The one nameless plain URDF is a robot, and checking it says what it lacks.
+    # A nameless plain URDF and a broken file are robots: checking them says what is wrong.
     assert re.search(r"plain_without_name\.urdf:1: error: <robot> has no name", verbose.stderr)
+    assert re.search(r"broken\.urdf:3: error: not well-formed XML", verbose.stderr)
 
 
 def test_a_urdf_beside_its_xacro_is_one_robot_and_ci_passes(tmp_path, run_mcar):

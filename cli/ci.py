@@ -38,7 +38,8 @@ package.
   mcar ci --format junit > report.xml   JUnit XML for the CI server
   mcar ci --format github               annotations on the pull request's lines
 
-Every robot file (.xacro with <robot name=...>: parts, steps, complete robots) is built
+Every robot file (parts, steps, complete robots: what `mcar build` finds, see
+docs/discovery.md; -v lists the files skipped as not robots, with why) is built
 into --build-dir, checked with `mcar check --strict` (a warning fails it too), simulated
 as by `mcar sim` (drop, drive, spin; --no-sim skips it) and drawn into --render-dir,
 mirroring urdf/; each variant urdf/variants/NAME.yaml is applied to
@@ -143,10 +144,14 @@ def _problems(item) -> list:
 @click.option("--diff-report", metavar="FILE.md", type=click.Path(dir_okay=False),
               help="With --against: write the comparison as markdown to FILE.md.")
 @click.option("-q", "--quiet", is_flag=True, help="text format: print only problems.")
+@click.option("-v", "--verbose", is_flag=True,
+              help="Also list the files found beside the robots that are not robots, one "
+                   "line each with why (macro files, included files, fragments, ...).")
 @robot_options
 @handle_errors
 def command(words, output_format, build_dir, render_dir, no_render, no_sim, strict, renderer,
-            junit_xml, against, diff_report, quiet, sets, config_files, package_paths):
+            junit_xml, against, diff_report, quiet, verbose, sets, config_files,
+            package_paths):
     from mobile_car.ci import pipeline
     from mobile_car.ci.cache import CiCache
     from mobile_car.freshness import Basis
@@ -231,7 +236,13 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
         atomic_write(junit_xml, junit_report(items))
     if diff_report:
         _write_diff_report(diff_report, compared, revision, items)
-    _emit(items, output_format, quiet, time.perf_counter() - started, no_render, no_sim)
+    skipped = pipeline.not_robots(selection)
+    if verbose:
+        for file in skipped:
+            click.echo(f"mcar: skipped {display_path(file.path)}: {shown(file.reason)}",
+                       err=True)
+    _emit(items, output_format, quiet, time.perf_counter() - started, no_render, no_sim,
+          0 if verbose else len(skipped))
     if revision is not None:
         changed = sum(1 for entry in compared if entry.diff is not None and entry.diff.changed
                       or entry.summary.startswith("added"))
@@ -313,7 +324,7 @@ def _render(checked, items, manifest, renderer: str, basis) -> None:
 
 
 def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: bool,
-          no_sim: bool) -> None:
+          no_sim: bool, skipped: int) -> None:
     if output_format == "junit":
         from mobile_car.ci.junit import junit_report
 
@@ -350,5 +361,8 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
     passed = sum(item.ok for item in items)
     steps = "build, check --strict" + ("" if no_sim else ", sim") + \
         ("" if no_render else ", render")
+    if skipped:
+        files = "file that is" if skipped == 1 else "files that are"
+        click.echo(f"mcar ci: skipped {skipped} {files} not robots (-v lists them)", err=True)
     click.echo(f"mcar ci: {passed} of {len(items)} files passed ({steps}) in {seconds:.1f} s",
                err=True)

@@ -222,6 +222,18 @@ def _say_if_unconfined() -> None:
         print_warning("mcar", notice)
 
 
+def _say_xacro_use(label: str, use: str) -> None:
+    """The note for a .urdf expanded because it uses xacro (once per file and run)."""
+    from mobile_car.load.xacro_use import note_text
+
+    if label not in _said_xacro_use:
+        _said_xacro_use.add(label)
+        click.echo(f"mcar: {shown(label)}: {shown(note_text(use))}", err=True)
+
+
+_said_xacro_use: set[str] = set()
+
+
 def handle_errors(func):
     """Run a command body and end the run: McarError becomes its message and exit code,
     Ctrl-C exits 130 and SIGTERM 143 whenever it came, a closed stdout pipe exits 0
@@ -229,14 +241,19 @@ def handle_errors(func):
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
+        from mobile_car.load import xacro_use
+
         from . import signals
 
         try:
             signals.arm()
+            _said_xacro_use.clear()
+            xacro_use.listen(_say_xacro_use)
             try:
                 result = func(*args, **kwargs)
                 streams.flush()
             finally:
+                xacro_use.listen(None)
                 # The body has unwound (temporary files gone, children ended): from here
                 # on a signal ends mcar at once, even while the lines below print.
                 signals.disarm()

@@ -86,6 +86,14 @@ def variant_files(root: Path) -> list[Path]:
     return sorted((source_base(root) / "variants").glob("*.yaml"))
 
 
+def not_robots(selection: Selection) -> list:
+    """The files found beside the robots that are not robots (Skipped, with why), but for
+    the variant files this run applies."""
+    variants = set(variant_files(selection.root)) \
+        if selection.kind in ("package", "folder") and selection.root is not None else set()
+    return [file for file in selection.skipped if file.path not in variants]
+
+
 def plan(selection: Selection, build_dir: Path, render_dir: Path | None) -> list[CiItem]:
     """Every item of a CI run over the inputs, in a stable order: each input, then for a
     package (or folder) with variants, its top-level robot files once per variant."""

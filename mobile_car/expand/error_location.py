@@ -23,13 +23,16 @@ _COMMENT_RE = re.compile(r"<!--.*?-->", re.S)
 _MAX_STACK_LINES = 8
 
 
-def error_from(exc: BaseException, parsing: list, source: Path) -> McarError:
-    """Turn whatever xacro raised into one located BuildError (or the McarError inside)."""
+def error_from(exc: BaseException, parsing: list, source: Path,
+               calls: list[tuple[str, str, int]] = ()) -> McarError:
+    """Turn whatever xacro raised into one located BuildError (or the McarError inside).
+    ``calls``: (macro, file, line) of the macro calls being expanded, innermost first
+    (see :mod:`.origins`), said in the stack."""
     inner = getattr(exc, "exc", None)
     if isinstance(inner, NotRegularFile):  # an include: said and located as a missing one
         file, line = _locate(source, [os.path.basename(inner.path)])
         return BuildError(f"cannot read {display_path(inner.path)}: {inner.message}",
-                          file=file, line=line, details=_stack_details())
+                          file=file, line=line, details=_stack_details(calls))
     if isinstance(exc, McarError) or isinstance(inner, McarError):
         error = exc if isinstance(exc, McarError) else inner
         if error.file is None:  # say which file asked for the package, and where
@@ -47,16 +50,16 @@ def error_from(exc: BaseException, parsing: list, source: Path) -> McarError:
 
         bad = parsing[-1] if parsing and parsing[-1] else str(source)
         message, line = not_utf8(decode.object, decode.start)
-        return BuildError(message, file=display_path(bad), line=line, details=_stack_details())
+        return BuildError(message, file=display_path(bad), line=line, details=_stack_details(calls))
     if isinstance(exc, xml.parsers.expat.ExpatError):
         bad = parsing[-1] if parsing and parsing[-1] else str(source)
         encoding = _encoding_error(bad, exc)
         if encoding is not None:
             return BuildError(encoding[0], file=display_path(bad), line=encoding[1],
-                              details=_stack_details())
+                              details=_stack_details(calls))
         message = xml.parsers.expat.ErrorString(exc.code) if exc.code else str(exc)
         return BuildError(f"XML parse error: {message} (column {exc.offset + 1})",
-                          file=display_path(bad), line=exc.lineno, details=_stack_details())
+                          file=display_path(bad), line=exc.lineno, details=_stack_details(calls))
     if isinstance(exc, RecursionError):
         macros = list(xacro.macrostack or [])
         files = [f for f in (xacro.filestack or []) if f]
@@ -66,14 +69,14 @@ def error_from(exc: BaseException, parsing: list, source: Path) -> McarError:
             needles = [os.path.basename(files[-1])] if files else []
         file, line = _locate(source, needles)
         return BuildError("recursion too deep: a macro or an include that calls itself?",
-                          file=file, line=line, details=_stack_details())
+                          file=file, line=line, details=_stack_details(calls))
     message = " ".join(str(exc).split()) or type(exc).__name__
     if isinstance(inner, MemoryError) or isinstance(exc, MemoryError):
         message = f"out of memory {message}".strip()
     # xacro.fatal("...") is the author's own message: xacro's "when evaluating" adds noise.
     message = re.sub(r" when evaluating expression 'xacro\.fatal\(.*$", "", message)
     file, line = _locate(source, needles)
-    return BuildError(message, file=file, line=line, details=_stack_details())
+    return BuildError(message, file=file, line=line, details=_stack_details(calls))
 
 
 def _locate(source: Path, needles: list[str]) -> tuple[str, int | None]:
@@ -130,15 +133,26 @@ def _find_line(path: str | None, needles: list[str]) -> int | None:
     return None
 
 
-def _stack_details() -> list[str]:
-    """xacro's macro and include stack, innermost first, as print_location would say it."""
+def _stack_details(calls: list[tuple[str, str, int]] = ()) -> list[str]:
+    """xacro's macro and include stack, innermost first, as print_location would say it,
+    with the line each macro was called at."""
     details = []
     macros = list(xacro.macrostack or [])
+    # Both stacks start at the outermost call; the calls may hold one more, innermost
+    # (a call that failed before xacro entered it).
+    outer_first = list(reversed(calls))
     for i, macro in enumerate(reversed(macros)):
         defined = macro.history[-1][-1] if macro.history else None
         verb = "when instantiating macro:" if i == 0 else "instantiated from:"
-        details.append(f"{verb} {macro.body.getAttribute('name')} "
-                       f"({display_path(defined) if defined else '???'})")
+        name = macro.body.getAttribute("name")
+        depth = len(macros) - 1 - i
+        called = ""
+        if depth < len(outer_first) and outer_first[depth][0] in (name,
+                                                                  name.removeprefix("xacro:")):
+            _, file, line = outer_first[depth]
+            called = f", called at {display_path(file)}:{line}"
+        details.append(f"{verb} {name} "
+                       f"({display_path(defined) if defined else '???'}){called}")
     files = [f for f in (xacro.filestack or []) if f]
     for i, name in enumerate(reversed(files)):
         verb = ("in file:" if macros else "when processing file:") if i == 0 else "included from:"

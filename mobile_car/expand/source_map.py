@@ -1,135 +1,54 @@
-"""Point a problem in a URDF built from xacro back at the xacro source, where possible.
+"""Point a problem in a URDF built from xacro back at the xacro source.
 
-xacro keeps no line numbers, so the source line is found by name: the element, or its
-nearest ancestor with a ``name`` (the link or joint), is searched for as
-``<TAG ... name="VALUE"`` and then as ``name="VALUE"`` in the files the build read (the
-input first, then its includes). A name written literally is found at its definition; a
-name passed to a macro (``<xacro:wheel name="left"/>``) is found at the call when the
-macro builds the name from it unchanged. A name computed inside a macro
-(``name="wheel_${side}_link"``) is found by matching the template as a pattern
-(``wheel_.*_link``) against the built name. An element without a name of its own (a
-``<visul>`` inside a link) is then looked for as its tag after its ancestor's line, the
-same number of times it occurs under that ancestor. When nothing matches, the diagnostic
-names the input file without a line and says which line of the expanded URDF it is about.
+The expansion records where each element of the URDF was written (:mod:`.origins`): the
+file and line of its tag, and the macro calls that expanded it. A diagnostic about an
+element names that file and line; when the element was written inside a macro, the
+message ends with the calls, innermost first (``(in xacro:wheel called at
+robot.urdf.xacro:14)``), so that one problem at four calls of a macro is four
+diagnostics, each saying which call. A line of the expanded URDF (a problem found before
+any element is known) names the input file, and which line of the expansion it is.
 """
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
-from ..check.urdf_model import tag_name
-from ..load.bounded import read_text_quietly
+from lxml import etree
+
 from ..load.inputs import display_path
 
 
 class SourceLocator:
-    def __init__(self, source: Path, deps: list[Path]):
+    """Element of the expanded URDF -> (file, line, note)."""
+
+    def __init__(self, source: Path, origins):
         self.source = display_path(source)
-        self.files = list(dict.fromkeys([source, *deps]))
-        self._lines: dict[Path, list[str]] = {}
-        self._found: dict[tuple[str, str], tuple[str, int] | None] = {}
-
-    def _read(self, path: Path) -> list[str]:
-        if path not in self._lines:
-            self._lines[path] = (read_text_quietly(path) or "").splitlines()
-        return self._lines[path]
-
-    def _search(self, tag: str, name: str) -> tuple[str, int] | None:
-        key = (tag, name)
-        if key not in self._found:
-            quoted = re.escape(name)
-            value = rf"""name\s*=\s*(?:"{quoted}"|'{quoted}')"""
-            patterns = [re.compile(rf"<{re.escape(tag)}\b[^>]*\b{value}"),
-                        re.compile(rf"\b{value}")]
-            self._found[key] = None
-            for pattern in patterns:
-                hit = self._first_hit(pattern)
-                if hit:
-                    self._found[key] = hit
-                    break
-            else:
-                self._found[key] = self._template_hit(tag, name)
-        return self._found[key]
-
-    def _template_hit(self, tag: str, name: str) -> tuple[str, int] | None:
-        """The first ``<TAG name="...${...}...">`` whose template matches the built name."""
-        opening = re.compile(rf"""<{re.escape(tag)}\b[^>]*\bname\s*=\s*(["'])([^"']*\$\{{.*?)\1""")
-        for path in self.files:
-            for number, text in enumerate(self._read(path), start=1):
-                match = opening.search(text)
-                if match and _template_matches(match.group(2), name):
-                    return display_path(path), number
-        return None
-
-    def _refine(self, hit: tuple[str, int], anchor, where) -> tuple[str, int]:
-        """From the anchor's line, the line of ``where`` itself: its tag's k-th occurrence."""
-        tag = tag_name(where)
-        same = [e for e in anchor.iter(where.tag) if e is not anchor]
-        if where not in same:
-            return hit
-        k = same.index(where)
-        path = next((p for p in self.files if display_path(p) == hit[0]), None)
-        if path is None:
-            return hit
-        pattern = re.compile(rf"<{re.escape(tag)}\b")
-        lines = self._read(path)
-        for number in range(hit[1], min(len(lines), hit[1] + 400) + 1):
-            if pattern.search(lines[number - 1]):
-                if k == 0:
-                    return hit[0], number
-                k -= 1
-        return hit
-
-    def _first_hit(self, pattern) -> tuple[str, int] | None:
-        for path in self.files:
-            hit = self._search_in(path, pattern)
-            if hit:
-                return hit
-        return None
-
-    def _search_in(self, path: Path, pattern) -> tuple[str, int] | None:
-        for number, text in enumerate(self._read(path), start=1):
-            if pattern.search(text):
-                return display_path(path), number
-        return None
+        self.origins = origins  # Origins, or None: every element is then the input's
+        self._root = None
+        self._index: dict = {}
 
     def __call__(self, where) -> tuple[str, int | None, str]:
         """(file, line, note) for an element of the built URDF, or for a line of it."""
         if isinstance(where, int):
             return self.source, None, f" (line {where} of the expanded URDF)"
-        if where.getparent() is None:  # the <robot> itself: the input's <robot> tag
-            hit = self._search_in(self.files[0], re.compile(r"^\s*<robot\b"))
-            if hit:
-                return hit[0], hit[1], ""
-        element = where
-        while element is not None:
-            # The robot's own name says nothing about where one of its parts is written.
-            anchor = _is_anchor(element) and (element is where or element.tag != "robot")
-            name = element.get("name") if anchor else None
-            if name:
-                hit = self._search(tag_name(element), name)
-                if hit:
-                    if element is not where:
-                        hit = self._refine(hit, element, where)
-                    return hit[0], hit[1], ""
-            element = element.getparent()
-        return (self.source, None,
-                f" (line {where.sourceline} of the expanded URDF)")
+        site = self.origins.site(self._position(where)) if self.origins is not None else None
+        if site is None:
+            return self.source, None, f" (line {where.sourceline} of the expanded URDF)"
+        file, line, calls = site
+        return display_path(file), line, _calls_note(calls)
+
+    def _position(self, element) -> int:
+        """The element's place in document order, as the origins count them."""
+        root = element.getroottree().getroot()
+        if root is not self._root:  # proxies kept alive here stay the same objects
+            self._root = root
+            self._index = {e: i for i, e in enumerate(root.iter(etree.Element))}
+        return self._index.get(element, -1)
 
 
-def _is_anchor(element) -> bool:
-    """Elements whose name identifies them; a visual's <material name> names a colour."""
-    tag = element.tag
-    if tag == "material":
-        parent = element.getparent()
-        return parent is None or parent.tag == "robot"
-    return tag in ("robot", "link", "joint", "visual", "collision", "transmission")
-
-
-def _template_matches(template: str, name: str) -> bool:
-    """``wheel_${side}_link`` matches ``wheel_left_link``: each ``${...}`` as ``.+``."""
-    parts = re.split(r"\$\{[^}]*\}", template)
-    if len(parts) < 2:
-        return False
-    return re.fullmatch(".+".join(re.escape(p) for p in parts), name) is not None
+def _calls_note(calls: list[tuple[str, str, int]]) -> str:
+    """`` (in xacro:wheel called at robot.urdf.xacro:14, in xacro:base called at ...)``"""
+    if not calls:
+        return ""
+    return " (" + ", ".join(f"in xacro:{name} called at {display_path(file)}:{line}"
+                            for name, file, line in calls) + ")"

@@ -98,7 +98,22 @@ class RobotInput:
 
     @property
     def is_xacro(self) -> bool:
+        """Expanded by xacro: a ``.xacro``, or another file that uses xacro (see
+        :mod:`mobile_car.load.xacro_use`: TurtleBot3's ``.urdf`` files)."""
+        return self.named_xacro or self.xacro_use is not None
+
+    @property
+    def named_xacro(self) -> bool:
         return self.path is not None and self.path.name.endswith(".xacro")
+
+    @property
+    def xacro_use(self) -> str | None:
+        """For a file not named ``.xacro``: what in it is xacro (``<xacro:arg>``), or None."""
+        if self.path is None or self.named_xacro:
+            return None
+        from .xacro_use import file_xacro_use
+
+        return file_xacro_use(self.path)
 
     @property
     def relative(self) -> Path:

@@ -14,7 +14,10 @@ the same things with the same words and exit codes:
 A plain URDF is read as it is (``mcar check`` has no size limit on regular files and never
 imports xacro; stdin is read within ``MCAR_MAX_INPUT_MB`` by every command, and a FIFO,
 socket or device is refused before it is opened);
-with ``through_xacro`` (``mcar build``) it goes through xacro like a ``.xacro`` does.
+with ``through_xacro`` (``mcar build``) it goes through xacro like a ``.xacro`` does. A
+file not named ``.xacro`` that uses xacro (TurtleBot3's ``.urdf`` files) is expanded by
+every command, as the ``xacro`` command would, with a note
+(:mod:`mobile_car.load.xacro_use`).
 """
 
 from __future__ import annotations
@@ -68,6 +71,7 @@ class LoadedRobot:
     deps: list[Path] = field(default_factory=list)  # the files read, the input first
     warnings: list[str] = field(default_factory=list)  # xacro's warnings
     from_xacro: bool = False
+    origins: object = None  # expand.origins.Origins: where each element was written
 
     @property
     def label(self) -> str:
@@ -75,13 +79,13 @@ class LoadedRobot:
 
     @functools.cached_property
     def locate(self):
-        """For an expanded file: a SourceLocator (built element -> xacro source line),
-        made only when a check asks (mcar build never needs one); else None."""
+        """For an expanded file: a SourceLocator (built element -> the file, line and
+        macro calls it was written at), made only when a check asks; else None."""
         if not self.from_xacro or self.input.path is None:
             return None
         from ..expand.source_map import SourceLocator
 
-        return SourceLocator(self.input.path, self.deps)
+        return SourceLocator(self.input.path, self.origins)
 
     @property
     def base(self) -> Path:
@@ -99,13 +103,29 @@ def load_robot(inp: RobotInput, options: LoadOptions, stdin=None) -> LoadedRobot
             return LoadedRobot(inp, data, search)
         return _expand(inp, options, search, text=data)
     require_robot_file(inp)
-    if not inp.is_xacro and not options.through_xacro:
-        try:
-            data = read_input(inp.path, inp.label, limit_regular=options.size_limited)
-        except OSError as error:
-            raise InputError(f"cannot read: {error.strerror or error}", file=inp.label) from None
+    if inp.named_xacro:
+        return _expand(inp, options, search)
+    if options.through_xacro:  # mcar build: every file goes through xacro
+        _note_xacro_use(inp, inp.xacro_use)
+        return _expand(inp, options, search)
+    try:
+        data = read_input(inp.path, inp.label, limit_regular=options.size_limited)
+    except OSError as error:
+        raise InputError(f"cannot read: {error.strerror or error}", file=inp.label) from None
+    from .xacro_use import xacro_use
+
+    use = xacro_use(data)
+    if use is None:
         return LoadedRobot(inp, data, search, deps=[inp.path])
+    _note_xacro_use(inp, use)
     return _expand(inp, options, search)
+
+
+def _note_xacro_use(inp: RobotInput, use: str | None) -> None:
+    if use is not None:
+        from .xacro_use import note_expanded
+
+        note_expanded(inp.label, use)
 
 
 def _expand(inp: RobotInput, options: LoadOptions, search: PackageSearch,
@@ -126,7 +146,7 @@ def _expand(inp: RobotInput, options: LoadOptions, search: PackageSearch,
         raise UsageError("--set/--config change config.xacro, which this file does not "
                          "include", file=inp.label)
     return LoadedRobot(inp, built.xml.encode("utf-8"), search, deps=built.deps,
-                       warnings=built.warnings, from_xacro=True)
+                       warnings=built.warnings, from_xacro=True, origins=built.origins)
 
 
 def refuse_unused_arguments(inputs: list[RobotInput], options: LoadOptions,
@@ -146,7 +166,8 @@ def refuse_unused_arguments(inputs: list[RobotInput], options: LoadOptions,
 
 
 def require_robot_file(inp: RobotInput) -> None:
-    """InputError unless the input is a readable file; MacroFileError for a macro file."""
+    """InputError unless the input is a readable file; MacroFileError for a macro file
+    (a nameless ``<robot>`` that uses xacro)."""
     _require_readable(inp.path)
     if inp.is_xacro and is_macro_file(inp.path):
         raise MacroFileError(f"{inp.label} is a macro file: include it from a robot file, "

@@ -31,34 +31,56 @@ class Selection:
     # named it, else the working directory.
     output_root: Path = field(default_factory=Path)
     working: object = None  # the WorkingSet, when the package was chosen for the user
+    # Files found below the folders named that are not robots, with why (mcar ci -v).
+    skipped: list = field(default_factory=list)  # of packages.discover.Skipped
 
     @property
     def reads_stdin(self) -> bool:
         return any(inp.path is None for inp in self.inputs)
 
 
-def robot_inputs(root: Path, base: Path | None = None) -> list[RobotInput]:
+def robot_inputs(root: Path, base: Path | None = None,
+                 skipped: list | None = None) -> list[RobotInput]:
     """The robot files of a folder, each named from ``base`` (default: the folder's own
-    source folder, see :func:`~mobile_car.packages.discover.source_base`)."""
-    from ..packages.discover import robot_files, source_base
+    source folder, see :func:`~mobile_car.packages.discover.source_base`); the files
+    found there that are not robots are added to ``skipped``."""
+    from ..packages.discover import discover, source_base
 
-    files = robot_files(root)
+    found = discover(root)
+    if skipped is not None:
+        skipped += found.skipped
+    files = found.robots
     base = base or source_base(root)
     if any(not path.is_relative_to(base) for path in files):
         base = root
     return [RobotInput(path, base) for path in files]
 
 
-def require_robot_inputs(root: Path, base: Path | None = None) -> list[RobotInput]:
-    """robot_inputs(), or a UsageError naming the folder when there is none."""
+def require_robot_inputs(root: Path, base: Path | None = None,
+                         skipped: list | None = None) -> list[RobotInput]:
+    """robot_inputs(), or a UsageError naming the folder (and what was skipped there)
+    when there is none."""
     from ..packages.discover import ROBOT_FOLDERS
 
-    inputs = robot_inputs(root, base)
+    passed_over: list = []
+    inputs = robot_inputs(root, base, passed_over)
+    if skipped is not None:
+        skipped += passed_over
     if not inputs:
-        raise UsageError("no .urdf or robot .xacro files in this folder (looked in "
+        raise UsageError("no robot files in this folder (looked in "
                          f"{', '.join(name + '/' for name in ROBOT_FOLDERS)} or the folder "
-                         "itself)", file=display_path(root))
+                         f"itself){_what_was_skipped(passed_over)}", file=display_path(root))
     return inputs
+
+
+def _what_was_skipped(skipped: list) -> str:
+    """``; skipped 3 files that are not robots: a.xacro (defines macros only), ...``"""
+    if not skipped:
+        return ""
+    shown = [f"{display_path(s.path)} ({s.reason})" for s in skipped[:3]]
+    more = f", and {len(skipped) - 3} more" if len(skipped) > 3 else ""
+    files = "file that is" if len(skipped) == 1 else "files that are"
+    return f"; skipped {len(skipped)} {files} not robots: {', '.join(shown)}{more}"
 
 
 def package_parts(root: Path) -> list[str]:
@@ -71,7 +93,7 @@ def _looks_like_file(name: str) -> bool:
     return "/" in name or name.endswith((".urdf", ".xacro"))
 
 
-def _folder(folder: Path) -> list[RobotInput]:
+def _folder(folder: Path, skipped: list) -> list[RobotInput]:
     """A folder's inputs, named from its package when it lies in one, so that outputs
     mirror the same way however the package or a subfolder was named."""
     from ..packages.discover import source_base
@@ -79,9 +101,9 @@ def _folder(folder: Path) -> list[RobotInput]:
 
     own = enclosing_package(folder)
     if own is None:
-        return require_robot_inputs(folder)
+        return require_robot_inputs(folder, skipped=skipped)
     # Absolute, as the package's root is: messages show paths relative to the cwd anyway.
-    return require_robot_inputs(folder.resolve(), source_base(own[1]))
+    return require_robot_inputs(folder.resolve(), source_base(own[1]), skipped)
 
 
 def _is_own_stdin(name: str) -> bool:
@@ -114,30 +136,35 @@ def select(names: list[str], working) -> Selection:
     # one that does not may be a part name.
     if all(_looks_like_file(name) for name in missing):
         folders = [path for path in paths if path is not None and path.is_dir()]
+        skipped: list = []
         if len(names) == 1 and folders:
-            return Selection("folder", _folder(folders[0]), folders[0], Path.cwd())
+            return Selection("folder", _folder(folders[0], skipped), folders[0], Path.cwd(),
+                             skipped=skipped)
         inputs: list[RobotInput] = []
         for path in paths:
             if path is not None and path.is_dir():
-                inputs += _folder(path)
+                inputs += _folder(path, skipped)
             else:
                 inputs.append(RobotInput(path))
-        return Selection("files", inputs, output_root=Path.cwd())
+        return Selection("files", inputs, output_root=Path.cwd(), skipped=skipped)
     if len(missing) < len(names):
         raise UsageError(f"no such file: {missing[0]} (give files, or part names, not both)")
     return _parts(names, working())
 
 
 def _package(working) -> Selection:
+    skipped: list = []
     if working.kind == "workspace":  # named from the workspace: packages cannot collide
         inputs = [inp for package in working.packages
-                  for inp in robot_inputs(package.root, working.folder)]
+                  for inp in robot_inputs(package.root, working.folder, skipped)]
         if not inputs:
-            raise UsageError("no robot files in any package of this workspace",
-                             file=display_path(working.folder))
-        return Selection("package", inputs, working.folder, working.output_root, working)
+            raise UsageError("no robot files in any package of this workspace"
+                             f"{_what_was_skipped(skipped)}", file=display_path(working.folder))
+        return Selection("package", inputs, working.folder, working.output_root, working,
+                         skipped)
     root = working.packages[0].root
-    return Selection("package", require_robot_inputs(root), root, working.output_root, working)
+    return Selection("package", require_robot_inputs(root, skipped=skipped), root,
+                     working.output_root, working, skipped)
 
 
 def _parts(names: list[str], working) -> Selection:
@@ -152,6 +179,17 @@ def _parts(names: list[str], working) -> Selection:
     if unknown:
         raise UsageError(f"no file or part named {', '.join(map(repr, unknown))}; parts of "
                          f"{display_path(source_base(root))}: {', '.join(known) or 'none'}")
-    return Selection("parts", [inp for inp in robot_inputs(root)
-                               if inp.relative.parts[0] in names], root,
-                     working.output_root, working)
+    skipped: list = []
+    inputs = [inp for inp in robot_inputs(root, skipped=skipped)
+              if inp.relative.parts[0] in names]
+    return Selection("parts", inputs, root, working.output_root, working,
+                     [s for s in skipped if _in_parts(s.path, root, names)])
+
+
+def _in_parts(path: Path, root: Path, names: list[str]) -> bool:
+    from ..packages.discover import source_base
+
+    try:
+        return path.relative_to(source_base(root)).parts[0] in names
+    except ValueError:
+        return False

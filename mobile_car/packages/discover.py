@@ -1,20 +1,44 @@
 """Find the robot files of a description package: what every command takes from a folder.
 
-A robot file is a ``.urdf`` file, or a ``.xacro`` whose root is ``<robot name="...">``.
-Macro libraries (``define.xacro``, ``wheel/wheel.xacro``) have a nameless ``<robot>``
-root: they are included, never built alone. Deciding by content, not by file name,
-lets another team's package work with no configuration.
+A robot is a file that makes a ``<robot>`` with links and that no other file of the
+package includes. Deciding by content, not by file name, lets another team's package
+work with no configuration; deciding without running anything keeps a xacro (which is
+code) from running before the user asked for it, and finding a folder's robots cheap.
+Every file below the robot folders is looked at (:mod:`.file_shape`) and either taken
+or skipped with the reason, which ``mcar ci -v`` lists:
+
+* not a ``.urdf`` or ``.xacro`` (``jackal.gazebo``, launch configs, variant YAMLs);
+* included by another file of the package: by a relative name, ``$(find OWN)/...``,
+  or an argument's or environment variable's default (Husky's ``empty.urdf``, named in
+  ``$(optenv HUSKY_URDF_EXTRAS empty.urdf)``);
+* a root other than ``<robot>``;
+* a nameless ``<robot>`` that uses xacro: a macro file, or a fragment to include
+  (Jackal's ``custom_example.urdf``); a plain URDF without a name is still a robot,
+  and checking it says what is missing;
+* nothing that could make a link: no ``<link>``, macro call or include outside the
+  ``<xacro:macro>`` bodies (a macro library with a named ``<robot>``, TurtleBot3's
+  ``common_properties.urdf`` of materials, an empty placeholder);
+* ``X.urdf`` beside ``X.urdf.xacro``: both would be built into ``X.urdf``, and the
+  ``.xacro`` is the source (Panda ships both);
+* left out by the package's ``mcar.yaml`` (``robots: include/exclude``, see
+  :mod:`.package_config`).
+
+A file that could make a link is taken even when the macros it calls make none:
+checking it then says so (E106), and ``mcar.yaml`` can leave it out; a red run names
+what it is about, where a silently skipped robot would make a green one.
 """
 
 from __future__ import annotations
 
 import functools
 import re
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import InputError
-from ..load.bounded import open_regular, read_head, read_text_quietly
+from ..load.bounded import open_regular, read_text_quietly
 from ..load.inputs import input_limit_mb
+from .file_shape import FileShape, file_shape, include_target
 
 # Folders of a package that hold outputs or tools, never robot files to take as inputs.
 _NOT_SOURCES = {"build", "install", "log", "renders", "node_modules", "__pycache__"}
@@ -54,24 +78,9 @@ def root_element(path: Path) -> tuple[str, str | None] | None:
     return found[0] if found else None
 
 
-def is_robot_file(path: Path) -> bool:
-    """True if the file's root element is a ``<robot>`` with a ``name`` attribute."""
-    root = root_element(path)
-    if root is not None:
-        return root[0] == "robot" and bool(root[1])
-    # A broken robot file is still a robot file: building it reports the error.
-    try:
-        head = read_head(path, 4096).decode("utf-8", errors="replace")
-    except (OSError, InputError):
-        return False
-    return "<robot" in head and "name=" in head.split("<robot", 1)[1].split(">", 1)[0]
-
-
 # Where description packages keep robot files, by ROS convention; a folder with none of
 # these is searched itself.
 ROBOT_FOLDERS = ("urdf", "robots", "xacro", "description")
-_INCLUDE_RE = re.compile(r"<xacro:include\b[^>]*?\bfilename\s*=\s*[\"']([^\"']+)[\"']", re.S)
-_FIND_RE = re.compile(r"^\$\(find\s+([^)\s]+)\)/?")
 
 
 def _source_folders(root: Path) -> list[Path]:
@@ -86,53 +95,128 @@ def source_base(root: Path) -> Path:
     return folders[0] if len(folders) == 1 else root
 
 
+@dataclass(frozen=True)
+class Skipped:
+    """A file below the robot folders that is not a robot, and why."""
+
+    path: Path
+    reason: str
+
+
+@dataclass
+class Discovery:
+    """The robot files of a folder, sorted, and the files skipped there."""
+
+    robots: list[Path] = field(default_factory=list)
+    skipped: list[Skipped] = field(default_factory=list)
+
+
 def robot_files(root: Path) -> list[Path]:
-    """The robot files of a folder, sorted: every ``.urdf`` file and every ``.xacro``
-    whose root is a named ``<robot>``, below its robot folders (``urdf/``, ``robots/``,
-    ``xacro/``, ``description/``) or, with none, below the folder itself. Hidden and
-    output folders (build/, renders/, ...) are skipped, and so is a named xacro that
-    another xacro file includes (a macro file that names its ``<robot>`` anyway)."""
-    found, xacros = [], []
-    for folder in _source_folders(root):
-        for path in folder.rglob("*"):
-            if any(part.startswith(".") or part in _NOT_SOURCES
-                   for part in path.relative_to(folder).parts[:-1]):
-                continue
-            if path.name.endswith(".urdf") and path.is_file():
-                found.append(path)
-            elif path.name.endswith(".xacro") and path.is_file():
-                xacros.append(path)
-                if is_robot_file(path):
-                    found.append(path)
-    included = _included_files(xacros, root)
-    return sorted(path for path in found if path.resolve() not in included)
+    """The robot files of a folder, sorted (see :func:`discover`)."""
+    return discover(root).robots
 
 
-def _included_files(files: list[Path], root: Path) -> set[Path]:
-    """The files that the xacro ``files`` include, as far as can be told without
-    expanding them: relative names, and ``$(find PKG)/...`` of the package holding
-    ``root``."""
+def discover(root: Path) -> Discovery:
+    """The robot files below the robot folders of ``root`` (``urdf/``, ``robots/``,
+    ``xacro/``, ``description/``, else ``root`` itself), hidden and output folders
+    (build/, renders/, ...) left out, and every other file there with the reason."""
+    from .package_config import load_package_config
     from .search import enclosing_package
 
     own = enclosing_package(root)
-    included: set[Path] = set()
+    config = load_package_config(own[1]) if own is not None else None
+    files = _files(root)
+    shapes = {path: file_shape(path) for path in files if _is_candidate(path)}
+    included = _included(shapes, own)
+    found = Discovery()
+    taken: list[Path] = []
     for path in files:
-        if not path.name.endswith(".xacro"):
-            continue
-        text = read_text_quietly(path)
-        if text is None:
-            continue
-        for name in _INCLUDE_RE.findall(text):
-            found = _FIND_RE.match(name)
-            if found:
-                if own is None or found.group(1) != own[0]:
-                    continue
-                target = own[1] / name[found.end():]
-            elif "$" in name:
+        reason = _why_not_a_robot(path, shapes.get(path), included, root)
+        if reason is None:
+            taken.append(path)
+        else:
+            found.skipped.append(Skipped(path, reason))
+    for path in _one_per_output(taken, found.skipped, root):
+        selected, why_not = config.selects(path) if config is not None else (True, None)
+        if selected:
+            found.robots.append(path)
+        else:
+            found.skipped.append(Skipped(path, f"left out by {why_not}"))
+    found.skipped.sort(key=lambda skipped: skipped.path)
+    return found
+
+
+def _files(root: Path) -> list[Path]:
+    files = []
+    for folder in _source_folders(root):
+        for path in folder.rglob("*"):
+            parts = path.relative_to(folder).parts
+            if any(part.startswith(".") or part in _NOT_SOURCES for part in parts[:-1]) \
+                    or parts[-1].startswith("."):
                 continue
-            else:
-                target = path.parent / name
-            included.add(target.resolve())
+            if path.is_file():
+                files.append(path)
+    return sorted(files)
+
+
+def _is_candidate(path: Path) -> bool:
+    return path.name.endswith((".urdf", ".xacro"))
+
+
+def _why_not_a_robot(path: Path, shape: FileShape | None, included: dict[Path, Path],
+                     root: Path) -> str | None:
+    by = included.get(path.resolve()) if included else None
+    if by is not None:
+        return f"included by {_shown_from(by, root)}"
+    if shape is None:
+        return "not a .urdf or .xacro file"
+    if shape.root is None:
+        return None  # unreadable or broken: loading it says what is wrong
+    if shape.root != "robot":
+        return f"its root is <{shape.root}>, not <robot>"
+    xacro = shape.uses_xacro or path.name.endswith(".xacro")
+    if not shape.name and xacro:
+        what = "a macro file" if shape.macros else "a fragment to include"
+        return f"{what}: its <robot> has no name"
+    if shape.read_whole and not shape.links and not shape.makers:
+        if shape.macros:
+            return "defines macros only: no <link> outside <xacro:macro>"
+        return "no <link>, and nothing that makes one: a fragment"
+    return None
+
+
+def _one_per_output(taken: list[Path], skipped: list[Skipped], root: Path) -> list[Path]:
+    """``X.urdf`` beside ``X.urdf.xacro`` (or ``X.xacro``): one robot, the xacro."""
+    xacro_outputs = {path.parent / _output_file_name(path.name): path
+                     for path in taken if path.name.endswith(".xacro")}
+    kept = []
+    for path in taken:
+        source = xacro_outputs.get(path) if not path.name.endswith(".xacro") else None
+        if source is None:
+            kept.append(path)
+        else:
+            skipped.append(Skipped(path, f"the URDF of {_shown_from(source, root)} beside "
+                                         "it (one robot: its xacro is built)"))
+    return kept
+
+
+def _shown_from(path: Path, root: Path) -> str:
+    try:
+        return path.resolve().relative_to(root.resolve()).as_posix()
+    except ValueError:
+        return str(path)
+
+
+def _included(shapes: dict[Path, FileShape], own) -> dict[Path, Path]:
+    """Resolved path of each file included by one of ``shapes`` -> the first includer."""
+    included: dict[Path, Path] = {}
+    for path, shape in shapes.items():
+        for spec in shape.includes:
+            target = include_target(spec, path, shape, own)
+            if target is not None:
+                target = target.resolve()
+                if target != path.resolve():
+                    included.setdefault(target, path)
     return included
 
 
@@ -157,10 +241,12 @@ def package_macros(folder: Path) -> frozenset[str]:
     return frozenset(names)
 
 
+def _output_file_name(name: str) -> str:
+    name = name[: -len(".xacro")] if name.endswith(".xacro") else name
+    return name if name.endswith(".urdf") else name + ".urdf"
+
+
 def output_name(source: Path, base: Path) -> Path:
     """Where a built file goes, relative to the output folder: ``wheel/test_wheel.urdf``."""
     relative = source.relative_to(base)
-    name = relative.name[: -len(".xacro")] if relative.name.endswith(".xacro") else relative.name
-    if not name.endswith(".urdf"):
-        name += ".urdf"
-    return relative.with_name(name)
+    return relative.with_name(_output_file_name(relative.name))

@@ -79,7 +79,10 @@ def _symlinked_dirs(folder: Path) -> list[Path]:
 
 
 def _split_path_list(value: str | None) -> list[Path]:
-    return [Path(p) for p in (value or "").split(os.pathsep) if p]
+    """A ``PATH``-like variable's folders, made absolute where they are read: a relative
+    one found a package whose relative path xacro then took from the including file's
+    folder (``$(find husky)/...`` inside ``husky/urdf/``)."""
+    return [Path(os.path.abspath(p)) for p in (value or "").split(os.pathsep) if p]
 
 
 @dataclass
@@ -96,7 +99,8 @@ class PackageSearch:
         for path in self.package_paths:
             if not Path(path).is_dir():
                 raise InputError(f"--package-path {path}: not a directory")
-        self.package_paths = [Path(p) for p in self.package_paths]
+        # Absolute once, here: see _split_path_list.
+        self.package_paths = [Path(os.path.abspath(p)) for p in self.package_paths]
 
     @property
     def _env(self) -> dict[str, str]:

@@ -25,8 +25,9 @@ RIGHT_TAGS = ("right_joint", "rightJoint")
 
 
 class Locator:
-    """Element of the built URDF -> (file, line): check's source map for links; for a
-    plugin's parameter, the first line of the sources that holds its tag."""
+    """Element of the built URDF -> (file, line): check's source map (where xacro wrote
+    the element); for a plugin's parameter it cannot place, the first line of the
+    sources that holds its tag."""
 
     def __init__(self, checked):
         self.checked = checked
@@ -34,6 +35,9 @@ class Locator:
         self.files = list(loaded.deps) if loaded is not None and loaded.from_xacro else []
 
     def __call__(self, element) -> tuple[str, int | None]:
+        file, line, _ = self.checked.where(element)
+        if line is not None:
+            return file, line
         if self.files and element.getparent() is not None and \
                 element.getparent().tag == "plugin":
             pattern = re.compile(rf"<{re.escape(element.tag)}\b")
@@ -41,7 +45,6 @@ class Locator:
                 for number, text in enumerate((read_text_quietly(path) or "").splitlines(), 1):
                     if pattern.search(text):
                         return display_path(path), number
-        file, line, _ = self.checked.where(element)
         return file, line
 
 

@@ -45,13 +45,13 @@ def test_xacro_problems_point_into_the_xacro_sources(cli):
     lines = result.stderr.splitlines()
     robot = str((XACRO / "robot.urdf.xacro").relative_to(Path.cwd())) \
         if XACRO.is_relative_to(Path.cwd()) else str(XACRO / "robot.urdf.xacro")
-    # base_link is written literally: found by name, then the <box> below it.
+    # Each element where it is written: the <box> in the robot file...
     assert f"{robot}:11: error: link 'base_link' <visual>: <box size=\"0.3 0.2 0\"> must be > 0 " \
            "[E113]" in lines
-    # wheel_${side} is computed in a macro: found as a template, then the <cylinder> in it.
+    # ...the <cylinder> in the macro that made wheel_${side}, with the call that did.
     parts = robot.replace("robot.urdf.xacro", "parts.xacro")
     assert f"{parts}:8: error: link 'wheel_left' <visual>: <cylinder radius=\"-0.05\"> must " \
-           "be > 0 [E113]" in lines
+           f"be > 0 (in xacro:wheel called at {robot}:16) [E113]" in lines
     assert result.exit_code == 1
     assert result.stdout == ""
 
@@ -182,6 +182,21 @@ def test_stdin(run_mcar, check_urdf):
     assert broken.stderr.startswith("<stdin>:15: error: link 'b' has two parents")
 
 
+@pytest.mark.parametrize("case", sorted(XACRO.glob("stdin_*.urdf")), ids=lambda p: p.name)
+def test_xacro_left_in_a_urdf_from_stdin_is_E105_at_its_line(case, cli):
+    """A file that uses xacro is expanded (tests/load/test_xacro_in_urdf.py); a URDF on
+    stdin is read as it is, and xacro left in it is reported where it is [E105]."""
+    import re
+
+    expected = [int(line) for line in re.findall(r"<!-- expect: E105 line=(\d+) -->",
+                                                 case.read_text())]
+    result = cli("check", "-q", "-", input=case.read_bytes())
+    assert result.exit_code == 1
+    found = [line for line in result.stderr.splitlines() if line.endswith("[E105]")]
+    assert [int(line.split(":")[1]) for line in found] == expected
+    assert all(line.startswith("<stdin>:") for line in found)
+
+
 def test_missing_file_and_folder_without_robots_exit_2(cli, tmp_path):
     result = cli("check", tmp_path / "nope.urdf")
     assert result.exit_code == 2
@@ -189,7 +204,7 @@ def test_missing_file_and_folder_without_robots_exit_2(cli, tmp_path):
     empty = cli("check", tmp_path)
     assert empty.exit_code == 2
     assert empty.stderr == (
-        f"{_shown(tmp_path)}: error: no .urdf or robot .xacro files in this folder (looked in "
+        f"{_shown(tmp_path)}: error: no robot files in this folder (looked in "
         "urdf/, robots/, xacro/, description/ or the folder itself)\n")
     # No INPUT means the package, as for every command: the bundled robot files.
     whole = cli("check", "-q")

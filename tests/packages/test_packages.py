@@ -94,3 +94,46 @@ def test_package_uri_may_not_leave_its_package(tmp_path):
     search = PackageSearch(environ={"ROS_PACKAGE_PATH": str(tmp_path / "pkg")})
     with pytest.raises(InputError, match="leaves package 'pkg'"):
         search.resolve_uri("package://pkg/../secret.txt")
+
+
+def _workspace_with_a_dependency(tmp_path: Path) -> Path:
+    """ws/robot/urdf/robot.urdf.xacro includes $(find part_lib)/urdf/part.xacro from a
+    subfolder (as Husky's accessories include clearpath_deps); ws/ holds both."""
+    ws = tmp_path / "ws"
+    make_package(ws / "deps" / "part_lib", "part_lib")
+    (ws / "deps" / "part_lib" / "urdf").mkdir()
+    (ws / "deps" / "part_lib" / "urdf" / "part.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:macro name="part"><link name="part_link"/></xacro:macro>\n</robot>\n')
+    robot = make_package(ws / "robot", "robot")
+    (robot / "urdf" / "accessories").mkdir(parents=True)
+    (robot / "urdf" / "accessories" / "mount.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="$(find part_lib)/urdf/part.xacro"/>\n</robot>\n')
+    (robot / "urdf" / "robot.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="accessories/mount.xacro"/>\n'
+        '  <xacro:part/>\n</robot>\n')
+    return ws
+
+
+@pytest.mark.parametrize("how", ["--package-path", "ROS_PACKAGE_PATH"])
+def test_a_relative_package_path_is_taken_from_the_working_folder(tmp_path, run_mcar, how):
+    """A relative folder found $(find part_lib) as a relative path, which xacro then
+    joined to the including file's folder ("cannot read robot/urdf/accessories/deps/...")."""
+    ws = _workspace_with_a_dependency(tmp_path)
+    args, env = (["--package-path", "."], None) if how == "--package-path" else \
+        ([], {"ROS_PACKAGE_PATH": "."})
+    result = run_mcar("build", "robot/urdf/robot.urdf.xacro", "-o", tmp_path / "out.urdf",
+                      *args, cwd=ws, env=env)
+    assert result.returncode == 0, result.stderr
+    assert '<link name="part_link"/>' in (tmp_path / "out.urdf").read_text()
+
+
+def test_package_paths_are_absolute_once_read(tmp_path, monkeypatch):
+    ws = _workspace_with_a_dependency(tmp_path)
+    monkeypatch.chdir(ws)
+    search = PackageSearch([Path("deps")], None, {"ROS_PACKAGE_PATH": "robot"})
+    assert search.package_paths == [ws / "deps"]
+    assert search.find("part_lib") == ws / "deps" / "part_lib"
+    assert search.find("robot") == ws / "robot"

@@ -51,6 +51,21 @@ def test_code_hidden_from_the_bytes_still_runs_in_the_sandbox(run_mcar, tmp_path
     assert not (tmp_path / "out.urdf").exists()
 
 
+@pytest.mark.parametrize("command", ["check", "tree"])
+@pytest.mark.parametrize("name", sorted(ATTACKS))
+def test_every_command_expands_a_urdf_that_uses_xacro_in_the_sandbox(run_mcar, tmp_path,
+                                                                    name, command):
+    """A .urdf that uses xacro is expanded by every command, not only build
+    (docs/discovery.md); deciding that it does never runs it unconfined."""
+    source = tmp_path / "r.urdf"
+    source.write_bytes(ATTACKS[name])
+    result = run_mcar(command, source.name, cwd=tmp_path)
+    assert not (tmp_path / "PWNED").exists()
+    assert result.returncode == 1, result.stderr
+    assert "the xacro sandbox forbids running programs (os.system)" in result.stderr
+    assert "r.urdf: uses xacro (" in result.stderr
+
+
 @pytest.mark.parametrize("name", sorted(ATTACKS))
 def test_control_the_attacks_run_unconfined(run_mcar, tmp_path, name):
     """With the sandbox off, xacro evaluates each: the attacks are real ones."""

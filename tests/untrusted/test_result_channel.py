@@ -83,9 +83,15 @@ def _attack_file(tmp_path: Path, body: str) -> Path:
     return path
 
 
+# Well-formed origins of the forged URDF below (one file, the stdin label, which a
+# build from a file never reads: each case breaks one field).
+_ORIGINS = {"files": ["<stdin>"], "names": ["m"], "calls": [], "sites": [0, 1, -1],
+            "of": [0, 0]}
+
+
 def _cases(marker: Path) -> dict[str, tuple[str, str]]:
     """name -> (the child's program body, the reason the parent gives)."""
-    ok = {"ok": True, "deps": [], "warnings": [], "known_args": []}
+    ok = {"ok": True, "deps": [], "warnings": [], "known_args": [], "origins": None}
     urdf = b'<robot name="forged"><link name="a"/></robot>'
     return {
         "pickle_that_runs_a_command": (_send(pickle.dumps(_Rce(marker))),
@@ -111,6 +117,20 @@ def _cases(marker: Path) -> dict[str, tuple[str, str]]:
         "key_given_twice": (_send(_frame(b'{"ok": true, "ok": false}')),
                             "its header is not JSON (ValueError)"),
         "urdf_not_utf8": (_send(_frame(ok, b"\xff\xfe<robot/>")), "its URDF is not UTF-8"),
+        # Where each element was written (expand/origins.py): only files it read, and
+        # indices that point at what was sent, outer calls before inner ones.
+        "origins_naming_a_secret": (
+            _send(_frame({**ok, "origins": {**_ORIGINS, "files": ["/etc/passwd"]}}, urdf)),
+            "its origins name a file the build did not read"),
+        "origins_with_a_call_loop": (
+            _send(_frame({**ok, "origins": {**_ORIGINS, "calls": [0, 1, 0, 0]}}, urdf)),
+            "its origins hold a call out of range"),
+        "origins_past_their_sites": (
+            _send(_frame({**ok, "origins": {**_ORIGINS, "of": [0, 7]}}, urdf)),
+            "its origins point at no site"),
+        "origins_not_integers": (
+            _send(_frame({**ok, "origins": {**_ORIGINS, "sites": [0, 1.5, -1]}}, urdf)),
+            "its origins are not lists of integers"),
         "shorter_than_it_says": (_send(_frame(ok, urdf, body_size=len(urdf) + 10)),
                                  "it ended before the length it declared"),
         "ten_gigabytes_declared": (_send(_frame(ok, b"", body_size=10 << 30)),
@@ -191,7 +211,7 @@ def test_a_flood_is_cut_off_within_its_bound(mcar_bin, tmp_path):
     """A child that declares 8 MB and writes without end is stopped just past 8 MB: the
     parent's memory stays near what a normal build takes, and the run ends at once."""
     env = {**os.environ, "MCAR_XACRO_OUTPUT_MB": "8"}
-    ok = {"ok": True, "deps": [], "warnings": [], "known_args": []}
+    ok = {"ok": True, "deps": [], "warnings": [], "known_args": [], "origins": None}
     prefix = _frame(ok, b"", body_size=8 << 20)
     flood = (f"{_send(prefix)}\nchunk = b'x' * (1 << 20)\n"
              "for fd in pipes():\n"

@@ -1,0 +1,318 @@
+"""The real ROS 1 tools around a launched display.launch (roslaunch, robot_state_publisher,
+the joint state publishers and RViz under Xvfb) and what they publish, for tests/ros/.
+
+Each test module launches once (a module-scoped fixture) and its tests read what that
+launch gave: the probe's JSON (tf_probe.py, run by Debian's python3) and a screenshot of
+RViz. A launch is isolated for a parallel run: its own master port and display number
+(both chosen free), its own HOME, ROS_HOME and ROS_LOG_DIR, every process in a process
+group of its own, stopped by group id at the end, killed if it lingers, even when a test
+fails.
+Nothing is installed here: `make test` installs the Debian packages; without them every
+test of this folder skips, naming them.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import select
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pytest
+
+HERE = Path(__file__).resolve().parent
+DEBIAN_PYTHON = "/usr/bin/python3"
+# What `make test` installs for these tests (the Makefile's ROS_APT_PACKAGES and xvfb).
+DEBIAN_PACKAGES = ("python3-roslaunch rosbash ros-robot-state-publisher joint-state-publisher "
+                   "joint-state-publisher-gui rviz python3-rostopic python3-rostest "
+                   "python3-tf2-ros tf-tools xvfb")
+SCREEN = (1000, 640)  # pixels: rviz/urdf.rviz's window, at 0,0
+SECONDS = 60  # every wait for the launched graph is bounded by this
+STOP_SECONDS = 60  # everything must be gone this long after the stop begins
+# Where a person looks at the picture the README shows (MCAR_SCREENSHOT_DIR=docs).
+SCREENSHOT_DIR = os.environ.get("MCAR_SCREENSHOT_DIR")
+
+
+def missing_ros() -> str | None:
+    """Why the ROS tests cannot run here, or None."""
+    absent = [tool for tool in ("roslaunch", "rospack", "rviz", "Xvfb")
+              if shutil.which(tool) is None]
+    if not absent and os.path.exists(DEBIAN_PYTHON):
+        modules = ("rospy, tf2_ros, joint_state_publisher, joint_state_publisher_gui, "
+                   "python_qt_binding")
+        found = subprocess.run([DEBIAN_PYTHON, "-c", f"import {modules}"],
+                               capture_output=True, text=True)
+        if found.returncode != 0:
+            absent.append(f"{DEBIAN_PYTHON}'s {found.stderr.strip().splitlines()[-1]}")
+    elif not os.path.exists(DEBIAN_PYTHON):
+        absent.append(DEBIAN_PYTHON)
+    if not absent:
+        return None
+    return (f"ROS 1 and Xvfb are not installed ({', '.join(absent)} missing): `make test` "
+            f"installs the Debian packages {DEBIAN_PACKAGES}")
+
+
+needs_ros = pytest.mark.skipif(missing_ros() is not None, reason=str(missing_ros()))
+
+
+def free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return probe.getsockname()[1]
+
+
+def _group_alive(pgid: int) -> list[int]:
+    """The processes of group ``pgid`` that still run (zombies, already dead, aside)."""
+    alive = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            stat = Path(f"/proc/{entry}/stat").read_text()
+        except OSError:
+            continue
+        fields = stat.rsplit(")", 1)[1].split()  # after the command name, which may hold ')'
+        if int(fields[2]) == pgid and fields[0] != "Z":
+            alive.append(int(entry))
+    return alive
+
+
+@dataclass
+class Launch:
+    """A roslaunch command run under its own Xvfb; ``stop`` ends both groups."""
+
+    folder: Path
+    command: list[str]
+    env: dict[str, str]
+    cwd: Path
+    processes: list[subprocess.Popen] = field(default_factory=list)
+    stopped: tuple[float, list[int]] | None = None
+
+    @property
+    def log(self) -> Path:
+        return self.folder / "roslaunch.log"
+
+    def log_tail(self, lines: int = 40) -> str:
+        text = self.log.read_text(errors="replace") if self.log.exists() else ""
+        return "\n".join(text.splitlines()[-lines:])
+
+    def start(self) -> None:
+        display = self._start_xvfb()
+        port = free_port()
+        home = self.folder / "home"
+        runtime = self.folder / "xdg-runtime"
+        for folder in (home, runtime):
+            folder.mkdir(mode=0o700, exist_ok=True)
+        self.env.update({
+            "DISPLAY": f":{display}", "HOME": str(home), "XDG_RUNTIME_DIR": str(runtime),
+            "ROS_MASTER_URI": f"http://127.0.0.1:{port}", "ROS_IP": "127.0.0.1",
+            "ROS_HOME": str(home / ".ros"), "ROS_LOG_DIR": str(self.folder / "ros-log")})
+        with open(self.log, "wb") as log:
+            self.processes.append(subprocess.Popen(
+                self.command, cwd=self.cwd, env=self.env, stdin=subprocess.DEVNULL,
+                stdout=log, stderr=subprocess.STDOUT, start_new_session=True))
+
+    def _start_xvfb(self) -> int:
+        """Xvfb on the first free display number, which it writes to a pipe (-displayfd)."""
+        read_end, write_end = os.pipe()
+        with open(self.folder / "xvfb.log", "wb") as log:
+            xvfb = subprocess.Popen(
+                ["Xvfb", "-displayfd", str(write_end), "-screen", "0",
+                 f"{SCREEN[0]}x{SCREEN[1]}x24", "-nolisten", "tcp"],
+                pass_fds=(write_end,), stdin=subprocess.DEVNULL, stdout=log,
+                stderr=subprocess.STDOUT, start_new_session=True)
+        self.processes.append(xvfb)
+        os.close(write_end)
+        answer = b""
+        deadline = time.monotonic() + SECONDS
+        with open(read_end, "rb", buffering=0) as pipe:
+            while not answer.endswith(b"\n") and time.monotonic() < deadline:
+                if select.select([pipe], [], [], 0.5)[0]:
+                    chunk = pipe.read(16)
+                    if not chunk:
+                        break
+                    answer += chunk
+        if not answer.strip().isdigit():
+            raise RuntimeError("Xvfb gave no display number: "
+                               + (self.folder / "xvfb.log").read_text(errors="replace"))
+        return int(answer)
+
+    def probe(self, root: str, frames: list[str]) -> dict:
+        """What the graph publishes (see tf_probe.py), waiting at most SECONDS; fails at
+        once, with roslaunch's output, if roslaunch ends first."""
+        env = dict(self.env, PATH=f"/usr/bin:{self.env['PATH']}")
+        with subprocess.Popen([DEBIAN_PYTHON, str(HERE / "tf_probe.py"), str(SECONDS), root,
+                               *frames], env=env, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True) as probe:
+            deadline = time.monotonic() + SECONDS + 30
+            while probe.poll() is None:
+                ended = self.processes[-1].poll()
+                if ended is not None or time.monotonic() > deadline:
+                    probe.kill()
+                    raise AssertionError(f"roslaunch ended (exit {ended}) before ROS answered:"
+                                         f"\n{self.log_tail()}")
+                time.sleep(0.1)
+            out, err = probe.communicate()
+        if probe.returncode != 0:
+            raise AssertionError(f"tf_probe failed: {err[-2000:]}\nroslaunch:\n"
+                                 f"{self.log_tail()}")
+        return json.loads(out)
+
+    def screenshot(self):
+        from PIL import ImageGrab
+
+        return ImageGrab.grab(xdisplay=self.env["DISPLAY"]).convert("RGB")
+
+    def screenshot_when(self, shows, what: str):
+        """The first screenshot for which ``shows(image)`` holds, within SECONDS."""
+        deadline = time.monotonic() + SECONDS
+        while True:
+            image = self.screenshot()
+            if shows(image):
+                return image
+            if time.monotonic() > deadline:
+                image.save(self.folder / "last-screenshot.png")
+                raise AssertionError(f"RViz never showed {what} in {SECONDS} s (last picture: "
+                                     f"{self.folder / 'last-screenshot.png'})\n"
+                                     f"roslaunch:\n{self.log_tail()}")
+            time.sleep(0.3)
+
+    def stop(self) -> tuple[float, list[int]]:
+        """Stop roslaunch (SIGINT, as Ctrl-C: it stops its nodes and master), then Xvfb;
+        kill by group what lingers. Returns (seconds taken, pids still running after
+        STOP_SECONDS). Calling it again returns the first answer."""
+        if self.stopped is not None:
+            return self.stopped
+        began = time.monotonic()
+        groups = [proc.pid for proc in self.processes]  # each leads its own group
+        for proc in reversed(self.processes):  # roslaunch first: RViz needs its display
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(proc.pid, signal.SIGINT if proc.args[0] != "Xvfb" else signal.SIGTERM)
+            try:
+                proc.wait(timeout=STOP_SECONDS / 2)
+            except subprocess.TimeoutExpired:
+                with contextlib.suppress(ProcessLookupError):
+                    os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait()
+        while any(_group_alive(g) for g in groups) and time.monotonic() - began < STOP_SECONDS:
+            time.sleep(0.1)
+        survivors = [pid for group in groups for pid in _group_alive(group)]
+        self.stopped = (time.monotonic() - began, survivors)
+        for group in groups:  # whatever the answer, nothing is left behind
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(group, signal.SIGKILL)
+        return self.stopped
+
+
+@contextlib.contextmanager
+def launched(folder: Path, command: list[str], cwd: Path, ros_package_path: Path):
+    """Start ``command`` (a roslaunch) with a PATH as an active virtualenv makes it (its
+    bin first: the trap the launch file must get past) under a fresh Xvfb; stop it after."""
+    env = {key: value for key, value in os.environ.items()
+           if not key.startswith(("ROS_", "AMENT_")) and key != "PYTHONPATH"}
+    venv_bin = str(Path(sys.executable).parent)
+    env.update(PATH=f"{venv_bin}{os.pathsep}{env.get('PATH', '')}", VIRTUAL_ENV=str(
+        Path(sys.executable).parent.parent), PWD=str(cwd),
+        ROS_PACKAGE_PATH=str(ros_package_path))
+    launch = Launch(folder, command, env, cwd)
+    try:
+        launch.start()
+        yield launch
+    finally:
+        launch.stop()
+
+
+# ---- what the pictures and the URDF say ----------------------------------------------
+
+BACKGROUND = (48, 48, 48)  # rviz/urdf.rviz's Background Color
+
+
+def view_box(image) -> tuple[int, int, int, int]:
+    """(left, top, right, bottom) of RViz's 3D view: where its background colour is."""
+    import numpy as np
+
+    pixels = np.asarray(image)
+    ys, xs = np.nonzero(np.all(pixels == BACKGROUND, axis=-1))
+    if len(xs) == 0:
+        return (0, 0, 0, 0)
+    return (int(xs.min()), int(ys.min()), int(xs.max()) + 1, int(ys.max()) + 1)
+
+
+def hue_of(rgb) -> float:
+    import colorsys
+
+    return colorsys.rgb_to_hsv(*rgb)[0] * 360
+
+
+def coloured(image, rgba, box, hue_tolerance=12.0):
+    """(count, centre x, centre y) of the pixels in ``box`` that have the hue of the
+    material colour ``rgba`` (0..1), as lighting leaves it; saturated, not dark."""
+    import numpy as np
+
+    left, top, right, bottom = box
+    pixels = np.asarray(image)[top:bottom, left:right].astype(float) / 255
+    high, low = pixels.max(axis=-1), pixels.min(axis=-1)
+    saturation = np.where(high > 0, (high - low) / np.maximum(high, 1e-9), 0)
+    r, g, b = pixels[..., 0], pixels[..., 1], pixels[..., 2]
+    spread = np.maximum(high - low, 1e-9)
+    hue = np.select([high == r, high == g], [((g - b) / spread) % 6, (b - r) / spread + 2],
+                    (r - g) / spread + 4) * 60
+    distance = np.abs((hue - hue_of(rgba[:3]) + 180) % 360 - 180)
+    match = (distance < hue_tolerance) & (saturation > 0.2) & (high > 0.15)
+    ys, xs = np.nonzero(match)
+    if len(xs) == 0:
+        return 0, None, None
+    return len(xs), left + float(xs.mean()), top + float(ys.mean())
+
+
+def robot_facts(urdf: str) -> dict:
+    """Root, links, movable-joint children and material colours of a URDF text."""
+    from lxml import etree
+
+    robot = etree.fromstring(urdf.encode())
+    links = [link.get("name") for link in robot.findall("link")]
+    children = {joint.find("child").get("link"): joint.get("type")
+                for joint in robot.findall("joint")}
+    colours = {material.get("name"): [float(v) for v in material.find("color").get(
+        "rgba").split()] for material in robot.iter("material")
+        if material.find("color") is not None}
+    root = next(link for link in links if link not in children)
+    return {"root": root, "links": links, "colours": colours,
+            "moving": sorted(c for c, kind in children.items() if kind != "fixed")}
+
+
+def expected_transforms(urdf: str, root: str) -> dict:
+    """Every link's 4x4 pose in ``root``'s frame, all joints at zero, by yourdfpy."""
+    import io
+
+    import yourdfpy
+
+    model = yourdfpy.URDF.load(io.StringIO(urdf), load_meshes=False,
+                               build_collision_scene_graph=False)
+    return {link: model.get_transform(frame_to=link, frame_from=root)
+            for link in model.link_map}
+
+
+def matrix(pose) -> object:
+    """[x, y, z, qx, qy, qz, qw] as a 4x4 matrix."""
+    import numpy as np
+    import trimesh.transformations as tf
+
+    x, y, z, qx, qy, qz, qw = pose
+    result = tf.quaternion_matrix([qw, qx, qy, qz])
+    result[:3, 3] = [x, y, z]
+    return np.asarray(result)
+
+
+def save_screenshot(image, folder: Path, name: str) -> None:
+    image.save(folder / name)
+    if SCREENSHOT_DIR:
+        image.save(Path(SCREENSHOT_DIR) / name)

@@ -93,10 +93,16 @@ def _length_hint(name: str, what: str, option: str, files: dict[str, str]) -> st
 def _bundled_files(name: str) -> dict[str, str]:
     from ..packages.bundled import PACKAGE_NAME, description_dir
 
-    source = description_dir()
-    return {rel: (source / rel).read_text(encoding="utf-8")
-            .replace("urdf/mobile_robot.xacro", f"urdf/{name}.urdf.xacro")
-            .replace(PACKAGE_NAME, name) for rel in BUNDLED_FILES}
+    swaps = [("urdf/mobile_robot.xacro", f"urdf/{name}.urdf.xacro"), (PACKAGE_NAME, name),
+             # RViz's camera 2.5 robot lengths away: the new robot is 30 cm, the car 20 cm
+             ("      Distance: 0.5\n", "      Distance: 0.75\n")]
+    files = {}
+    for rel in BUNDLED_FILES:
+        text = (description_dir() / rel).read_text(encoding="utf-8")
+        for old, new in swaps:
+            text = text.replace(old, new)
+        files[rel] = text
+    return files
 
 
 def _filled(template: str, tokens: dict[str, str]) -> str:

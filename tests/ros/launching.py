@@ -25,6 +25,7 @@ import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import NamedTuple
 
 import pytest
 
@@ -236,41 +237,57 @@ BACKGROUND = (48, 48, 48)  # rviz/urdf.rviz's Background Color
 
 
 def view_box(image) -> tuple[int, int, int, int]:
-    """(left, top, right, bottom) of RViz's 3D view: where its background colour is."""
+    """(left, top, right, bottom) of RViz's 3D view: the rows and columns that are mostly
+    its background colour (stray pixels of that colour elsewhere, in the slider window's
+    text, do not count)."""
     import numpy as np
 
-    pixels = np.asarray(image)
-    ys, xs = np.nonzero(np.all(pixels == BACKGROUND, axis=-1))
-    if len(xs) == 0:
+    background = np.all(np.asarray(image) == BACKGROUND, axis=-1)
+    columns = np.nonzero(background.mean(axis=0) > 0.2)[0]
+    rows = np.nonzero(background.mean(axis=1) > 0.2)[0]
+    if len(columns) == 0 or len(rows) == 0:
         return (0, 0, 0, 0)
-    return (int(xs.min()), int(ys.min()), int(xs.max()) + 1, int(ys.max()) + 1)
+    return (int(columns.min()), int(rows.min()), int(columns.max()) + 1, int(rows.max()) + 1)
 
 
-def hue_of(rgb) -> float:
+class Patch(NamedTuple):
+    """The pixels of one colour: how many, their centre and bounds (pixels)."""
+
+    count: int
+    x: float = 0.0
+    y: float = 0.0
+    bounds: tuple[int, int, int, int] = (0, 0, 0, 0)
+
+
+def coloured(image, rgba, box, hue_tolerance: float = 12.0) -> Patch:
+    """The pixels in ``box`` with the hue of the material colour ``rgba`` (0..1) as the
+    lighting leaves it (shading changes brightness, not hue); saturated, not dark."""
     import colorsys
 
-    return colorsys.rgb_to_hsv(*rgb)[0] * 360
-
-
-def coloured(image, rgba, box, hue_tolerance=12.0):
-    """(count, centre x, centre y) of the pixels in ``box`` that have the hue of the
-    material colour ``rgba`` (0..1), as lighting leaves it; saturated, not dark."""
     import numpy as np
 
     left, top, right, bottom = box
-    pixels = np.asarray(image)[top:bottom, left:right].astype(float) / 255
-    high, low = pixels.max(axis=-1), pixels.min(axis=-1)
-    saturation = np.where(high > 0, (high - low) / np.maximum(high, 1e-9), 0)
-    r, g, b = pixels[..., 0], pixels[..., 1], pixels[..., 2]
-    spread = np.maximum(high - low, 1e-9)
-    hue = np.select([high == r, high == g], [((g - b) / spread) % 6, (b - r) / spread + 2],
-                    (r - g) / spread + 4) * 60
-    distance = np.abs((hue - hue_of(rgba[:3]) + 180) % 360 - 180)
-    match = (distance < hue_tolerance) & (saturation > 0.2) & (high > 0.15)
-    ys, xs = np.nonzero(match)
+    hsv = np.asarray(image.crop(box).convert("HSV")).astype(float) / 255
+    wanted = colorsys.rgb_to_hsv(*rgba[:3])[0]
+    distance = np.abs((hsv[..., 0] - wanted + 0.5) % 1 - 0.5) * 360  # degrees
+    ys, xs = np.nonzero((distance < hue_tolerance) & (hsv[..., 1] > 0.2) & (hsv[..., 2] > 0.15))
     if len(xs) == 0:
-        return 0, None, None
-    return len(xs), left + float(xs.mean()), top + float(ys.mean())
+        return Patch(0)
+    return Patch(len(xs), left + float(xs.mean()), top + float(ys.mean()),
+                 (left + int(xs.min()), top + int(ys.min()),
+                  left + int(xs.max()) + 1, top + int(ys.max()) + 1))
+
+
+def assert_framed(patch: Patch, box, least: int = 2000) -> None:
+    """The robot's main colour fills a good part of RViz's view, centred in its middle
+    third, and clear of its edges: the camera frames the whole robot."""
+    left, top, right, bottom = box
+    assert patch.count > least, patch
+    assert abs(patch.x - (left + right) / 2) < (right - left) / 6, (patch, box)
+    assert abs(patch.y - (top + bottom) / 2) < (bottom - top) / 6, (patch, box)
+    inside = (patch.bounds[0] > left, patch.bounds[1] > top,
+              patch.bounds[2] < right, patch.bounds[3] < bottom)
+    assert all(inside), f"the robot runs off the view: {patch.bounds} in {box}"
 
 
 def robot_facts(urdf: str) -> dict:

@@ -14,8 +14,10 @@ test of this folder skips, naming them.
 from __future__ import annotations
 
 import contextlib
+import functools
 import json
 import os
+import re
 import select
 import shutil
 import signal
@@ -27,14 +29,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import NamedTuple
 
-import pytest
+from conftest import REPO
 
 HERE = Path(__file__).resolve().parent
 DEBIAN_PYTHON = "/usr/bin/python3"
-# What `make test` installs for these tests (the Makefile's ROS_APT_PACKAGES and xvfb).
-DEBIAN_PACKAGES = ("python3-roslaunch rosbash ros-robot-state-publisher joint-state-publisher "
-                   "joint-state-publisher-gui rviz python3-rostopic python3-rostest "
-                   "python3-tf2-ros tf-tools xvfb")
 SCREEN = (1000, 640)  # pixels: rviz/urdf.rviz's window, at 0,0
 SECONDS = 60  # every wait for the launched graph is bounded by this
 STOP_SECONDS = 60  # everything must be gone this long after the stop begins
@@ -42,6 +40,14 @@ STOP_SECONDS = 60  # everything must be gone this long after the stop begins
 SCREENSHOT_DIR = os.environ.get("MCAR_SCREENSHOT_DIR")
 
 
+def debian_packages() -> str:
+    """What `make test` installs for these tests: the Makefile's ROS_APT_PACKAGES, xvfb."""
+    makefile = (REPO / "Makefile").read_text().replace("\\\n", " ")
+    listed = re.search(r"^ROS_APT_PACKAGES\s*:=\s*(.+)$", makefile, re.M).group(1).split()
+    return " ".join([*listed, "xvfb"])
+
+
+@functools.cache
 def missing_ros() -> str | None:
     """Why the ROS tests cannot run here, or None."""
     absent = [tool for tool in ("roslaunch", "rospack", "rviz", "Xvfb")
@@ -58,10 +64,7 @@ def missing_ros() -> str | None:
     if not absent:
         return None
     return (f"ROS 1 and Xvfb are not installed ({', '.join(absent)} missing): `make test` "
-            f"installs the Debian packages {DEBIAN_PACKAGES}")
-
-
-needs_ros = pytest.mark.skipif(missing_ros() is not None, reason=str(missing_ros()))
+            f"installs the Debian packages {debian_packages()}")
 
 
 def free_port() -> int:

@@ -16,13 +16,11 @@ from ros.launching import (
     expected_transforms,
     launched,
     matrix,
-    needs_ros,
+    missing_ros,
     robot_facts,
     save_screenshot,
     view_box,
 )
-
-pytestmark = needs_ros
 
 NAME = "demo_description"
 # What a user adds to the robot mcar init wrote: a wheel on a continuous joint.
@@ -44,6 +42,8 @@ WHEEL = """
 
 @pytest.fixture(scope="module")
 def robot(tmp_path_factory):
+    if missing_ros():
+        pytest.skip(missing_ros())
     folder = tmp_path_factory.mktemp("display_launch_init")
     workspace = folder / "ws"
     workspace.mkdir()

@@ -73,9 +73,9 @@ def free_port() -> int:
         return probe.getsockname()[1]
 
 
-def _group_alive(pgid: int) -> list[int]:
-    """The processes of group ``pgid`` that still run (zombies, already dead, aside)."""
-    alive = []
+def _process_table() -> dict[int, tuple[int, int, str, str]]:
+    """pid -> (parent pid, process group, state, start time) of every process."""
+    table = {}
     for entry in os.listdir("/proc"):
         if not entry.isdigit():
             continue
@@ -84,9 +84,8 @@ def _group_alive(pgid: int) -> list[int]:
         except OSError:
             continue
         fields = stat.rsplit(")", 1)[1].split()  # after the command name, which may hold ')'
-        if int(fields[2]) == pgid and fields[0] != "Z":
-            alive.append(int(entry))
-    return alive
+        table[int(entry)] = (int(fields[1]), int(fields[2]), fields[0], fields[19])
+    return table
 
 
 @dataclass
@@ -98,6 +97,10 @@ class Launch:
     env: dict[str, str]
     cwd: Path
     processes: list[subprocess.Popen] = field(default_factory=list)
+    # (pid, start time) of every process seen in their groups or below them: a process
+    # that leaves its group (roslaunch under `mcar view --rviz` has a session of its own)
+    # is still ours to stop
+    known: set[tuple[int, str]] = field(default_factory=set)
     stopped: tuple[float, list[int]] | None = None
 
     @property
@@ -168,6 +171,7 @@ class Launch:
         if probe.returncode != 0:
             raise AssertionError(f"tf_probe failed: {err[-2000:]}\nroslaunch:\n"
                                  f"{self.log_tail()}")
+        self.note_processes()  # everything is up by now
         return json.loads(out)
 
     def screenshot(self):
@@ -189,30 +193,51 @@ class Launch:
                                      f"roslaunch:\n{self.log_tail()}")
             time.sleep(0.3)
 
+    def note_processes(self) -> None:
+        """Remember every process our processes' groups hold or have started."""
+        table = _process_table()
+        mine = {proc.pid for proc in self.processes}
+        grew = True
+        while grew:
+            more = {pid for pid, (parent, group, _, _) in table.items()
+                    if pid not in mine and (parent in mine or group in mine)}
+            mine |= more
+            grew = bool(more)
+        self.known |= {(pid, table[pid][3]) for pid in mine if pid in table}
+
+    def running(self) -> list[int]:
+        """The known processes still running (zombies, already dead, aside)."""
+        table = _process_table()
+        return sorted(pid for pid, started in self.known
+                      if pid in table and table[pid][3] == started and table[pid][2] != "Z")
+
     def stop(self) -> tuple[float, list[int]]:
-        """Stop roslaunch (SIGINT, as Ctrl-C: it stops its nodes and master), then Xvfb;
-        kill by group what lingers. Returns (seconds taken, pids still running after
-        STOP_SECONDS). Calling it again returns the first answer."""
+        """Stop the launch (SIGINT, as Ctrl-C: roslaunch stops its nodes and master), then
+        Xvfb; kill what lingers. Returns (seconds taken, pids of ours still running
+        STOP_SECONDS after the start of the stop). Calling it again returns the first
+        answer."""
         if self.stopped is not None:
             return self.stopped
         began = time.monotonic()
-        groups = [proc.pid for proc in self.processes]  # each leads its own group
-        for proc in reversed(self.processes):  # roslaunch first: RViz needs its display
+        self.note_processes()
+        for proc in reversed(self.processes):  # the launch first: RViz needs its display
             with contextlib.suppress(ProcessLookupError):
                 os.killpg(proc.pid, signal.SIGINT if proc.args[0] != "Xvfb" else signal.SIGTERM)
             try:
                 proc.wait(timeout=STOP_SECONDS / 2)
             except subprocess.TimeoutExpired:
-                with contextlib.suppress(ProcessLookupError):
-                    os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait()
-        while any(_group_alive(g) for g in groups) and time.monotonic() - began < STOP_SECONDS:
+                pass
+        while self.running() and time.monotonic() - began < STOP_SECONDS:
             time.sleep(0.1)
-        survivors = [pid for group in groups for pid in _group_alive(group)]
+        survivors = self.running()
         self.stopped = (time.monotonic() - began, survivors)
-        for group in groups:  # whatever the answer, nothing is left behind
+        for pid in survivors:  # whatever the answer, nothing is left behind
             with contextlib.suppress(ProcessLookupError):
-                os.killpg(group, signal.SIGKILL)
+                os.kill(pid, signal.SIGKILL)
+        for proc in self.processes:
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
         return self.stopped
 
 

@@ -147,6 +147,7 @@ def _in_rviz(inp, options, package_paths, sets, config_files) -> None:
     model = load_model(inp, options)
     for warning in model.warnings:
         click.echo(warning.text(), err=True)
+    rviz.refuse_unbounded(inp, model.warnings)
     build_args = [f"{name}:={value}" for name, value in options.mappings.items()]
     build_args += [word for value in sets for word in ("--set", value)]
     build_args += [word for path in config_files

@@ -7,7 +7,8 @@ robot_description from this same mcar (its folder first on PATH, where the launc
 and the --package-path folders on ROS_PACKAGE_PATH (RViz reads ``package://`` meshes
 through it); and an RViz configuration made for this robot from ``rviz/urdf.rviz``: its
 root link as the fixed frame, the camera on the centre of its visual bounds, 2.5 robot
-sizes away, link axes and grid cells scaled to it (m). mcar needs no ROS; this does.
+sizes away, link axes and grid cells scaled to it (m). A robot with a mesh over mcar's
+limits is not opened: RViz would read it unbounded. mcar needs no ROS; this does.
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..errors import UsageError
+from ..errors import RenderError, UsageError
 from ..load.inputs import RobotInput
 from ..packages.bundled import description_dir
 from ..packages.search import enclosing_package
@@ -51,6 +52,16 @@ def require_roslaunch() -> str:
         raise UsageError("mcar view --rviz needs ROS 1's roslaunch and RViz, which are not "
                          f"installed (Debian: apt-get install {DEBIAN_PACKAGES})")
     return roslaunch
+
+
+def refuse_unbounded(inp: RobotInput, warnings) -> None:
+    """RenderError where check found a mesh over mcar's limits (W210): mcar does not read
+    it, and RViz, which reads every mesh with its own parsers, unbounded, is not given it."""
+    over = [warning for warning in warnings if warning.rule == "W210"]
+    if over:
+        meshes = "a mesh" if len(over) == 1 else f"{len(over)} meshes"
+        raise RenderError(f"not opened in RViz: {meshes} over mcar's limits (W210 above), "
+                          "which RViz would read unbounded", file=inp.label)
 
 
 def plan(roslaunch: str, inp: RobotInput, root: str, bounds, build_args: list[str],

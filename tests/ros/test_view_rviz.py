@@ -100,6 +100,21 @@ def test_no_roslaunch_is_one_line_and_exit_2(tmp_path):
                            "joint-state-publisher-gui rviz)\n")
 
 
+def test_a_mesh_over_the_limit_is_not_handed_to_rviz(tmp_path):
+    if missing_ros():
+        pytest.skip(missing_ros())
+    robot = REPO / "urdf" / "mobile_robot.xacro"
+    done = subprocess.run([str(MCAR), "view", "--rviz", str(robot)], cwd=tmp_path,
+                          env=dict(os.environ, MCAR_MAX_MESH_FACES="100"),
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 1
+    lines = done.stderr.splitlines()
+    assert sum("[W210]" in line for line in lines) == 1  # motor.stl, for both motors
+    assert lines[-1].endswith("mobile_robot.xacro: error: not opened in RViz: a mesh over "
+                              "mcar's limits (W210 above), which RViz would read unbounded")
+    assert "roslaunch" not in done.stderr.lower().replace("rviz", "")
+
+
 def test_the_launch_passes_build_arguments_and_a_fitted_configuration(tmp_path):
     from mobile_car.load.inputs import RobotInput
     from mobile_car.view import rviz

@@ -27,7 +27,6 @@ import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import NamedTuple
 
 from conftest import REPO
 
@@ -259,105 +258,10 @@ def launched(folder: Path, command: list[str], cwd: Path, ros_package_path: Path
         launch.stop()
 
 
-# ---- what the pictures and the URDF say ----------------------------------------------
-
-BACKGROUND = (48, 48, 48)  # rviz/urdf.rviz's Background Color
-
-
-def view_box(image) -> tuple[int, int, int, int]:
-    """(left, top, right, bottom) of RViz's 3D view: the rows and columns that are mostly
-    its background colour (stray pixels of that colour elsewhere, in the slider window's
-    text, do not count)."""
-    import numpy as np
-
-    background = np.all(np.asarray(image) == BACKGROUND, axis=-1)
-    columns = np.nonzero(background.mean(axis=0) > 0.2)[0]
-    rows = np.nonzero(background.mean(axis=1) > 0.2)[0]
-    if len(columns) == 0 or len(rows) == 0:
-        return (0, 0, 0, 0)
-    return (int(columns.min()), int(rows.min()), int(columns.max()) + 1, int(rows.max()) + 1)
-
-
-class Patch(NamedTuple):
-    """The pixels of one colour: how many, their centre and bounds (pixels)."""
-
-    count: int
-    x: float = 0.0
-    y: float = 0.0
-    bounds: tuple[int, int, int, int] = (0, 0, 0, 0)
-
-
-def coloured(image, rgba, box, hue_tolerance: float = 12.0) -> Patch:
-    """The pixels in ``box`` with the hue of the material colour ``rgba`` (0..1) as the
-    lighting leaves it (shading changes brightness, not hue); saturated, not dark."""
-    import colorsys
-
-    import numpy as np
-
-    left, top, right, bottom = box
-    hsv = np.asarray(image.crop(box).convert("HSV")).astype(float) / 255
-    wanted = colorsys.rgb_to_hsv(*rgba[:3])[0]
-    distance = np.abs((hsv[..., 0] - wanted + 0.5) % 1 - 0.5) * 360  # degrees
-    ys, xs = np.nonzero((distance < hue_tolerance) & (hsv[..., 1] > 0.2) & (hsv[..., 2] > 0.15))
-    if len(xs) == 0:
-        return Patch(0)
-    return Patch(len(xs), left + float(xs.mean()), top + float(ys.mean()),
-                 (left + int(xs.min()), top + int(ys.min()),
-                  left + int(xs.max()) + 1, top + int(ys.max()) + 1))
-
-
-def assert_framed(patch: Patch, box, least: int = 2000) -> None:
-    """The robot's main colour fills a good part of RViz's view, centred in its middle
-    third, and clear of its edges: the camera frames the whole robot."""
-    left, top, right, bottom = box
-    assert patch.count > least, patch
-    assert abs(patch.x - (left + right) / 2) < (right - left) / 6, (patch, box)
-    assert abs(patch.y - (top + bottom) / 2) < (bottom - top) / 6, (patch, box)
-    inside = (patch.bounds[0] > left, patch.bounds[1] > top,
-              patch.bounds[2] < right, patch.bounds[3] < bottom)
-    assert all(inside), f"the robot runs off the view: {patch.bounds} in {box}"
-
-
-def robot_facts(urdf: str) -> dict:
-    """Root, links, movable-joint children and material colours of a URDF text."""
-    from lxml import etree
-
-    robot = etree.fromstring(urdf.encode())
-    links = [link.get("name") for link in robot.findall("link")]
-    children = {joint.find("child").get("link"): joint.get("type")
-                for joint in robot.findall("joint")}
-    colours = {material.get("name"): [float(v) for v in material.find("color").get(
-        "rgba").split()] for material in robot.iter("material")
-        if material.find("color") is not None}
-    root = next(link for link in links if link not in children)
-    return {"root": root, "links": links, "colours": colours,
-            "moving": sorted(c for c, kind in children.items() if kind != "fixed")}
-
-
-def expected_transforms(urdf: str, root: str) -> dict:
-    """Every link's 4x4 pose in ``root``'s frame, all joints at zero, by yourdfpy."""
-    import io
-
-    import yourdfpy
-
-    model = yourdfpy.URDF.load(io.StringIO(urdf), load_meshes=False,
-                               build_collision_scene_graph=False)
-    return {link: model.get_transform(frame_to=link, frame_from=root)
-            for link in model.link_map}
-
-
-def matrix(pose) -> object:
-    """[x, y, z, qx, qy, qz, qw] as a 4x4 matrix."""
-    import numpy as np
-    import trimesh.transformations as tf
-
-    x, y, z, qx, qy, qz, qw = pose
-    result = tf.quaternion_matrix([qw, qx, qy, qz])
-    result[:3, 3] = [x, y, z]
-    return np.asarray(result)
-
-
-def save_screenshot(image, folder: Path, name: str) -> None:
-    image.save(folder / name)
-    if SCREENSHOT_DIR:
-        image.save(Path(SCREENSHOT_DIR) / name)
+def save_screenshot(launch: Launch, image, name: str, readme: bool = False) -> None:
+    """Keep the picture in the test's folder; the README's also in MCAR_SCREENSHOT_DIR,
+    grabbed again a moment later (RViz's first frames say "0 fps")."""
+    image.save(launch.folder / name)
+    if readme and SCREENSHOT_DIR:
+        time.sleep(2)
+        launch.screenshot().save(Path(SCREENSHOT_DIR) / name, optimize=True)

@@ -15,18 +15,9 @@ import subprocess
 import numpy as np
 import pytest
 from conftest import MCAR, REPO
-from ros.launching import (
-    STOP_SECONDS,
-    assert_framed,
-    coloured,
-    expected_transforms,
-    launched,
-    matrix,
-    missing_ros,
-    robot_facts,
-    save_screenshot,
-    view_box,
-)
+from ros.launching import STOP_SECONDS, launched, missing_ros, save_screenshot
+from ros.pictures import assert_framed, coloured, slider_bars, view_box
+from ros.urdf_facts import expected_transforms, matrix, robot_facts
 
 
 def seed_command() -> str:
@@ -50,10 +41,15 @@ def car(tmp_path_factory):
     with launched(folder, command, cwd=REPO, ros_package_path=REPO) as launch:
         graph = launch.probe(facts["root"], facts["links"])
         acrylic = facts["colours"]["acrylic"]
-        picture = launch.screenshot_when(
-            lambda image: coloured(image, acrylic, view_box(image)).count > 2000,
-            "the car's acrylic plates")
-        save_screenshot(picture, folder, "rviz.png")
+
+        def drawn(image):
+            box = view_box(image)
+            return (coloured(image, acrylic, box).count > 2000
+                    and slider_bars(image, box[0]) == len(facts["moving"]))
+
+        picture = launch.screenshot_when(drawn, "the car's acrylic plates and a slider per "
+                                                "wheel")
+        save_screenshot(launch, picture, "rviz.png", readme=True)
         yield {"launch": launch, "urdf": built.stdout, "facts": facts, "graph": graph,
                "picture": picture}
 
@@ -94,6 +90,8 @@ def test_rviz_shows_the_car_in_the_middle_of_its_view(car):
     assert box[2] - box[0] > 400 and box[3] - box[1] > 400, box  # most of the window
     assert_framed(coloured(picture, colours["acrylic"], box), box)  # the plates
     assert coloured(picture, colours["brass"], box).count > 50  # the standoffs
+    # joint_sliders' window, over RViz's (no window manager here): a slider per wheel
+    assert slider_bars(picture, box[0]) == 2
 
 
 def test_everything_stops_within_60_seconds(car):

@@ -1,28 +1,23 @@
 """The same launch in a package `mcar init` wrote, with a wheel its user added: its own
 robot in RViz, with gui:=false (the plain joint_state_publisher) and the launch's config
-and args arguments (a YAML of dimensions, a --set), built as `mcar build` builds it."""
+and args arguments (a YAML of dimensions, a --set), built as `mcar build` builds it. The
+commands are docs/rviz.md's, run as written."""
 
 from __future__ import annotations
 
+import os
+import re
+import shlex
 import subprocess
 
 import numpy as np
 import pytest
-from conftest import MCAR
-from ros.launching import (
-    STOP_SECONDS,
-    assert_framed,
-    coloured,
-    expected_transforms,
-    launched,
-    matrix,
-    missing_ros,
-    robot_facts,
-    save_screenshot,
-    view_box,
-)
+from conftest import MCAR, REPO
+from ros.launching import STOP_SECONDS, launched, missing_ros, save_screenshot
+from ros.pictures import assert_framed, coloured, slider_bars, view_box
+from ros.urdf_facts import expected_transforms, matrix, robot_facts
 
-NAME = "demo_description"
+NAME = "my_robot_description"
 # What a user adds to the robot mcar init wrote: a wheel on a continuous joint.
 WHEEL = """
   <link name="wheel_link">
@@ -40,33 +35,46 @@ WHEEL = """
 </robot>"""
 
 
+def doc_commands() -> list[str]:
+    """docs/rviz.md's commands for a package of one's own: init, a YAML file, roslaunch."""
+    text = (REPO / "docs" / "rviz.md").read_text(encoding="utf-8")
+    section = text.split("\n## Your own package", 1)[1]
+    return re.search(r"```sh\n(.*?)```", section, re.S).group(1).splitlines()
+
+
 @pytest.fixture(scope="module")
 def robot(tmp_path_factory):
     if missing_ros():
         pytest.skip(missing_ros())
     folder = tmp_path_factory.mktemp("display_launch_init")
-    workspace = folder / "ws"
-    workspace.mkdir()
-    subprocess.run([str(MCAR), "init", NAME], cwd=workspace, check=True, capture_output=True)
-    package = workspace / NAME
+    init, write_yaml, launch_line = doc_commands()
+    env = dict(os.environ, PATH=f"{MCAR.parent}{os.pathsep}{os.environ['PATH']}")
+    subprocess.run(["bash", "-c", init], cwd=folder, env=env, check=True, capture_output=True)
+    package = folder / NAME
     robot_file = package / "urdf" / f"{NAME}.urdf.xacro"
     robot_file.write_text(robot_file.read_text().replace("</robot>", WHEEL))
-    overrides = folder / "wide.yaml"
-    overrides.write_text("base_width: 26cm\n")
-    built = subprocess.run([str(MCAR), "build", str(robot_file), "--config", str(overrides),
+    subprocess.run(["bash", "-c", write_yaml], cwd=package, check=True)
+    built = subprocess.run([str(MCAR), "build", str(robot_file), "--config", "wide.yaml",
                             "--set", "base_length=36cm", "-o", "-"],
-                           capture_output=True, text=True, check=True)
+                           cwd=package, capture_output=True, text=True, check=True)
     facts = robot_facts(built.stdout)
-    command = ["roslaunch", NAME, "display.launch", "gui:=false", f"config:={overrides}",
-               "args:=--set base_length=36cm"]
-    with launched(folder, command, cwd=package, ros_package_path=workspace) as launch:
+    with launched(folder, ["bash", "-c", launch_line], cwd=package,
+                  ros_package_path=package) as launch:
         graph = launch.probe(facts["root"], facts["links"])
         body = facts["colours"]["body"]
         picture = launch.screenshot_when(
             lambda image: coloured(image, body, view_box(image)).count > 2000, "the robot's body")
-        save_screenshot(picture, folder, "rviz-init.png")
+        save_screenshot(launch, picture, "rviz-init.png")
         yield {"launch": launch, "urdf": built.stdout, "facts": facts, "graph": graph,
                "picture": picture}
+
+
+def test_the_commands_are_the_docs():
+    init, write_yaml, launch_line = doc_commands()
+    assert init.startswith(f"mcar init {NAME} ")
+    assert shlex.split(launch_line)[1:] == [
+        "roslaunch", NAME, "display.launch", "gui:=false", "config:=wide.yaml",
+        "args:=--set base_length=36cm"]
 
 
 def test_robot_description_is_what_mcar_builds_with_the_overrides(robot):
@@ -95,6 +103,7 @@ def test_rviz_shows_the_robot_in_the_middle_of_its_view(robot):
     box = view_box(picture)
     assert_framed(coloured(picture, colours["body"], box), box)
     assert coloured(picture, colours["part"], box).count > 200  # the wheel
+    assert slider_bars(picture, box[0]) == 0  # gui:=false: no slider window
 
 
 def test_everything_stops_within_60_seconds(robot):

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import sys
 import time
-from pathlib import Path
 
 import click
 
@@ -113,7 +112,7 @@ def command(words, host, port, no_browser, rviz, package_paths, sets, config_fil
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
         inp = _choose(selection)
         if rviz:
-            return _in_rviz(inp, options, package_paths, sets, config_files)
+            return _in_rviz(inp, options, sets, config_files)
         from mobile_car.view.dimensions import robot_dimensions
         from mobile_car.view.model import load_model
 
@@ -137,10 +136,8 @@ def command(words, host, port, no_browser, rviz, package_paths, sets, config_fil
             view.stop()
 
 
-def _in_rviz(inp, options, package_paths, sets, config_files) -> None:
+def _in_rviz(inp, options, sets, config_files) -> None:
     """Check the robot as view does, then run roslaunch until RViz is closed."""
-    import tempfile
-
     from mobile_car.view import rviz
     from mobile_car.view.model import load_model
 
@@ -148,19 +145,9 @@ def _in_rviz(inp, options, package_paths, sets, config_files) -> None:
     for warning in model.warnings:
         click.echo(warning.text(), err=True)
     rviz.refuse_unbounded(inp, model.warnings)
-    build_args = [f"{name}:={value}" for name, value in options.mappings.items()]
-    build_args += [word for value in sets for word in ("--set", value)]
-    build_args += [word for path in config_files
-                   for word in ("--config", str(Path(path).resolve()))]
-    build_args += [word for path in package_paths
-                   for word in ("--package-path", str(Path(path).resolve()))]
-    bounds = model.urdf.scene.bounds if model.urdf.scene is not None else None
-    with tempfile.TemporaryDirectory(prefix="mcar-rviz-") as folder:
-        launch = rviz.plan(rviz.require_roslaunch(), inp, model.urdf.base_link, bounds, build_args,
-                           list(package_paths), Path(folder))
-        click.echo(f"mcar view: {inp.label} in RViz (roslaunch; close RViz or Ctrl-C to "
-                   "stop)", err=True)
-        code = rviz.run(launch)
+    click.echo(f"mcar view: {inp.label} in RViz (roslaunch; close RViz or Ctrl-C to stop)",
+               err=True)
+    code = rviz.show(rviz.require_roslaunch(), inp, model, options, sets, config_files)
     if code != 0:
         raise UsageError(f"roslaunch ended with exit code {code} (its messages are above)")
 

@@ -64,6 +64,26 @@ def refuse_unbounded(inp: RobotInput, warnings) -> None:
                           "which RViz would read unbounded", file=inp.label)
 
 
+def show(roslaunch: str, inp: RobotInput, model, options, sets, config_files) -> int:
+    """Open ``inp`` (``model``: its checked ViewModel, loaded with ``options``) in RViz
+    until RViz is closed; returns roslaunch's exit code. ``sets`` and ``config_files``
+    are the command's --set and --config, which `mcar build` gets again."""
+    import tempfile
+
+    build_args = [f"{name}:={value}" for name, value in options.mappings.items()]
+    build_args += [word for value in sets for word in ("--set", value)]
+    build_args += [word for path in config_files
+                   for word in ("--config", str(Path(path).resolve()))]
+    build_args += [word for path in options.package_paths
+                   for word in ("--package-path", str(Path(path).resolve()))]
+    scene = model.urdf.scene
+    bounds = scene.bounds if scene is not None else None
+    with tempfile.TemporaryDirectory(prefix="mcar-rviz-") as folder:
+        launch = plan(roslaunch, inp, model.urdf.base_link, bounds, build_args,
+                      list(options.package_paths), Path(folder))
+        return run(launch)
+
+
 def plan(roslaunch: str, inp: RobotInput, root: str, bounds, build_args: list[str],
          package_paths: list[Path], folder: Path) -> RvizLaunch:
     """The launch of ``inp`` (its root link ``root``, visual ``bounds`` [[x, y, z] min,

@@ -4,11 +4,10 @@ the joint state publishers and RViz under Xvfb) and what they publish, for tests
 Each test module launches once (a module-scoped fixture) and its tests read what that
 launch gave: the probe's JSON (tf_probe.py, run by Debian's python3) and a screenshot of
 RViz. A launch is isolated for a parallel run: its own master port and display number
-(both chosen free), its own HOME, ROS_HOME and ROS_LOG_DIR, every process in a process
-group of its own, stopped by group id at the end, killed if it lingers, even when a test
-fails.
-Nothing is installed here: `make test` installs the Debian packages; without them every
-test of this folder skips, naming them.
+(both chosen free), its own HOME, ROS_HOME and ROS_LOG_DIR, its processes in process
+groups of their own, every process below them noted by pid, all stopped at the end and
+killed if they linger, even when a test fails. Nothing is installed here: `make test`
+installs the Debian packages; without them the tests that launch skip, naming them.
 """
 
 from __future__ import annotations
@@ -89,7 +88,8 @@ def _process_table() -> dict[int, tuple[int, int, str, str]]:
 
 @dataclass
 class Launch:
-    """A roslaunch command run under its own Xvfb; ``stop`` ends both groups."""
+    """A launch command (roslaunch, or mcar view --rviz) run under its own Xvfb;
+    ``stop`` ends it and everything it started."""
 
     folder: Path
     command: list[str]

@@ -6,15 +6,20 @@
 # OpenGL through EGL and Mesa's llvmpipe, for mcar render); graphviz (dot, which draws
 # `mcar tree --graphviz x.svg`); libseccomp2 (the seccomp filter of the xacro sandbox);
 # for `make bench` also time (GNU time, which measures the peak memory of each command);
-# for `make test` also chromium (the browser tests/view drives through playwright).
+# for `make test` also chromium (the browser tests/view drives through playwright), and
+# ROS 1 from Debian (ROS_APT_PACKAGES: roslaunch, the state publishers, RViz) with xvfb,
+# catkin and ament-cmake (tests/ros: the RViz launch, catkin and ament builds);
+# for `make rviz` also ROS_APT_PACKAGES (mcar itself needs none of ROS).
 
 PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 SUDO   := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := liburdfdom-tools graphviz libegl1 libegl-mesa0 libgl1-mesa-dri libgl1 libseccomp2
+ROS_APT_PACKAGES := python3-roslaunch rosbash ros-robot-state-publisher joint-state-publisher \
+	joint-state-publisher-gui rviz python3-rostopic python3-rostest python3-tf2-ros tf-tools
 
-.PHONY: demo test install system-deps build bench ci clean
+.PHONY: demo test install system-deps build bench ci rviz clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -37,12 +42,18 @@ demo: install system-deps
 	$(BIN)/mcar check --strict build/mobile_robot.urdf
 	$(BIN)/mcar render
 
-test: APT_PACKAGES += chromium
+test: APT_PACKAGES += chromium $(ROS_APT_PACKAGES) xvfb catkin ament-cmake
 test: install system-deps
 	$(BIN)/pytest
 
 ci: install system-deps
 	$(BIN)/mcar ci
+
+# The car in RViz, by the seed's command (docs/rviz.md); the venv's mcar builds it.
+rviz: APT_PACKAGES += $(ROS_APT_PACKAGES)
+rviz: install system-deps
+	ROS_PACKAGE_PATH=$(CURDIR) roslaunch mobile_car_description display.launch \
+	  model:='$$(find mobile_car_description)/urdf/mobile_robot.xacro'
 
 bench: APT_PACKAGES += time
 bench: install system-deps

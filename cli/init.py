@@ -18,10 +18,12 @@ HELP = """Create a robot description package at PATH, ready for mcar ci.
 
 \b
 It follows the mobile car's layout (the seed's method):
-  package.xml, CMakeLists.txt        a ROS 2 (ament_cmake) package
+  package.xml, CMakeLists.txt        a ROS 1 (catkin) and ROS 2 (ament_cmake) package
   urdf/define.xacro                  colours, inertia macros (box, cylinder, sphere)
   urdf/config.xacro                  the dimensions, each "UNIT LO..HI; SOURCE: meaning"
   urdf/NAME.urdf.xacro               the complete robot
+  launch/, rviz/, scripts/           the robot in RViz (ROS 1):
+                                     roslaunch NAME display.launch
   meshes/, .gitignore
   .github/workflows/mcar.yml         CI: mcar ci on this package
   .pre-commit-config.yaml            a hook running mcar ci on this package

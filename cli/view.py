@@ -19,6 +19,7 @@ HELP = f"""Show a robot in the browser: turn its joints, see every edit at once.
                                      file, else name one), else the bundled car
   mcar view robot.urdf.xacro [N:=V]  one file (same options as mcar build)
   mcar view --port 8081 --no-browser serve only; open the printed URL yourself
+  mcar view --rviz [INPUT] [N:=V]    in ROS 1's RViz instead, with joint sliders
 
 The robot is checked first, as by `mcar check`: one with errors is reported with
 check's diagnostics (exit 1) and not served. The page has a slider for every movable
@@ -38,6 +39,13 @@ Unlike `mcar render` (still pictures at joint zero, for files and CI), view is f
 person at a browser. It serves on 127.0.0.1 only, unless --host says otherwise; Ctrl-C
 stops it. It needs the optional extra: pip install "mcar[view]".
 
+With --rviz the robot opens in RViz (ROS 1) through the bundled
+launch/display.launch, as `roslaunch mobile_car_description display.launch
+model:=FILE` would: roslaunch, robot_state_publisher, the joint sliders, RViz fitted
+to the robot (its root as fixed frame, the camera on it). It needs Debian's ROS 1
+(python3-roslaunch ros-robot-state-publisher joint-state-publisher-gui rviz; `make
+rviz` installs them), not viser; it runs until RViz is closed or Ctrl-C.
+
 It answers only its own page: a request whose Host is not the address served on
 (127.0.0.1:PORT or localhost:PORT; with --host, that host), or a connection from a
 page of another Origin (any other site open in the browser), gets 403 Forbidden.
@@ -49,10 +57,10 @@ Anything else is dropped, with one warning line on stderr per control.
 
 \b
 Exit codes:
-  0  not used: view serves until it is stopped
+  0  not used: view serves until it is stopped (--rviz: RViz was closed)
   1  the robot has problems (check's errors, a missing mesh): not served
   2  usage, I/O or environment error: bad option, missing file, port in use,
-     the view extra not installed
+     the view extra not installed (--rviz: no roslaunch, or roslaunch failed)
   130  interrupted (Ctrl-C); 143 terminated
 """
 
@@ -88,12 +96,21 @@ def _choose(selection):
 @click.option("--port", type=click.IntRange(0, 65535), default=8080, show_default=True,
               help="Port to serve on (0: any free port).")
 @click.option("--no-browser", is_flag=True, help="Do not open a browser; only print the URL.")
+@click.option("--rviz", is_flag=True,
+              help="Open the robot in ROS 1's RViz (roslaunch) instead of the browser.")
 @robot_options
 @handle_errors
-def command(words, host, port, no_browser, package_paths, sets, config_files):
-    _require_viser()
+def command(words, host, port, no_browser, rviz, package_paths, sets, config_files):
+    if rviz:
+        from mobile_car.view.rviz import require_roslaunch
+
+        require_roslaunch()
+    else:
+        _require_viser()
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
         inp = _choose(selection)
+        if rviz:
+            return _in_rviz(inp, options, sets, config_files)
         from mobile_car.view.dimensions import robot_dimensions
         from mobile_car.view.model import load_model
 
@@ -115,6 +132,22 @@ def command(words, host, port, no_browser, package_paths, sets, config_files):
             _watch(view)
         finally:
             view.stop()
+
+
+def _in_rviz(inp, options, sets, config_files) -> None:
+    """Check the robot as view does, then run roslaunch until RViz is closed."""
+    from mobile_car.view import rviz
+    from mobile_car.view.model import load_model
+
+    model = load_model(inp, options)
+    for warning in model.warnings:
+        click.echo(warning.text(), err=True)
+    rviz.refuse_unbounded(inp, model.warnings)
+    click.echo(f"mcar view: {inp.label} in RViz (roslaunch; close RViz or Ctrl-C to stop)",
+               err=True)
+    code = rviz.show(rviz.require_roslaunch(), inp, model, options, sets, config_files)
+    if code != 0:
+        raise UsageError(f"roslaunch ended with exit code {code} (its messages are above)")
 
 
 def _serve(model, reload, host: str, port: int, dimensions):

@@ -33,6 +33,8 @@ NOT_RUN = {
     ". .venv/bin/activate": "the tests run with the venv's mcar on PATH already",
     ".venv/bin/python bench/": "benchmarks take minutes; `make bench` runs them",
     "mcar view": "serves until Ctrl-C; tests/view/test_cli_view.py runs it",
+    "ROS_PACKAGE_PATH=": "opens RViz until it is closed; tests/ros/test_display_launch.py "
+                         "runs it under Xvfb",
 }
 PACKAGE_COPIES = ("path/to/package", "path/to/other_description")
 _COMMENT = re.compile(r"\s+#(?:\s.*)?$")

@@ -1,10 +1,12 @@
 """New description packages and parts, laid out the way the mobile car is (the seed's method).
 
-``create_package`` writes a package that ``mcar ci`` passes at once: package.xml and
-CMakeLists.txt, ``urdf/define.xacro`` (colours and inertia macros), ``urdf/config.xacro``
+``create_package`` writes a package that ``mcar ci`` passes at once: package.xml,
+``urdf/define.xacro`` (colours and inertia macros), ``urdf/config.xacro``
 (dimensions, each with its "UNIT LO..HI; SOURCE: meaning" comment, overridable by ``--set``),
 the complete robot ``urdf/NAME.urdf.xacro``, ``meshes/``, a .gitignore, a GitHub workflow
-and a pre-commit config that run mcar on the package. ``add_part`` adds a part folder with
+and a pre-commit config that run mcar on the package; and, as the bundled package has them,
+CMakeLists.txt (catkin or ament) and the ROS 1 viewer (``launch/display.launch``,
+``rviz/urdf.rviz`` and the two scripts the launch runs). ``add_part`` adds a part folder with
 a documented macro and a test file that builds it alone. Neither overwrites anything: if
 one file it would write exists, nothing is written.
 """
@@ -23,7 +25,6 @@ TEMPLATES = Path(__file__).resolve().parent / "templates"
 # template -> where it goes in the package ({name}: the package's name)
 PACKAGE_FILES = {
     "package/package.xml": "package.xml",
-    "package/CMakeLists.txt": "CMakeLists.txt",
     "package/gitignore": ".gitignore",
     "package/pre-commit-config.yaml": ".pre-commit-config.yaml",
     "package/mcar-workflow.yml": ".github/workflows/mcar.yml",
@@ -31,6 +32,11 @@ PACKAGE_FILES = {
     "package/urdf/config.xacro": "urdf/config.xacro",
     "package/urdf/robot.urdf.xacro": "urdf/{name}.urdf.xacro",
 }
+# The bundled package's own, its name and robot file replaced by the new package's: one
+# copy, which tests/ros/ builds (catkin, ament) and launches in both.
+BUNDLED_FILES = ("CMakeLists.txt", "launch/display.launch", "rviz/urdf.rviz",
+                 "scripts/robot_description", "scripts/joint_sliders")
+EXECUTABLES = frozenset({"scripts/robot_description", "scripts/joint_sliders"})
 GITKEEP = "meshes/.gitkeep"
 # template -> where it goes in the part's folder, urdf/PART/
 PART_FILES = {"part/part.xacro": "{part}.xacro",
@@ -52,9 +58,10 @@ def create_package(path: Path, name: str | None = None,
               "MCAR_REQUIREMENT": requirement or install_source().requirement}
     files = {destination.format(name=name): _filled(template, tokens)
              for template, destination in PACKAGE_FILES.items()}
+    files.update(_bundled_files(name))
     files[GITKEEP] = ""
     require_makeable(path, list(files), _length_hint(name, "package", "--name", files))
-    return place(path, files, optional=frozenset({GITKEEP}))
+    return place(path, files, optional=frozenset({GITKEEP}), executable=EXECUTABLES)
 
 
 def add_part(root: Path, package: str, part: str) -> list[Path]:
@@ -87,6 +94,21 @@ def _length_hint(name: str, what: str, option: str, files: dict[str, str]) -> st
     longest = max(len(os.fsencode(part)) for rel in files for part in rel.split("/"))
     room = NAME_MAX - (longest - len(os.fsencode(name)))
     return f"give a {what} name of at most {room} characters ({option})"
+
+
+def _bundled_files(name: str) -> dict[str, str]:
+    from ..packages.bundled import PACKAGE_NAME, description_dir
+
+    swaps = [("urdf/mobile_robot.xacro", f"urdf/{name}.urdf.xacro"), (PACKAGE_NAME, name),
+             # RViz's camera 2.5 robot lengths away: the new robot is 30 cm, the car 20 cm
+             ("      Distance: 0.5\n", "      Distance: 0.75\n")]
+    files = {}
+    for rel in BUNDLED_FILES:
+        text = (description_dir() / rel).read_text(encoding="utf-8")
+        for old, new in swaps:
+            text = text.replace(old, new)
+        files[rel] = text
+    return files
 
 
 def _filled(template: str, tokens: dict[str, str]) -> str:

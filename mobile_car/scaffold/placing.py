@@ -48,10 +48,11 @@ def refuse_present(folder: Path, files, optional: frozenset[str] = frozenset()) 
         raise UsageError("will not overwrite " + ", ".join(shown(p) for p in present))
 
 
-def place(folder: Path, files: dict[str, str], optional: frozenset[str] = frozenset()
-          ) -> list[Path]:
+def place(folder: Path, files: dict[str, str], optional: frozenset[str] = frozenset(),
+          executable: frozenset[str] = frozenset()) -> list[Path]:
     """Write ``files`` (path below ``folder`` -> text) into ``folder``, all or none;
-    ``optional`` ones are left out where a file exists. Returns the paths written."""
+    ``optional`` ones are left out where a file exists; ``executable`` ones get the
+    execute bits the umask allows. Returns the paths written."""
     folder = Path(os.path.abspath(folder))
     refuse_present(folder, files, optional)
     files = {rel: text for rel, text in files.items() if not os.path.lexists(folder / rel)}
@@ -62,7 +63,9 @@ def place(folder: Path, files: dict[str, str], optional: frozenset[str] = frozen
         for rel, text in files.items():
             target = staging / rel
             target.parent.mkdir(parents=True, exist_ok=True)
-            with open(target, "x", encoding="utf-8") as handle:
+            mode = 0o777 if rel in executable else 0o666  # less the umask, as open() does
+            with open(target, "x", encoding="utf-8",
+                      opener=lambda path, flags, mode=mode: os.open(path, flags, mode)) as handle:
                 handle.write(text)
         if not os.path.lexists(folder):
             os.rename(staging, folder)  # one step: the whole folder, or nothing

@@ -3,6 +3,7 @@ pictures, and nothing is ever overwritten."""
 
 from __future__ import annotations
 
+import os
 import re
 
 from lxml import etree
@@ -14,7 +15,8 @@ def test_init_then_new_part_pass_ci_with_pictures(run_mcar, tmp_path):
     package = tmp_path / "x"
     for name in ("package.xml", "CMakeLists.txt", ".gitignore", ".pre-commit-config.yaml",
                  ".github/workflows/mcar.yml", "urdf/define.xacro", "urdf/config.xacro",
-                 "urdf/demo.urdf.xacro", "meshes/.gitkeep"):
+                 "urdf/demo.urdf.xacro", "meshes/.gitkeep", "launch/display.launch",
+                 "rviz/urdf.rviz", "scripts/robot_description", "scripts/joint_sliders"):
         assert (package / name).is_file(), name
     assert etree.parse(str(package / "package.xml")).findtext("name") == "demo"
     assert "mcar ci ." in (package / ".github/workflows/mcar.yml").read_text()
@@ -34,6 +36,39 @@ def test_init_then_new_part_pass_ci_with_pictures(run_mcar, tmp_path):
     assert "mcar ci: 2 of 2 files passed" in ci.stderr
     assert (package / "renders/arm/test_arm.png").is_file()
     assert (package / "build/arm/test_arm.urdf").is_file()
+
+
+def test_a_new_package_gets_the_bundled_ros_files_with_its_own_names(run_mcar, tmp_path):
+    """CMakeLists.txt, display.launch, urdf.rviz and the launch's scripts are the bundled
+    package's (tests/ros/ builds and launches them), with the name and robot put in."""
+    assert run_mcar("init", "demo", cwd=tmp_path).returncode == 0
+    package = tmp_path / "demo"
+    launch = (package / "launch" / "display.launch").read_text()
+    assert '<arg name="model" default="$(find demo)/urdf/demo.urdf.xacro"/>' in launch
+    assert "$(find demo)/scripts/robot_description" in launch
+    assert "mobile_car" not in launch and "mobile_robot" not in launch
+    assert "project(demo NONE)" in (package / "CMakeLists.txt").read_text()
+    assert "\n      Distance: 0.75\n" in (package / "rviz" / "urdf.rviz").read_text()
+    umask = os.umask(0)
+    os.umask(umask)
+    for script in ("robot_description", "joint_sliders"):
+        assert (package / "scripts" / script).stat().st_mode & 0o777 == 0o777 & ~umask, script
+    assert (package / "launch" / "display.launch").stat().st_mode & 0o777 == 0o666 & ~umask
+    xml = etree.parse(str(package / "package.xml"))
+    assert [(e.text, e.get("condition")) for e in xml.iter("build_type")] == [
+        ("catkin", "$ROS_VERSION == 1"), ("ament_cmake", "$ROS_VERSION == 2")]
+
+
+def test_scripts_are_executable_as_the_umask_allows(tmp_path):
+    from mobile_car.scaffold import create_package
+
+    old = os.umask(0o077)
+    try:
+        create_package(tmp_path / "demo")
+    finally:
+        os.umask(old)
+    assert (tmp_path / "demo/scripts/robot_description").stat().st_mode & 0o777 == 0o700
+    assert (tmp_path / "demo/package.xml").stat().st_mode & 0o777 == 0o600
 
 
 def test_the_dimensions_of_a_new_package_are_its_own(run_mcar, tmp_path):

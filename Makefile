@@ -7,14 +7,21 @@
 # `mcar tree --graphviz x.svg`); libseccomp2 (the seccomp filter of the xacro sandbox);
 # for `make bench` also time (GNU time, which measures the peak memory of each command);
 # for `make test` also chromium (the browser tests/view drives through playwright).
+# g++ pkg-config libsdformat-dev (sdformat 12): the Gazebo helper mcar-sdformat (mcar check
+# --gazebo, build --format sdf), built beside mcar in $(BIN) whenever they are there.
 
 PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 SUDO   := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := liburdfdom-tools graphviz libegl1 libegl-mesa0 libgl1-mesa-dri libgl1 libseccomp2
+APT_PACKAGES += g++ pkg-config libsdformat-dev
+# The Gazebo helper: its path (tests build it elsewhere with HELPER=...), libsdformat's
+# pkg-config name.
+HELPER      ?= $(BIN)/mcar-sdformat
+SDFORMAT_PC ?= sdformat12
 
-.PHONY: demo test install system-deps build bench ci clean
+.PHONY: demo test install system-deps build bench ci clean gazebo-helper
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -22,6 +29,19 @@ $(BIN)/python:
 
 install: $(BIN)/python
 	$(BIN)/pip install --quiet ".[test,view,sweep]"
+	@$(MAKE) --no-print-directory gazebo-helper
+
+# Built only where g++, pkg-config and libsdformat are there; elsewhere mcar check --gazebo
+# says how to get it, and nothing else changes.
+gazebo-helper:
+	@if command -v g++ >/dev/null && command -v pkg-config >/dev/null && \
+	    pkg-config --exists $(SDFORMAT_PC); then $(MAKE) --no-print-directory $(HELPER); \
+	else echo "mcar-sdformat not built: it needs g++, pkg-config and libsdformat-dev"; fi
+
+$(HELPER): helpers/mcar-sdformat.cc
+	@mkdir -p $(dir $@)
+	g++ -O2 -std=c++17 -Wall -Wextra $$(pkg-config --cflags $(SDFORMAT_PC)) $< -o $@.tmp \
+	    $$(pkg-config --libs $(SDFORMAT_PC)) && mv $@.tmp $@
 
 system-deps:
 	@missing=""; for p in $(APT_PACKAGES); do \
@@ -32,16 +52,16 @@ system-deps:
 	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
 	fi
 
-demo: install system-deps
+demo: install system-deps gazebo-helper
 	$(BIN)/mcar build
 	$(BIN)/mcar check --strict build/mobile_robot.urdf
 	$(BIN)/mcar render
 
 test: APT_PACKAGES += chromium
-test: install system-deps
+test: install system-deps gazebo-helper
 	$(BIN)/pytest
 
-ci: install system-deps
+ci: install system-deps gazebo-helper
 	$(BIN)/mcar ci
 
 bench: APT_PACKAGES += time

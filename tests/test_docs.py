@@ -26,7 +26,10 @@ def test_ci_runs_the_readme_test_command():
 
 def test_makefile_installs_the_debian_peer_the_readme_names():
     makefile = (REPO / "Makefile").read_text()
-    apt = re.search(r"^APT_PACKAGES\s*:=\s*(.+)$", makefile, re.M).group(1).split()
+    # APT_PACKAGES := ... and the lines that add to it for every target (+=)
+    apt = [package for line in re.findall(r"^APT_PACKAGES\s*[:+]=\s*(.+)$", makefile, re.M)
+           for package in line.split()]
+    assert "libsdformat-dev" in apt
     readme = (REPO / "README.md").read_text()
     for package in apt:
         assert package in readme, f"README does not name Debian package {package}"

@@ -35,11 +35,11 @@ class SourceLocator:
             self._lines[path] = (read_text_quietly(path) or "").splitlines()
         return self._lines[path]
 
-    def _search(self, tag: str, name: str) -> tuple[str, int] | None:
-        key = (tag, name)
+    def _search(self, tag: str, name: str, attribute: str = "name") -> tuple[str, int] | None:
+        key = (tag, name, attribute)
         if key not in self._found:
             quoted = re.escape(name)
-            value = rf"""name\s*=\s*(?:"{quoted}"|'{quoted}')"""
+            value = rf"""{attribute}\s*=\s*(?:"{quoted}"|'{quoted}')"""
             patterns = [re.compile(rf"<{re.escape(tag)}\b[^>]*\b{value}"),
                         re.compile(rf"\b{value}")]
             self._found[key] = None
@@ -49,12 +49,13 @@ class SourceLocator:
                     self._found[key] = hit
                     break
             else:
-                self._found[key] = self._template_hit(tag, name)
+                self._found[key] = self._template_hit(tag, name, attribute)
         return self._found[key]
 
-    def _template_hit(self, tag: str, name: str) -> tuple[str, int] | None:
+    def _template_hit(self, tag: str, name: str, attribute: str) -> tuple[str, int] | None:
         """The first ``<TAG name="...${...}...">`` whose template matches the built name."""
-        opening = re.compile(rf"""<{re.escape(tag)}\b[^>]*\bname\s*=\s*(["'])([^"']*\$\{{.*?)\1""")
+        opening = re.compile(rf"""<{re.escape(tag)}\b[^>]*\b{attribute}\s*=\s*(["'])"""
+                             r"""([^"']*\$\{.*?)\1""")
         for path in self.files:
             for number, text in enumerate(self._read(path), start=1):
                 match = opening.search(text)
@@ -106,9 +107,10 @@ class SourceLocator:
         while element is not None:
             # The robot's own name says nothing about where one of its parts is written.
             anchor = _is_anchor(element) and (element is where or element.tag != "robot")
-            name = element.get("name") if anchor else None
+            attribute = _IDENTITY.get(element.tag, "name")
+            name = element.get(attribute) if anchor else None
             if name:
-                hit = self._search(tag_name(element), name)
+                hit = self._search(tag_name(element), name, attribute)
                 if hit:
                     if element is not where:
                         hit = self._refine(hit, element, where)
@@ -118,13 +120,19 @@ class SourceLocator:
                 f" (line {where.sourceline} of the expanded URDF)")
 
 
+# The attribute that identifies an element, where it is not ``name``.
+_IDENTITY = {"gazebo": "reference"}
+
+
 def _is_anchor(element) -> bool:
-    """Elements whose name identifies them; a visual's <material name> names a colour."""
+    """Elements whose name identifies them; a visual's <material name> names a colour.
+    A ``<gazebo>`` block is known by its ``reference``, a plugin by its name."""
     tag = element.tag
     if tag == "material":
         parent = element.getparent()
         return parent is None or parent.tag == "robot"
-    return tag in ("robot", "link", "joint", "visual", "collision", "transmission")
+    return tag in ("robot", "link", "joint", "visual", "collision", "transmission", "gazebo",
+                   "plugin")
 
 
 def _template_matches(template: str, name: str) -> bool:

@@ -45,6 +45,11 @@ mirroring urdf/; each variant urdf/variants/NAME.yaml is applied to
 the top-level robot files (built into build/variants/NAME/...). A failed build or check
 skips that file's later steps; the other files go on. A summary table ends the run.
 
+Where the Gazebo helper is installed (make gazebo-helper), a robot with a <gazebo>
+block is also given to libsdformat, as `mcar check --gazebo` does: one line says what
+Gazebo simulates (links, lumped, mass); a link it drops is an error, a <gazebo>
+reference or plugin joint left pointing at nothing a warning (--no-gazebo: not).
+
 Only vehicles are simulated: robots with a pair of drive wheels (continuous joints moving
 collision geometry) and another link with collision geometry to stand on (a castor, a
 body). Any other robot file (a part's test file, the tutorial) is reported "not
@@ -97,15 +102,16 @@ def _problems(item) -> list:
     lines = []
     for step in item.steps:
         if step.status != "failed":
-            lines += step.diagnostics  # warnings of a passed step
+            # warnings of a passed step; notes (what Gazebo lumps) only in the JUnit report
+            lines += [d for d in step.diagnostics if d.is_error or d.is_warning]
             continue
         if step.problems:  # sim: its rules' diagnostics, then each failed scenario
             lines += step.diagnostics
             lines += [f"{item.label}: {severity_label('error')} {step.name} {shown(problem)}"
                       for problem in step.problems]
             continue
-        lines += step.diagnostics or [step.error or f"{item.label}: {step.name} failed: "
-                                      f"{shown(step.message)}"]
+        lines += [d for d in step.diagnostics if d.is_error or d.is_warning] or [
+            step.error or f"{item.label}: {step.name} failed: {shown(step.message)}"]
     return lines
 
 
@@ -122,6 +128,9 @@ def _problems(item) -> list:
                    "renders/ under the package's root).")
 @click.option("--no-render", is_flag=True, help="Draw nothing.")
 @click.option("--no-sim", is_flag=True, help="Simulate nothing.")
+@click.option("--no-gazebo", is_flag=True,
+              help="Do not ask libsdformat what Gazebo makes of the robots (done by default "
+                   "where the Gazebo helper is installed).")
 @click.option("--strict/--no-strict", default=True, show_default=True,
               help="A warning fails its file too, as `mcar check --strict`; --no-strict: "
                    "only errors do.")
@@ -136,8 +145,9 @@ def _problems(item) -> list:
 @click.option("-q", "--quiet", is_flag=True, help="text format: print only problems.")
 @robot_options
 @handle_errors
-def command(words, output_format, build_dir, render_dir, no_render, no_sim, strict, renderer,
-            junit_xml, against, diff_report, quiet, sets, config_files, package_paths):
+def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_gazebo, strict,
+            renderer, junit_xml, against, diff_report, quiet, sets, config_files,
+            package_paths):
     from mobile_car.ci import pipeline
     from mobile_car.ci.cache import CiCache
 
@@ -153,7 +163,9 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
             from mobile_car.load.outputs import refuse_overwriting
 
             refuse_overwriting(report_file, [inp.path for inp in selection.inputs])
-    items = pipeline.plan(selection, build_dir, None if no_render else render_dir)
+    helper = None if no_gazebo else _gazebo_helper()
+    items = pipeline.plan(selection, build_dir, None if no_render else render_dir,
+                          gazebo=helper is not None)
     revision = None
     if against:  # a wrong REV is a usage error before anything is built
         from mobile_car.ci.against import resolve_revision
@@ -161,7 +173,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
         revision = resolve_revision(against, items[0].source.parent)
     # Items whose inputs, outputs and picture are unchanged are replayed from the record.
     basis = input_basis(mappings, package_paths, sets, config_files)
-    cache = CiCache(build_dir)
+    cache = CiCache(build_dir, helper)
     manifest = None
     if not no_render:
         from mobile_car.render.manifest import Manifest
@@ -179,6 +191,8 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
                 for item in todo:
                     if pipeline.build_and_check(item, options, strict):
                         checked.append(item)
+                        if helper is not None:
+                            pipeline.gazebo_step(item, strict)
                         if not no_sim:
                             pipeline.sim_step(item)
                     cache.record(item, basis, strict)
@@ -205,13 +219,30 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
         atomic_write(junit_xml, junit_report(items))
     if diff_report:
         _write_diff_report(diff_report, compared, revision, items)
-    _emit(items, output_format, quiet, time.perf_counter() - started, no_render, no_sim)
+    _emit(items, output_format, quiet, time.perf_counter() - started, no_render, no_sim,
+          helper is not None)
     if revision is not None:
         changed = sum(1 for entry in compared if entry.diff is not None and entry.diff.changed
                       or entry.summary.startswith("added"))
         click.echo(f"mcar ci: against {revision.name}: {changed} of {len(compared)} robot "
                    "files changed", err=True)
     sys.exit(code)
+
+
+def _gazebo_helper():
+    """The Gazebo helper, or None where it is not installed; one named by MCAR_SDFORMAT
+    that is not there is an error (exit 2), as for mcar check --gazebo."""
+    import os
+
+    from mobile_car.errors import GazeboUnavailable
+    from mobile_car.gazebo.helper import HELPER_ENV, find_helper
+
+    try:
+        return find_helper()
+    except GazeboUnavailable:
+        if os.environ.get(HELPER_ENV, "").strip():
+            raise
+        return None
 
 
 def _write_diff_report(path: str, compared, revision, items) -> None:
@@ -266,7 +297,7 @@ def _render(checked, items, manifest, renderer: str, basis) -> None:
 
 
 def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: bool,
-          no_sim: bool) -> None:
+          no_sim: bool, gazebo: bool) -> None:
     if output_format == "junit":
         from mobile_car.ci.junit import junit_report
 
@@ -276,7 +307,8 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
         for item in items:
             for step in item.steps:
                 for diagnostic in step.diagnostics:
-                    streams.echo(diagnostic.github())
+                    if diagnostic.is_error or diagnostic.is_warning:
+                        streams.echo(diagnostic.github())
                 failed = step.problems if step.problems else [step.message] if \
                     step.status == "failed" and not step.diagnostics else []
                 for message in failed:
@@ -286,9 +318,10 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
                                                  f"mcar ci {step.name}", message))
     else:
         for item in items:
-            if not quiet:  # a robot that is not a vehicle: why it was not simulated
+            if not quiet:  # what Gazebo simulates; a robot that is not a vehicle: why not
                 for step in item.steps:
-                    if step.name == "sim" and step.message.startswith("not simulated"):
+                    if (step.name == "sim" and step.message.startswith("not simulated")) or \
+                            (step.name == "gazebo" and step.status == "passed"):
                         click.echo(f"mcar: {item.label}: {shown(step.message)}", err=True)
             for line in _problems(item):
                 if isinstance(line, str):
@@ -300,7 +333,7 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
     if not quiet or output_format == "github":
         streams.echo("\n".join(_table(items)))
     passed = sum(item.ok for item in items)
-    steps = "build, check --strict" + ("" if no_sim else ", sim") + \
-        ("" if no_render else ", render")
+    steps = "build, check --strict" + (", gazebo" if gazebo else "") + \
+        ("" if no_sim else ", sim") + ("" if no_render else ", render")
     click.echo(f"mcar ci: {passed} of {len(items)} files passed ({steps}) in {seconds:.1f} s",
                err=True)

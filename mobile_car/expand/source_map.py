@@ -7,7 +7,9 @@ input first, then its includes). A name written literally is found at its defini
 name passed to a macro (``<xacro:wheel name="left"/>``) is found at the call when the
 macro builds the name from it unchanged. A name computed inside a macro
 (``name="wheel_${side}_link"``) is found by matching the template as a pattern
-(``wheel_.*_link``) against the built name. An element without a name of its own (a
+(``wheel_.*_link``) against the built name. A ``<gazebo reference="...">`` block is found
+by its reference the same way, or at the macro call that passes the reference (under
+whatever parameter name). An element without a name of its own (a
 ``<visul>`` inside a link) is then looked for as its tag after its ancestor's line, the
 same number of times it occurs under that ancestor. When nothing matches, the diagnostic
 names the input file without a line and says which line of the expanded URDF it is about.
@@ -42,6 +44,8 @@ class SourceLocator:
             value = rf"""{attribute}\s*=\s*(?:"{quoted}"|'{quoted}')"""
             patterns = [re.compile(rf"<{re.escape(tag)}\b[^>]*\b{value}"),
                         re.compile(rf"\b{value}")]
+            if attribute != "name":  # a <gazebo> a macro makes: the call that names it
+                patterns.append(re.compile(rf"""<xacro:[\w.-]+\b[^>]*=\s*(?:"{quoted}"|'{quoted}')"""))
             self._found[key] = None
             for pattern in patterns:
                 hit = self._first_hit(pattern)

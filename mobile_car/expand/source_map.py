@@ -30,6 +30,7 @@ class SourceLocator:
         self.source = display_path(source)
         self.files = list(dict.fromkeys([source, *deps]))
         self._lines: dict[Path, list[str]] = {}
+        self._texts: dict[Path, str] = {}
         self._found: dict[tuple[str, str], tuple[str, int] | None] = {}
 
     def _read(self, path: Path) -> list[str]:
@@ -37,18 +38,26 @@ class SourceLocator:
             self._lines[path] = (read_text_quietly(path) or "").splitlines()
         return self._lines[path]
 
+    def _text(self, path: Path) -> str:
+        """The file's lines joined by "\\n": one search per file, not one per line."""
+        if path not in self._texts:
+            self._texts[path] = "\n".join(self._read(path))
+        return self._texts[path]
+
     def _search(self, tag: str, name: str, attribute: str = "name") -> tuple[str, int] | None:
         key = (tag, name, attribute)
         if key not in self._found:
             quoted = re.escape(name)
             value = rf"""{attribute}\s*=\s*(?:"{quoted}"|'{quoted}')"""
-            patterns = [re.compile(rf"<{re.escape(tag)}\b[^>]*\b{value}"),
+            # [^>\n]: a tag's name is found on one line, as it always was
+            patterns = [re.compile(rf"<{re.escape(tag)}\b[^>\n]*\b{value}"),
                         re.compile(rf"\b{value}")]
             if attribute != "name":  # a <gazebo> a macro makes: the call that names it
-                patterns.append(re.compile(rf"""<xacro:[\w.-]+\b[^>]*=\s*(?:"{quoted}"|'{quoted}')"""))
+                patterns.append(re.compile(
+                    rf"""<xacro:[\w.-]+\b[^>\n]*=\s*(?:"{quoted}"|'{quoted}')"""))
             self._found[key] = None
             for pattern in patterns:
-                hit = self._first_hit(pattern)
+                hit = self._first_hit(pattern, literal=name)
                 if hit:
                     self._found[key] = hit
                     break
@@ -58,13 +67,13 @@ class SourceLocator:
 
     def _template_hit(self, tag: str, name: str, attribute: str) -> tuple[str, int] | None:
         """The first ``<TAG name="...${...}...">`` whose template matches the built name."""
-        opening = re.compile(rf"""<{re.escape(tag)}\b[^>]*\b{attribute}\s*=\s*(["'])"""
-                             r"""([^"']*\$\{.*?)\1""")
+        opening = re.compile(rf"""<{re.escape(tag)}\b[^>\n]*\b{attribute}\s*=\s*(["'])"""
+                             r"""([^"'\n]*\$\{.*?)\1""")
         for path in self.files:
-            for number, text in enumerate(self._read(path), start=1):
-                match = opening.search(text)
-                if match and _template_matches(match.group(2), name):
-                    return display_path(path), number
+            text = self._text(path)
+            for match in opening.finditer(text):
+                if _template_matches(match.group(2), name):
+                    return display_path(path), text.count("\n", 0, match.start()) + 1
         return None
 
     def _refine(self, hit: tuple[str, int], anchor, where) -> tuple[str, int]:
@@ -86,25 +95,30 @@ class SourceLocator:
                 k -= 1
         return hit
 
-    def _first_hit(self, pattern) -> tuple[str, int] | None:
+    def _first_hit(self, pattern, literal: str | None = None) -> tuple[str, int] | None:
+        """The first match in the files, in order; a file without ``literal`` is skipped
+        unsearched (a name's pattern cannot match where the name is not written)."""
         for path in self.files:
+            if literal is not None and literal not in self._text(path):
+                continue
             hit = self._search_in(path, pattern)
             if hit:
                 return hit
         return None
 
     def _search_in(self, path: Path, pattern) -> tuple[str, int] | None:
-        for number, text in enumerate(self._read(path), start=1):
-            if pattern.search(text):
-                return display_path(path), number
-        return None
+        text = self._text(path)
+        match = pattern.search(text)
+        if match is None:
+            return None
+        return display_path(path), text.count("\n", 0, match.start()) + 1
 
     def __call__(self, where) -> tuple[str, int | None, str]:
         """(file, line, note) for an element of the built URDF, or for a line of it."""
         if isinstance(where, int):
             return self.source, None, f" (line {where} of the expanded URDF)"
         if where.getparent() is None:  # the <robot> itself: the input's <robot> tag
-            hit = self._search_in(self.files[0], re.compile(r"^\s*<robot\b"))
+            hit = self._search_in(self.files[0], re.compile(r"^[^\S\n]*<robot\b", re.M))
             if hit:
                 return hit[0], hit[1], ""
         element = where

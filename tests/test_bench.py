@@ -104,3 +104,16 @@ def test_quick_folder_section_times_check_and_build_of_two_sizes(tmp_path, mcar_
         assert re.fullmatch(r"[\d.]+ m?s", cells[1]) and re.fullmatch(r"[\d.]+ m?s", cells[2])
         assert re.fullmatch(r"\d+\.\d", cells[3]) and cells[5] == "0 / 0", cells
     assert all(cells[6] in ("met", "**missed**") for cells in rows[1::2])  # 2N vs N
+
+
+def test_quick_gazebo_section_times_check_gazebo_and_the_helper(tmp_path, mcar_bin,
+                                                                gazebo):
+    text = quick_section(tmp_path, "gazebo", timeout=300)
+    rows = [line.strip("| ").split(" | ") for line in text.splitlines()
+            if line.startswith("| the car") or line.startswith("| tree")]
+    assert [row[0] for row in rows] == ["the car (xacro, 16 links)",
+                                        "tree, every number distinct, 100 links"]
+    for cells in rows:
+        # check, check --gazebo and the helper alone all ran and exited 0
+        assert all(re.fullmatch(r"[\d.]+ (ms|s)", cell) for cell in cells[1:5]), cells
+        assert cells[6] == "0" and cells[7] in ("met", "**missed**")

@@ -177,3 +177,15 @@ def test_a_helper_named_by_mcar_sdformat_must_be_there(cli, monkeypatch, tmp_pat
         assert result.exit_code == 2
         assert result.stderr.startswith(f"mcar: error: MCAR_SDFORMAT={tmp_path / 'nowhere'}: "
                                         "not an executable file; it is built from mcar's source")
+
+
+def test_the_helper_make_installs_beside_mcar_is_found_from_any_folder(run_mcar, tmp_path):
+    from conftest import MCAR
+
+    if not (MCAR.parent / "mcar-sdformat").is_file():
+        pytest.skip("no mcar-sdformat beside mcar: `make install` builds it there where "
+                    "libsdformat-dev is installed")
+    result = run_mcar("check", "-q", "--gazebo", CAR, cwd=tmp_path,
+                      env={"MCAR_SDFORMAT": "", "PATH": "/usr/bin:/bin"})
+    assert result.returncode == 0, result.stderr
+    assert "note: Gazebo simulates 3 links: 0.7056 kg, as in the URDF [N403]" in result.stderr

@@ -213,3 +213,27 @@ def test_the_real_helper_answers_json_only_and_writes_nothing_under_home(gazebo_
                                         "[j] not found"} in document["errors"]
     assert list(tmp_path.iterdir()) == []  # no ~/.sdformat/sdformat.log
     assert done.stderr == b""
+
+
+@pytest.mark.parametrize("signum, code", [(signal.SIGTERM, 143), (signal.SIGINT, 130)])
+def test_a_signal_mid_conversion_ends_mcar_and_the_helper(tmp_path, mcar_bin, signum, code):
+    robot = tmp_path / "robot.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    pid_file = tmp_path / "pid"
+    helper = stand_in(tmp_path, f"open({str(pid_file)!r}, 'w').write(str(os.getpid()))\n"
+                                "time.sleep(600)\n")
+    env = dict(os.environ, MCAR_SDFORMAT=helper)
+    process = subprocess.Popen([str(mcar_bin), "check", "--gazebo", str(robot)], env=env,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 30
+    while not pid_file.exists() or not pid_file.read_text():
+        assert time.monotonic() < deadline and process.poll() is None
+        time.sleep(0.05)
+    started = time.monotonic()
+    process.send_signal(signum)
+    _out, err = process.communicate(timeout=10)
+    assert time.monotonic() - started < 2
+    assert process.returncode == code
+    assert "Traceback" not in err
+    with pytest.raises(ProcessLookupError):
+        os.kill(int(pid_file.read_text()), 0)

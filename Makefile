@@ -16,9 +16,9 @@ BIN    := $(VENV)/bin
 SUDO   := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := liburdfdom-tools graphviz libegl1 libegl-mesa0 libgl1-mesa-dri libgl1 libseccomp2
 APT_PACKAGES += g++ pkg-config libsdformat-dev
-# The Gazebo helper: its path (tests build it elsewhere with HELPER=...), libsdformat's
-# pkg-config name.
-HELPER      ?= $(BIN)/mcar-sdformat
+# The Gazebo helper: its path (tests build it elsewhere with GAZEBO_HELPER=...) and
+# libsdformat's pkg-config name.
+GAZEBO_HELPER ?= $(BIN)/mcar-sdformat
 SDFORMAT_PC ?= sdformat12
 
 .PHONY: demo test install system-deps build bench ci clean gazebo-helper
@@ -35,10 +35,10 @@ install: $(BIN)/python
 # says how to get it, and nothing else changes.
 gazebo-helper:
 	@if command -v g++ >/dev/null && command -v pkg-config >/dev/null && \
-	    pkg-config --exists $(SDFORMAT_PC); then $(MAKE) --no-print-directory $(HELPER); \
+	    pkg-config --exists $(SDFORMAT_PC); then $(MAKE) --no-print-directory $(GAZEBO_HELPER); \
 	else echo "mcar-sdformat not built: it needs g++, pkg-config and libsdformat-dev"; fi
 
-$(HELPER): helpers/mcar-sdformat.cc
+$(GAZEBO_HELPER): helpers/mcar-sdformat.cc
 	@mkdir -p $(dir $@)
 	g++ -O2 -std=c++17 -Wall -Wextra $$(pkg-config --cflags $(SDFORMAT_PC)) $< -o $@.tmp \
 	    $$(pkg-config --libs $(SDFORMAT_PC)) && mv $@.tmp $@

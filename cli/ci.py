@@ -70,7 +70,7 @@ code is the build's, check's and render's.
 Exit codes:
   0  every step of every file passed
   1  problems found: a build error, a check error or warning, a failed sim scenario
-     or sim rule, a robot not drawn
+     or sim rule, a link Gazebo drops, a robot not drawn
   2  usage, I/O or environment error: no such package, a macro file given as a robot,
      no renderer (--no-render skips drawing)
   130  interrupted (Ctrl-C); 143 terminated

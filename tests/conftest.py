@@ -105,8 +105,8 @@ def gazebo_helper(tmp_path_factory) -> Path:
         pytest.skip("the Gazebo helper cannot be built here: g++, pkg-config or "
                     "libsdformat-dev (sdformat 12) is missing (`make test` installs them)")
     built = tmp_path_factory.mktemp("helper") / "mcar-sdformat"
-    done = subprocess.run(["make", "-s", "-C", str(REPO), "gazebo-helper", f"HELPER={built}"],
-                          capture_output=True, text=True, timeout=600)
+    done = subprocess.run(["make", "-s", "-C", str(REPO), "gazebo-helper",
+                           f"GAZEBO_HELPER={built}"], capture_output=True, text=True, timeout=600)
     assert built.is_file(), done.stdout + done.stderr
     return built
 

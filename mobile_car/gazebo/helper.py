@@ -169,6 +169,8 @@ def _run(helper: Path, args: list[str], data: bytes, timeout: float, memory_mb: 
         except OSError as error:
             raise GazeboUnavailable(f"cannot run {helper}: {error.strerror or error}") \
                 from None
+        except subprocess.SubprocessError as error:  # its limits could not be set
+            raise GazeboUnavailable(f"cannot run {helper}: {error}") from None
     finally:
         release_signals(held)
     try:

@@ -10,6 +10,8 @@
 # ROS 1 from Debian (ROS_APT_PACKAGES: roslaunch, the state publishers, RViz) with xvfb,
 # catkin and ament-cmake (tests/ros: the RViz launch, catkin and ament builds);
 # for `make rviz` also ROS_APT_PACKAGES (mcar itself needs none of ROS).
+# g++ pkg-config libsdformat-dev (sdformat 12): the Gazebo helper mcar-sdformat (mcar check
+# --gazebo, build --format sdf), built beside mcar in $(BIN) whenever they are there.
 
 PYTHON ?= python3
 VENV   ?= .venv
@@ -19,7 +21,13 @@ APT_PACKAGES := liburdfdom-tools graphviz libegl1 libegl-mesa0 libgl1-mesa-dri l
 ROS_APT_PACKAGES := python3-roslaunch rosbash ros-robot-state-publisher joint-state-publisher \
 	joint-state-publisher-gui rviz python3-rostopic python3-rostest python3-tf2-ros tf-tools
 
-.PHONY: demo test install system-deps build bench ci rviz clean
+APT_PACKAGES += g++ pkg-config libsdformat-dev
+# The Gazebo helper: its path (tests build it elsewhere with GAZEBO_HELPER=...) and
+# libsdformat's pkg-config name.
+GAZEBO_HELPER ?= $(BIN)/mcar-sdformat
+SDFORMAT_PC ?= sdformat12
+
+.PHONY: demo test install system-deps build bench ci rviz clean gazebo-helper
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -27,6 +35,19 @@ $(BIN)/python:
 
 install: $(BIN)/python
 	$(BIN)/pip install --quiet ".[test,view,sweep]"
+	@$(MAKE) --no-print-directory gazebo-helper
+
+# Built only where g++, pkg-config and libsdformat are there; elsewhere mcar check --gazebo
+# says how to get it, and nothing else changes.
+gazebo-helper:
+	@if command -v g++ >/dev/null && command -v pkg-config >/dev/null && \
+	    pkg-config --exists $(SDFORMAT_PC); then $(MAKE) --no-print-directory $(GAZEBO_HELPER); \
+	else echo "mcar-sdformat not built: it needs g++, pkg-config and libsdformat-dev"; fi
+
+$(GAZEBO_HELPER): helpers/mcar-sdformat.cc
+	@mkdir -p $(dir $@)
+	g++ -O2 -std=c++17 -Wall -Wextra $$(pkg-config --cflags $(SDFORMAT_PC)) $< -o $@.tmp \
+	    $$(pkg-config --libs $(SDFORMAT_PC)) && mv $@.tmp $@
 
 system-deps:
 	@missing=""; for p in $(APT_PACKAGES); do \
@@ -37,16 +58,16 @@ system-deps:
 	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
 	fi
 
-demo: install system-deps
+demo: install system-deps gazebo-helper
 	$(BIN)/mcar build
 	$(BIN)/mcar check --strict build/mobile_robot.urdf
 	$(BIN)/mcar render
 
 test: APT_PACKAGES += chromium $(ROS_APT_PACKAGES) xvfb catkin ament-cmake
-test: install system-deps
+test: install system-deps gazebo-helper
 	$(BIN)/pytest
 
-ci: install system-deps
+ci: install system-deps gazebo-helper
 	$(BIN)/mcar ci
 
 # The car in RViz, by the seed's command (docs/rviz.md); the venv's mcar builds it.

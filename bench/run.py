@@ -39,10 +39,18 @@ from static_sections import (  # noqa: E402
 )
 from sweep_section import section_sweep  # noqa: E402
 
+
+def section_gazebo(rows: list[str], work: Path, quick: bool) -> None:
+    import gazebo_bench
+    import measure
+
+    gazebo_bench.section(rows, work, quick, measure)
+
+
 SECTIONS = {"check": section_check, "build": section_build, "startup": section_startup,
             "batch": section_batch, "folder": section_folder, "render": section_render,
             "noop": section_noop, "sim": section_sim, "robots": section_robots,
-            "sweep": section_sweep}
+            "sweep": section_sweep, "gazebo": section_gazebo}
 NEEDS_CHECK_URDF = {"check", "startup", "batch"}
 
 

@@ -25,7 +25,7 @@ from .common import (
     stdin_for,
 )
 
-HELP = f"""Expand xacro into URDF (or into MuJoCo's MJCF, --format mjcf).
+HELP = f"""Expand xacro into URDF (or into MuJoCo's MJCF, or Gazebo's SDF).
 
 \b
   mcar build FILE.xacro [NAME:=VALUE ...]      URDF on stdout
@@ -37,6 +37,7 @@ HELP = f"""Expand xacro into URDF (or into MuJoCo's MJCF, --format mjcf).
   mcar build                                   every robot file of the package you
                                                stand in, into its build/
   mcar build FILE.xacro --format mjcf -o R.xml the MuJoCo model `mcar sim` runs
+  mcar build FILE.xacro --format sdf -o R.sdf  the SDF Gazebo spawns (libsdformat's)
 
 A robot file is a .xacro whose root is <robot name="...">; macro files (a <robot>
 with no name) are only included. Built files mirror the urdf/ tree:
@@ -64,6 +65,12 @@ referenced by absolute path, so the file loads from wherever it is written (move
 meshes with it to use it on another machine). A robot MuJoCo cannot simulate (a root
 or moving link without mass) is an error (exit 1).
 
+--format sdf writes the SDF Gazebo would spawn from the URDF, as libsdformat (Gazebo's
+URDF reader) converts and writes it: fixed joints lumped, links without mass left out
+(a warning says so; `mcar check --gazebo` says what is lost). It needs the helper
+mcar-sdformat (make gazebo-helper; without it, exit 2 saying how). A robot libsdformat
+cannot load is an error (exit 1); built files are named .sdf.
+
 --deps prints the files the expansion reads (the input first, then includes and
 loaded YAML), relative to the current folder (--absolute: absolute). Alone it builds
 nothing; with -o it writes the outputs too, so one run both builds and tells Make
@@ -76,9 +83,11 @@ Errors are printed as FILE:LINE: error: message, then xacro's macro/include stac
 Exit codes:
   0  every input was built
   1  xacro could not expand an input (its error is printed, located); with
-     --format mjcf, MuJoCo cannot make a model of it
+     --format mjcf, MuJoCo cannot make a model of it; with --format sdf, libsdformat
+     cannot load it
   2  usage or I/O error: bad option or argument, missing or unreadable file, a macro
-     file given as a robot, overrides the input cannot take, unknown package
+     file given as a robot, overrides the input cannot take, unknown package; with
+     --format sdf, no Gazebo helper
   130  interrupted (Ctrl-C); 143 terminated
 """
 
@@ -90,12 +99,23 @@ def _print_deps(deps: list[Path], absolute: bool) -> None:
         streams.echo(shown(dep))
 
 
+SUFFIXES = {"urdf": ".urdf", "mjcf": ".xml", "sdf": ".sdf"}
+
+
 def _output(loaded, output_format: str) -> bytes:
-    """What is written of a loaded robot: its URDF, or the MJCF of its simulation."""
+    """What is written of a loaded robot: its URDF, the MJCF of its simulation, or the SDF
+    libsdformat writes of it (its warnings printed)."""
     if output_format == "mjcf":
         from mobile_car.sim.export import mjcf
 
         return mjcf(loaded).encode()
+    if output_format == "sdf":
+        from mobile_car.gazebo.sdf import sdf_of
+
+        sdf, warnings = sdf_of(loaded)
+        for warning in warnings:
+            print_warning(loaded.label, warning)
+        return sdf
     return loaded.urdf
 
 
@@ -132,7 +152,7 @@ def _build_many(inputs, options, outdir: Path | None, deps: str | None, quiet: b
     )
 
     deps_only = outdir is None  # --deps without -o: print, build nothing
-    suffix = ".xml" if output_format == "mjcf" else ".urdf"
+    suffix = SUFFIXES[output_format]
     targets = [(outdir or Path()) / output_name(inp.path, inp.base or inp.path.parent)
                .with_suffix(suffix) for inp in inputs]
     if not deps_only:
@@ -210,10 +230,11 @@ def _build_into(inp, target: Path, options, deps: str | None, output_format: str
                    "-o build nothing, with -o write the outputs too.")
 @click.option("--absolute", is_flag=True, help="--deps prints absolute paths (default: "
                                                 "relative to the current folder).")
-@click.option("--format", "output_format", type=click.Choice(("urdf", "mjcf")),
+@click.option("--format", "output_format", type=click.Choice(tuple(SUFFIXES)),
               default="urdf", show_default=True,
               help="urdf: the expanded URDF; mjcf: the MuJoCo model `mcar sim` runs "
-                   "(built files named .xml).")
+                   "(built files named .xml); sdf: the SDF Gazebo spawns, written by "
+                   "libsdformat (built files named .sdf).")
 @click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
 @robot_options
 @handle_errors
@@ -226,10 +247,14 @@ def command(words, output, deps, absolute, output_format, quiet, package_paths, 
     if deps and output == "-":
         raise UsageError("--deps prints to stdout: give -o a file, not -")
     deps = ("absolute" if absolute else "relative") if deps else None
+    if output_format == "sdf" and not deps:  # before anything is built: how to install it
+        from mobile_car.gazebo.helper import find_helper
+
+        find_helper()
     with load_inputs(words, package_paths, sets, config_files, through_xacro=True) as (
             selection, options):
         inputs = selection.inputs
-        names_file = bool(output) and output.endswith((".urdf", ".xml"))
+        names_file = bool(output) and output.endswith(tuple(SUFFIXES.values()))
         if len(inputs) == 1 and (selection.kind == "files" or names_file) and not (
                 output and names_folder(output)):
             _build_one(inputs[0], options, stdin_for(selection), output, deps, output_format)

@@ -36,6 +36,8 @@ HELP = f"""Check URDF files: check_urdf's verdict and tree, and the errors it mi
   mcar check - < robot.urdf              read from stdin
   mcar check --format json robot.urdf    one JSON document on stdout
   mcar check --format github urdf/       annotations for a GitHub Actions log
+  mcar check --gazebo robot.xacro        also what Gazebo changes (libsdformat's
+                                         conversion): lumped and dropped links
 
 For a sound file, stdout is byte for byte what check_urdf prints (children in
 check_urdf's order: by joint name). Every problem is one line on stderr:
@@ -43,6 +45,13 @@ FILE:LINE: error: message [E104]. Rule ids and what they find: README, "mcar che
 Errors (E1xx) fail the check; warnings (W2xx) fail it only with --strict. For a
 .xacro input, FILE:LINE point into the xacro sources where the element's name can
 be found there, else at the input with the line of the expanded URDF.
+
+--gazebo gives each sound robot to libsdformat, which Gazebo loads URDF with, and
+reports what it changes: links lumped into their parent by fixed joints (notes,
+N401), links dropped for want of mass with everything that moves below them (E150),
+<gazebo reference> blocks and plugin joint names left pointing at nothing (W231,
+W232), libsdformat's own errors and warnings, and the mass Gazebo simulates. It
+needs the helper mcar-sdformat (make gazebo-helper; without it, exit 2 saying how).
 
 {INPUT_HELP}
 
@@ -141,11 +150,18 @@ def overall_exit(results: list[CheckResult], strict: bool) -> int:
               show_default=True, help="text: check_urdf's output on stdout, problems on "
               "stderr; json: one JSON document on stdout; github: workflow annotations.")
 @click.option("--strict", is_flag=True, help="Warnings fail the check too (exit 1).")
+@click.option("--gazebo", is_flag=True,
+              help="Also report what Gazebo changes in the robot (libsdformat's URDF "
+                   "conversion): lumped and dropped links, dangling <gazebo> references.")
 @click.option("-q", "--quiet", is_flag=True,
               help="text format: print only problems, not check_urdf's tree.")
 @robot_options
 @handle_errors
-def command(words, output_format, strict, quiet, package_paths, sets, config_files):
+def command(words, output_format, strict, gazebo, quiet, package_paths, sets, config_files):
+    if gazebo:  # said before anything is loaded: exit 2 with how to install it
+        from mobile_car.gazebo.helper import find_helper
+
+        find_helper()
     # One short run builds hundreds of thousands of objects and no garbage cycles worth
     # collecting; the cyclic collector's passes over them cost much of the run.
     gc.disable()
@@ -153,6 +169,11 @@ def command(words, output_format, strict, quiet, package_paths, sets, config_fil
         with load_inputs(words, package_paths, sets, config_files) as (selection, options):
             stdin = stdin_for(selection)
             results = [check_input(inp, options, stdin=stdin) for inp in selection.inputs]
+        if gazebo:
+            from mobile_car.gazebo.check import check_in_gazebo
+
+            for result in results:
+                check_in_gazebo(result)
         exit_code = overall_exit(results, strict)
         if output_format == "json":
             _emit_json(results, exit_code)

@@ -46,6 +46,11 @@ mirroring urdf/; each variant urdf/variants/NAME.yaml is applied to
 the top-level robot files (built into build/variants/NAME/...). A failed build or check
 skips that file's later steps; the other files go on. A summary table ends the run.
 
+Where the Gazebo helper is installed (make gazebo-helper), a robot with a <gazebo>
+block is also given to libsdformat, as `mcar check --gazebo` does: one line says what
+Gazebo simulates (links, lumped, mass); a link it drops is an error, a <gazebo>
+reference or plugin joint left pointing at nothing a warning (--no-gazebo: not).
+
 Only vehicles are simulated: robots with wheels (two or more continuous joints moving
 collision geometry) and another link with collision geometry to stand on (a castor, a
 body), each with its drive kind's scenarios. Any other robot file (a part's test file,
@@ -73,7 +78,7 @@ code is the build's, check's and render's.
 Exit codes:
   0  every step of every file passed
   1  problems found: a build error, a check error or warning, a failed sim scenario
-     or sim rule, a robot not drawn
+     or sim rule, a link Gazebo drops, a robot not drawn
   2  usage, I/O or environment error: no such package, a macro file given as a robot,
      no renderer (--no-render skips drawing)
   130  interrupted (Ctrl-C); 143 terminated
@@ -107,15 +112,16 @@ def _problems(item) -> list:
     lines = []
     for step in item.steps:
         if step.status != "failed":
-            lines += step.diagnostics  # warnings of a passed step
+            # warnings of a passed step; notes (what Gazebo lumps) only in the JUnit report
+            lines += [d for d in step.diagnostics if d.is_error or d.is_warning]
             continue
         if step.problems:  # sim: its rules' diagnostics, then each failed scenario
             lines += step.diagnostics
             lines += [f"{item.label}: {severity_label('error')} {step.name} {shown(problem)}"
                       for problem in step.problems]
             continue
-        lines += step.diagnostics or [step.error or f"{item.label}: {step.name} failed: "
-                                      f"{shown(step.message)}"]
+        lines += [d for d in step.diagnostics if d.is_error or d.is_warning] or [
+            step.error or f"{item.label}: {step.name} failed: {shown(step.message)}"]
     return lines
 
 
@@ -132,6 +138,9 @@ def _problems(item) -> list:
                    "renders/ under the package's root).")
 @click.option("--no-render", is_flag=True, help="Draw nothing.")
 @click.option("--no-sim", is_flag=True, help="Simulate nothing.")
+@click.option("--no-gazebo", is_flag=True,
+              help="Do not ask libsdformat what Gazebo makes of the robots (done by default "
+                   "where the Gazebo helper is installed).")
 @click.option("--strict/--no-strict", default=True, show_default=True,
               help="A warning fails its file too, as `mcar check --strict`; --no-strict: "
                    "only errors do.")
@@ -149,8 +158,8 @@ def _problems(item) -> list:
                    "line each with why (macro files, included files, fragments, ...).")
 @robot_options
 @handle_errors
-def command(words, output_format, build_dir, render_dir, no_render, no_sim, strict, renderer,
-            junit_xml, against, diff_report, quiet, verbose, sets, config_files,
+def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_gazebo, strict,
+            renderer, junit_xml, against, diff_report, quiet, verbose, sets, config_files,
             package_paths):
     from mobile_car.ci import pipeline
     from mobile_car.ci.cache import CiCache
@@ -168,7 +177,9 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
             from mobile_car.load.outputs import refuse_overwriting
 
             refuse_overwriting(report_file, [inp.path for inp in selection.inputs])
-    items = pipeline.plan(selection, build_dir, None if no_render else render_dir)
+    helper = None if no_gazebo else _gazebo_helper()
+    items = pipeline.plan(selection, build_dir, None if no_render else render_dir,
+                          gazebo=helper is not None)
     from mobile_car.ci import simulation
 
     configs = simulation.package_configs(items, selection.root)
@@ -185,7 +196,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
         name = f"package config {home}"
         basis = (basis.with_file(config.path, name) if config.path is not None else
                  Basis({**basis.settings, name: None}, basis.files))
-    cache = CiCache(build_dir)
+    cache = CiCache(build_dir, helper)
     built = _BuiltFiles(build_dir, pictures)
     manifest = None
     if not no_render:
@@ -206,6 +217,8 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
                     built.note(item)
                     if passed:
                         checked.append(item)
+                        if helper is not None:
+                            pipeline.gazebo_step(item, strict)
                         if not no_sim:
                             simulation.sim_step(item, simulation.skip_reason(item, configs))
                     cache.record(item, basis, strict)
@@ -242,13 +255,29 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, stri
             click.echo(f"mcar: skipped {display_path(file.path)}: {shown(file.reason)}",
                        err=True)
     _emit(items, output_format, quiet, time.perf_counter() - started, no_render, no_sim,
-          0 if verbose else len(skipped))
+          helper is not None, 0 if verbose else len(skipped))
     if revision is not None:
         changed = sum(1 for entry in compared if entry.diff is not None and entry.diff.changed
                       or entry.summary.startswith("added"))
         click.echo(f"mcar ci: against {revision.name}: {changed} of {len(compared)} robot "
                    "files changed", err=True)
     sys.exit(code)
+
+
+def _gazebo_helper():
+    """The Gazebo helper, or None where it is not installed; one named by MCAR_SDFORMAT
+    that is not there is an error (exit 2), as for mcar check --gazebo."""
+    import os
+
+    from mobile_car.errors import GazeboUnavailable
+    from mobile_car.gazebo.helper import HELPER_ENV, find_helper
+
+    try:
+        return find_helper()
+    except GazeboUnavailable:
+        if os.environ.get(HELPER_ENV, "").strip():
+            raise
+        return None
 
 
 def _write_diff_report(path: str, compared, revision, items) -> None:
@@ -324,7 +353,7 @@ def _render(checked, items, manifest, renderer: str, basis) -> None:
 
 
 def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: bool,
-          no_sim: bool, skipped: int) -> None:
+          no_sim: bool, gazebo: bool, skipped: int) -> None:
     if output_format == "junit":
         from mobile_car.ci.junit import junit_report
 
@@ -334,7 +363,8 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
         for item in items:
             for step in item.steps:
                 for diagnostic in step.diagnostics:
-                    streams.echo(diagnostic.github())
+                    if diagnostic.is_error or diagnostic.is_warning:
+                        streams.echo(diagnostic.github())
                 failed = step.problems if step.problems else [step.message] if \
                     step.status == "failed" and not step.diagnostics else []
                 for message in failed:
@@ -349,6 +379,10 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
             for line in skip_lines(items):
                 click.echo(f"mcar: {shown(line)}", err=True)
         for item in items:
+            if not quiet:  # what Gazebo simulates
+                for step in item.steps:
+                    if step.name == "gazebo" and step.status == "passed":
+                        click.echo(f"mcar: {item.label}: {shown(step.message)}", err=True)
             for line in _problems(item):
                 if isinstance(line, str):
                     click.echo(line, err=True)
@@ -359,8 +393,8 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
     if not quiet or output_format == "github":
         streams.echo("\n".join(_table(items)))
     passed = sum(item.ok for item in items)
-    steps = "build, check --strict" + ("" if no_sim else ", sim") + \
-        ("" if no_render else ", render")
+    steps = "build, check --strict" + (", gazebo" if gazebo else "") + \
+        ("" if no_sim else ", sim") + ("" if no_render else ", render")
     if skipped:
         files = "file that is" if skipped == 1 else "files that are"
         click.echo(f"mcar ci: skipped {skipped} {files} not robots (-v lists them)", err=True)

@@ -182,9 +182,13 @@ def use_color() -> bool | None:
     return False if os.environ.get("NO_COLOR") else None
 
 
+_SEVERITY_COLOURS = {"error": "red", "warning": "yellow", "note": "cyan"}
+
+
 def severity_label(severity: str) -> str:
-    """``error:`` in red, ``warning:`` in yellow (the styling is dropped off a TTY)."""
-    return click.style(f"{severity}:", fg="red" if severity == "error" else "yellow", bold=True)
+    """``error:`` in red, ``warning:`` in yellow, ``note:`` in cyan (the styling is dropped
+    off a TTY)."""
+    return click.style(f"{severity}:", fg=_SEVERITY_COLOURS.get(severity, "yellow"), bold=True)
 
 
 def print_diagnostic(diagnostic) -> None:

@@ -68,6 +68,18 @@ class RendererUnavailableError(McarError):
     """Neither OpenGL (EGL) nor the ray-casting fallback can run on this machine."""
 
 
+class GazeboUnavailable(McarError):
+    """The Gazebo helper (mcar-sdformat, linked against libsdformat) is not installed, or
+    is not one this mcar can talk to: the message says how to build it."""
+
+
+class GazeboError(McarError):
+    """libsdformat (through the Gazebo helper) could not make a model of the robot, or the
+    helper failed on it: ran out of time or memory, crashed, or answered garbage."""
+
+    exit_code = EXIT_PROBLEMS
+
+
 class CheckFailed(McarError):
     """A robot that ``mcar check`` rejects was given to a command that uses it (render):
     its diagnostics say why, exactly as ``mcar check`` prints them."""

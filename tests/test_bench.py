@@ -127,3 +127,16 @@ def test_quick_robots_section_times_sim_on_real_robots_next_to_the_car(tmp_path,
         assert cells[5] in ("met", "**missed**")
     assert rows[sims[0]][3] == "1.00"
     assert rows["`mcar check` Husky (husky.urdf.xacro)"][4] == "0"
+
+
+def test_quick_gazebo_section_times_check_gazebo_and_the_helper(tmp_path, mcar_bin,
+                                                                gazebo):
+    text = quick_section(tmp_path, "gazebo", timeout=300)
+    rows = [line.strip("| ").split(" | ") for line in text.splitlines()
+            if line.startswith("| the car") or line.startswith("| tree")]
+    assert [row[0] for row in rows] == ["the car (xacro, 16 links)",
+                                        "tree, every number distinct, 100 links"]
+    for cells in rows:
+        # check, check --gazebo and the helper alone all ran and exited 0
+        assert all(re.fullmatch(r"[\d.]+ (ms|s)", cell) for cell in cells[1:5]), cells
+        assert cells[6] == "0" and cells[7] in ("met", "**missed**")

@@ -34,7 +34,8 @@ def makefile_apt_packages() -> list[str]:
 
 def test_makefile_installs_the_debian_packages_the_readme_names():
     packages = makefile_apt_packages()
-    assert {"liburdfdom-tools", "chromium", "rviz", "xvfb", "time"} <= set(packages)
+    assert {"liburdfdom-tools", "chromium", "rviz", "xvfb", "time",
+            "libsdformat-dev"} <= set(packages)
     readme = (REPO / "README.md").read_text()
     section = readme.split("## Set-up on a fresh machine", 1)[1].split("\n## ", 1)[0]
     named = {word for span in re.findall(r"`([^`]+)`", section) for word in span.split()}

@@ -42,6 +42,7 @@ class CheckResult:
     where: object = None  # element -> (file, line, note), for the JSON listing
     loaded: LoadedRobot | None = None  # what was checked: URDF text, search, files read
     mesh_files: list[MeshFile] = field(default_factory=list)  # every <mesh>, see meshes.py
+    gazebo: object = None  # with --gazebo: what Gazebo makes of it (gazebo.changes.GazeboView)
 
     @property
     def errors(self) -> int:
@@ -176,6 +177,8 @@ def as_json(result: CheckResult) -> dict:
     if result.failure is not None:
         document["failure"] = {"message": result.failure.message,
                                "exit_code": result.failure.exit_code}
+    if result.gazebo is not None:
+        document["gazebo"] = result.gazebo.as_json()
     if robot is None or tree is None:
         return document
     document["tree"] = {link: [j.child for j in joints] for link, joints in tree.children.items()}

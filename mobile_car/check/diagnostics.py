@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..names import shown, shown_lines
-from .rules import ERROR, RULES
+from .rules import ERROR, NOTE, RULES, WARNING
 
 
 @dataclass(frozen=True)
@@ -52,6 +52,10 @@ class Diagnostic:
         return github_annotation(self.severity, self.file, self.line,
                                  f"{self.rule} {self.rule_name()}", self.message)
 
+    @property
+    def is_warning(self) -> bool:
+        return self.severity == WARNING
+
     def as_json(self) -> dict:
         return {"rule": self.rule, "severity": self.severity, "file": self.file,
                 "line": self.line, "message": self.message}
@@ -63,6 +67,7 @@ def github_annotation(severity: str, file: str, line: int | None, title: str | N
     control characters other than a message's line breaks are (the log shows ANSI
     sequences: see mobile_car.names)."""
     file, title, message = shown(file), title and shown(title), shown_lines(message)
+    severity = "notice" if severity == NOTE else severity  # GitHub's word for a note
     props = [f"file={_escape_property(file)}"]
     if line:
         props.append(f"line={line}")
@@ -81,6 +86,6 @@ def _escape_property(text: str) -> str:
 
 
 def count(diagnostics: list[Diagnostic]) -> tuple[int, int]:
-    """(errors, warnings)."""
+    """(errors, warnings); notes are neither."""
     errors = sum(1 for d in diagnostics if d.is_error)
-    return errors, len(diagnostics) - errors
+    return errors, sum(1 for d in diagnostics if d.is_warning)

@@ -26,7 +26,8 @@ def check_inertia(links: list[Link], report: Reporter, moving: set[str],
         if link.inertial is None:
             if is_moving:
                 report.add("W206", link.element, f"{owner} moves but has no <inertial>; "
-                           "simulators give it no mass")
+                           "Gazebo leaves it out, with everything that moves below it "
+                           "(mcar check --gazebo)")
             continue
         inertial = link.parts["inertial"]
         parts = link.inertial

@@ -1,7 +1,9 @@
 """The rules ``mcar check`` applies, each with a stable id, like a linter's.
 
 ``E1xx`` are errors (the file is wrong: exit 1), ``W2xx`` are warnings (doubtful: exit 0,
-or 1 with ``--strict``). Ids never change meaning; a retired rule keeps its number.
+or 1 with ``--strict``), ``N4xx`` are notes (information: never a failure). Ids never
+change meaning; a retired rule keeps its number. The ``E15x``, ``W23x`` and ``N40x`` rules
+are what Gazebo's libsdformat changes in the robot, found by ``mcar check --gazebo``.
 ``urdfdom`` says what Debian's ``check_urdf`` (urdfdom 3.0) does with the same problem:
 ``rejects`` (exit 255), ``ignores`` (logs an error or nothing, still exits 0, drops the
 element), or ``hangs`` (prints the tree forever, then crashes).
@@ -16,6 +18,8 @@ from dataclasses import dataclass
 
 ERROR = "error"
 WARNING = "warning"
+NOTE = "note"
+_SEVERITIES = {"E": ERROR, "W": WARNING, "N": NOTE}
 
 
 @dataclass(frozen=True)
@@ -27,7 +31,7 @@ class Rule:
 
     @property
     def severity(self) -> str:
-        return ERROR if self.id.startswith("E") else WARNING
+        return _SEVERITIES[self.id[0]]
 
     @property
     def blocks_tree(self) -> bool:
@@ -98,6 +102,12 @@ _TABLE = [
          "rejects"),
     # Inputs that are built first
     Rule("E140", "xacro-error", "a `.xacro` input that xacro cannot expand", "n/a"),
+    # What Gazebo changes (mcar check --gazebo)
+    Rule("E150", "gazebo-link-dropped", "a link Gazebo leaves out: libsdformat drops a link "
+         "without mass (no `<inertial>`, or mass 0) and everything that moves below it; "
+         "reported at the massless link, with each link lost and their mass", "n/a"),
+    Rule("E151", "gazebo-load-error", "libsdformat (Gazebo's URDF reader) reports an error "
+         "loading the robot, or cannot load it", "n/a"),
     # Warnings
     Rule("W201", "unknown-element", "an element URDF does not define (a typo such as "
          "`<visul>`, `<limits>`), with a did-you-mean", "ignores"),
@@ -121,6 +131,20 @@ _TABLE = [
          "or `MCAR_MAX_MESH_FACES` (its declared vertex or face count): not read, drawn as "
          "a magenta box", "accepts"),
     Rule("W220", "xacro-warning", "xacro printed a warning while expanding a `.xacro` input",
+         "n/a"),
+    Rule("W230", "gazebo-warning", "libsdformat warns while loading the robot", "n/a"),
+    Rule("W231", "gazebo-reference-dangling", "a `<gazebo reference>` naming no link or joint "
+         "Gazebo has: none of the robot's, a link it leaves out, or a fixed joint it lumps "
+         "away", "n/a"),
+    Rule("W232", "gazebo-plugin-joint", "a `<gazebo>` plugin naming a joint Gazebo does not "
+         "have, in `<joint>`, `<joint_name>`, `<left_joint>`, `<leftJoint>`, `<jointName>` "
+         "and the like", "n/a"),
+    # Notes
+    Rule("N401", "gazebo-lumped", "a link Gazebo lumps into its parent by a fixed joint: "
+         "one body with the parent's mass, collisions and visuals", "n/a"),
+    Rule("N402", "gazebo-reference-lumped", "a `<gazebo reference>` naming a lumped link: "
+         "what it sets, sensors included, goes to the link it is lumped into", "n/a"),
+    Rule("N403", "gazebo-mass", "the links and mass Gazebo simulates, against the URDF's",
          "n/a"),
 ]
 

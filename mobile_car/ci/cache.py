@@ -3,7 +3,9 @@
 The record (``.mcar-ci.json`` in the build folder) holds per built file the key of its
 settings and the stamps of every file it was made from (see :mod:`mobile_car.freshness`),
 the stamp of the URDF written, the check's verdict, counts and diagnostics, and the sim
-step's outcome (status, message, testcases, error lines and diagnostics). An item
+step's outcome (status, message, testcases, error lines and diagnostics), and the gazebo
+step's (status, message, diagnostics; the helper's path, size and time are part of the
+key, so a rebuilt helper is asked again). An item
 whose key, inputs and output are unchanged, and whose picture the render manifest finds
 current, is *replayed*: its steps are made from the record, so the report (text, JUnit,
 exit code) is the one a full run prints, without expanding or checking anything. An item
@@ -42,8 +44,9 @@ def item_basis(item: CiItem, basis: Basis) -> Basis:
 
 
 class CiCache:
-    def __init__(self, build_dir: Path):
+    def __init__(self, build_dir: Path, gazebo_helper: Path | None = None):
         self.folder = Path(build_dir)
+        self.gazebo = _helper_stamp(gazebo_helper)
         self.path = self.folder / CACHE_NAME
         self.entries: dict[str, dict] = read_record(self.path, "items")
         self.stamper = Stamper()
@@ -53,9 +56,8 @@ class CiCache:
         return Path(os.path.relpath(os.path.abspath(item.urdf),
                                     os.path.abspath(self.folder))).as_posix()
 
-    @staticmethod
-    def _key(item: CiItem, basis: Basis, strict: bool) -> str:
-        return key_of("ci", item_basis(item, basis).settings, strict)
+    def _key(self, item: CiItem, basis: Basis, strict: bool) -> str:
+        return key_of("ci", item_basis(item, basis).settings, strict, self.gazebo)
 
     def replay(self, item: CiItem, basis: Basis, strict: bool, picture_fresh,
                sim: bool = True) -> bool:
@@ -68,6 +70,7 @@ class CiCache:
             return False
         try:
             passed, diagnostics, simulated = _recorded(entry)
+            gazebo = _gazebo_step(entry["gazebo"]) if "gazebo" in entry else None
         except ValueError:  # damaged or forged: built again and recorded anew
             del self.entries[name]
             self._changed = True
@@ -83,6 +86,8 @@ class CiCache:
             return False
         if passed and sim and simulated is None:
             return False
+        if passed and item.gazebo and gazebo is None:
+            return False
         item.links, item.joints = entry.get("links"), entry.get("joints")
         item.deps = [Path(p) for p in entry.get("deps") or []]
         item.steps.append(Step("build", message=f"wrote {display_path(item.urdf)}"))
@@ -90,6 +95,8 @@ class CiCache:
             fail(item, "check", diagnostics[0].text(), diagnostics)
             return True
         item.steps.append(Step("check", diagnostics=diagnostics))
+        if item.gazebo:
+            item.steps.append(gazebo)
         if sim:
             item.steps.append(simulated)
         if item.png is not None:
@@ -121,6 +128,11 @@ class CiCache:
             "links": item.links, "joints": item.joints,
             "check": {"passed": check.status == "passed",
                       "diagnostics": diagnostics_data(check.diagnostics)}}
+        gazebo = next((step for step in item.steps if step.name == "gazebo"), None)
+        if check.status == "passed" and gazebo is not None:
+            self.entries[name]["gazebo"] = {
+                "status": gazebo.status, "message": gazebo.message,
+                "diagnostics": diagnostics_data(gazebo.diagnostics)}
         simulated = next((step for step in item.steps if step.name == "sim"), None)
         if check.status == "passed" and simulated is not None:  # it ran (or was declined)
             if simulated.exit_code > 1:  # the engine could not run: try again next time
@@ -160,6 +172,29 @@ def _recorded(entry: dict) -> tuple[bool, list, Step | None]:
 
 
 _STATUSES = ("passed", "failed", "skipped")
+
+
+def _helper_stamp(helper: Path | None):
+    """What identifies the Gazebo helper a run used (None: no gazebo step)."""
+    if helper is None:
+        return None
+    try:
+        stat = os.stat(helper)
+    except OSError:
+        return str(helper)
+    return [os.path.abspath(helper), stat.st_size, stat.st_mtime_ns]
+
+
+def _gazebo_step(data: dict) -> Step:
+    """The gazebo step a run recorded; ValueError if it is not one."""
+    if not isinstance(data, dict) or data.get("status") not in _STATUSES or \
+            not isinstance(data.get("message"), str):
+        raise ValueError("gazebo step without status or message")
+    diagnostics = diagnostics_from(data.get("diagnostics") or [])
+    if data["status"] == "failed" and not diagnostics:
+        raise ValueError("a failed gazebo step without its diagnostics")
+    return Step("gazebo", data["status"], data["message"], diagnostics,
+                exit_code=1 if data["status"] == "failed" else 0)
 
 
 def _sim_step(data: dict) -> Step:

@@ -3,10 +3,11 @@
 The plan is every robot file of the package (parts, steps, complete robots) and, for each
 variant file in ``urdf/variants/*.yaml``, the package's top-level robot files (those
 directly in ``urdf/``) built with that variant's dimensions. Each item goes through four
-steps (build, check, sim (:mod:`.simulation`), render); a failed build or check is
-recorded and the item's later steps are skipped, while the other items go on (a failed
-sim still lets the robot be drawn: the picture helps to see why). Nothing here prints: the
-command line formats the :class:`CiItem` list.
+steps (build, check, sim (:mod:`.simulation`), render), five where the Gazebo helper is
+installed (gazebo, after check: what libsdformat changes in a robot that has ``<gazebo>``
+blocks); a failed build or check is recorded and the item's later steps are skipped, while
+the other items go on (a failed sim still lets the robot be drawn: the picture helps to see
+why). Nothing here prints: the command line formats the :class:`CiItem` list.
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ from ..load.selection import Selection
 from ..names import shown
 from ..packages.discover import output_name, source_base
 
-STEPS = ("build", "check", "sim", "render")
+STEPS = ("build", "check", "gazebo", "sim", "render")
 
 
 @dataclass
@@ -62,6 +63,7 @@ class CiItem:
     expansion_warnings: list[str] = field(default_factory=list)  # xacro's, for the record
     generated: tuple[Path, ...] = ()  # files written for its build (overrides): no inputs
     diff: str | None = None  # with --against: what changed since then ("3 changes")
+    gazebo: bool = False  # the gazebo step is part of its plan (the helper is installed)
 
     @property
     def source(self) -> Path:
@@ -79,7 +81,7 @@ class CiItem:
 
     @property
     def warnings(self) -> int:
-        return sum(1 for step in self.steps for d in step.diagnostics if not d.is_error)
+        return sum(1 for step in self.steps for d in step.diagnostics if d.is_warning)
 
 
 def variant_files(root: Path) -> list[Path]:
@@ -94,9 +96,11 @@ def not_robots(selection: Selection) -> list:
     return [file for file in selection.skipped if file.path not in variants]
 
 
-def plan(selection: Selection, build_dir: Path, render_dir: Path | None) -> list[CiItem]:
+def plan(selection: Selection, build_dir: Path, render_dir: Path | None,
+         gazebo: bool = False) -> list[CiItem]:
     """Every item of a CI run over the inputs, in a stable order: each input, then for a
-    package (or folder) with variants, its top-level robot files once per variant."""
+    package (or folder) with variants, its top-level robot files once per variant;
+    ``gazebo``: their plan has the gazebo step."""
     items = []
 
     def item(inp: RobotInput, variant: Path | None) -> CiItem:
@@ -108,7 +112,7 @@ def plan(selection: Selection, build_dir: Path, render_dir: Path | None) -> list
                 relative.name[: -len(".urdf")] + ".png")
         label = (shown(inp.relative.as_posix()) if inp.base is not None else inp.label) + \
             (f" @ {shown(variant.stem)}" if variant else "")
-        return CiItem(label, inp, variant, build_dir / prefix / relative, png)
+        return CiItem(label, inp, variant, build_dir / prefix / relative, png, gazebo=gazebo)
 
     if selection.reads_stdin:
         from ..errors import UsageError
@@ -142,7 +146,8 @@ def fail(item: CiItem, name: str, message: str, diagnostics=(), exit_code: int =
     # with --no-sim, before a failed render) is not reported at all.
     done = {step.name for step in item.steps}
     item.steps += [Step(rest, "skipped", f"skipped: {name} failed")
-                   for rest in STEPS[STEPS.index(name) + 1:] if rest not in done]
+                   for rest in STEPS[STEPS.index(name) + 1:]
+                   if rest not in done and (rest != "gazebo" or item.gazebo)]
 
 
 @contextlib.contextmanager
@@ -212,6 +217,35 @@ def _built(item: CiItem, loaded, options: LoadOptions) -> bytes:
     from ..load.robot import load_robot
 
     return load_robot(item.input, dataclasses.replace(options, through_xacro=True)).urdf
+
+
+def gazebo_step(item: CiItem, strict: bool = True) -> None:
+    """What Gazebo changes in an item that passed its check, as ``mcar check --gazebo``
+    finds it; only for a robot with a ``<gazebo>`` block (one meant for Gazebo: a part's
+    test file is not), else skipped saying why. Notes never fail it; errors do, and
+    warnings when ``strict``. GazeboUnavailable (a helper of another format) passes
+    through: the run cannot be made."""
+    import time
+
+    from ..gazebo.check import check_in_gazebo
+
+    checked = item.checked
+    if not any(element.tag == "gazebo" for element in checked.robot.others):
+        item.steps.append(Step("gazebo", "skipped", "not for Gazebo: no <gazebo> element"))
+        return
+    started = time.perf_counter()
+    before = set(checked.diagnostics)
+    check_in_gazebo(checked)
+    found = [d for d in checked.diagnostics if d not in before]
+    checked.diagnostics = sorted(before, key=Diagnostic.sort_key)  # check's, for render
+    seconds = time.perf_counter() - started
+    view = checked.gazebo
+    message = f"gazebo: {view.summary()}" if view is not None else "gazebo: not loaded"
+    failing = [d for d in found if d.is_error or (strict and d.is_warning)]
+    if failing:
+        item.steps.append(Step("gazebo", "failed", failing[0].text(), found, seconds, 1))
+        return
+    item.steps.append(Step("gazebo", message=message, diagnostics=found, seconds=seconds))
 
 
 def render_step(item: CiItem, session, manifest, basis=None) -> None:

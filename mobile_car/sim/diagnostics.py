@@ -18,9 +18,9 @@ SIM_RULES = {
     "E303": ("diffdrive-joint", "the DiffDrive plugin names a joint that is not a drive "
              "wheel of the robot, or puts the left wheel on the right"),
     "E305": ("moving-link-massless", "a moving link without mass: MuJoCo refuses to "
-             "simulate it, Gazebo gives it 1 kg"),
+             "simulate it, Gazebo leaves it out with what moves below it"),
     "W304": ("mass-invented", "a link with collision geometry and no `<inertial>`: Gazebo "
-             "gives it 1 kg and a unit inertia, MuJoCo a mass from its volume; mcar sim "
+             "leaves it out if it moves, MuJoCo gives it a mass from its volume; mcar sim "
              "keeps it massless, as URDF says"),
 }
 

@@ -68,8 +68,8 @@ def moving_links_without_mass(checked) -> list[SimDiagnostic]:
                 continue
             found.append(_at(locate, "E305", link.element,
                              f"link {link.name} moves (child of a non-fixed joint) but has no "
-                             "mass: MuJoCo cannot simulate it, Gazebo would give it 1 kg; give "
-                             "it an <inertial>"))
+                             "mass: MuJoCo cannot simulate it, Gazebo leaves it out with what "
+                             "moves below it (mcar check --gazebo); give it an <inertial>"))
     return found
 
 
@@ -81,8 +81,8 @@ def lint(checked, sim) -> list[SimDiagnostic]:
         if link.collisions and link.inertial is None:
             found.append(_at(locate, "W304", link.element,
                              f"link {link.name} has collision geometry but no <inertial>: "
-                             "Gazebo gives it 1 kg, MuJoCo a mass from its volume; mcar sim "
-                             "keeps it massless"))
+                             "Gazebo leaves it out if it moves (lumps it if fixed), MuJoCo "
+                             "gives it a mass from its volume; mcar sim keeps it massless"))
     for plugin in _diff_drive_plugins(checked.robot.element):
         found += _check_plugin(plugin, sim, locate)
     return sorted(found, key=lambda d: (d.file, d.line or 0, d.rule))

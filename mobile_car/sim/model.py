@@ -15,7 +15,7 @@ The simulation-only choices (docs/sim.md) are made here and nowhere else:
   (TurtleBot3's box), and a block dragged at MuJoCo's default friction of 1 steers the
   robot (burger: 2.4 degrees off course in 3 s);
 * a link without ``<inertial>`` is massless, as URDF says (MuJoCo would invent a mass from
-  its geometry, Gazebo 1 kg; lint reports such links);
+  its geometry; Gazebo leaves a moving one out: lint reports such links);
 * a drive joint's motor figures come from the description (:mod:`.motors`), a default
   torque when it gives none; its velocity servo's gain grows with the load the wheel
   drives (:func:`servo_gain`), so that a heavy robot follows the speed ramp as the car does;

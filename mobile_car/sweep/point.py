@@ -150,7 +150,7 @@ def _build_check_sim(job: SweepJob, overrides, row: dict) -> None:
     checked = check_loaded(loaded)
     row["check_s"] = time.perf_counter() - clock
     errors = [d for d in checked.diagnostics if d.is_error]
-    warnings = [d for d in checked.diagnostics if not d.is_error]
+    warnings = [d for d in checked.diagnostics if d.is_warning]
     row["check_errors"], row["check_warnings"] = len(errors), len(warnings)
     if errors or warnings or not checked.tree_is_drawable:  # --strict: warnings fail too
         row["status"] = "check failed"

@@ -21,6 +21,9 @@ def test_every_rule_has_a_test_that_expects_it():
     expected = set()
     for case in (TESTS / "check_corpus" / "broken").glob("*.urdf"):
         expected |= set(re.findall(r"<!-- expect: ([EW]\d{3}) ", case.read_text()))
+    # What Gazebo changes: tests/gazebo/cases/, checked with --gazebo.
+    for case in (TESTS / "gazebo" / "cases").glob("*.urdf"):
+        expected |= set(re.findall(r"<!-- expect: ([EWN]\d{3}) ", case.read_text()))
     # The two rules about building xacro inputs are tested in test_check_cli.py, and so
     # is xacro left in a URDF read from stdin (a file that uses xacro is expanded).
     cli_tests = (TESTS / "check" / "test_check_cli.py").read_text()
@@ -30,7 +33,7 @@ def test_every_rule_has_a_test_that_expects_it():
 
 def test_ids_are_stable_in_form_and_severity():
     for rule_id, rule in RULES.items():
-        assert re.fullmatch(r"E1\d\d|W2\d\d", rule_id)
-        assert rule.severity == ("error" if rule_id[0] == "E" else "warning")
+        assert re.fullmatch(r"E1\d\d|W2\d\d|N4\d\d", rule_id)
+        assert rule.severity == {"E": "error", "W": "warning", "N": "note"}[rule_id[0]]
         assert re.fullmatch(r"[a-z0-9-]+", rule.name)
     assert len({rule.name for rule in RULES.values()}) == len(RULES)

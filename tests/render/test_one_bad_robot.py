@@ -55,10 +55,10 @@ def test_render_reports_it_and_draws_the_others_and_the_sheet(run_mcar, folder):
 
 
 def test_ci_reports_it_in_junit_and_completes(run_mcar, folder):
-    # --no-sim: these robots are not vehicles (their sim testcase would be a skip), and
-    # the test is about the render step.
+    # --no-sim, --no-gazebo: these robots are neither vehicles nor meant for Gazebo
+    # (their sim and gazebo testcases would be skips), and the test is about rendering.
     result = run_mcar("ci", "folder", "--format", "junit", "--build-dir", "b",
-                      "--render-dir", "r", "--no-sim", cwd=folder.parent)
+                      "--render-dir", "r", "--no-sim", "--no-gazebo", cwd=folder.parent)
     assert result.returncode == 1
     suite = ET.fromstring(result.stdout).find("testsuite")
     cases = [(c.get("classname"), c.get("name"), c.find("failure") is not None)

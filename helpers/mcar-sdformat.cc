@@ -1,0 +1,372 @@
+// mcar-sdformat: what libsdformat (Gazebo's URDF and SDF reader) makes of a robot.
+//
+//   mcar-sdformat [--sdf] < robot.urdf     (a URDF, or an SDF, on stdin)
+//
+// prints one JSON document on stdout (the fields: docs/gazebo.md):
+//   interface, sdformat   this answer's format (1) and libsdformat's version;
+//   errors, warnings      what urdfdom and libsdformat said, each {where, text};
+//   lumped, dropped       what libsdformat says it did to links, in its own words:
+//                         lumped into their parent by a fixed joint ({link, into}), or
+//                         left out, with every link below, for want of mass ({link, text});
+//   model                 the model it loaded, or null: links (mass in kg, centre of mass
+//                         in m, inertia about it in kg m^2, pose in the model frame in m
+//                         and rad, collision, visual and sensor counts), joints (type,
+//                         parent, child) and frames (attached to, and the link carrying it);
+//   sdf                   with --sdf: the SDF libsdformat writes for it, as `gz sdf -p`
+//                         prints it: what Gazebo spawns.
+//
+// It is given data only: the robot's text on stdin, never a path, and reads no other
+// file (libsdformat converts a URDF without opening its meshes); it writes nothing but
+// its answer (libsdformat's log file in ~/.sdformat is turned off by taking HOME away;
+// what libraries print is kept in memory). mcar runs it with a time, memory and output
+// bound and checks the answer field by field (mobile_car/gazebo/wire.py,
+// docs/security.md). Exit 0 when it answered (also about a robot libsdformat rejects:
+// that is in `errors`), 2 on bad usage or input it could not read.
+#include <sdf/sdf.hh>
+
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+const int kInterface = 1;  // bumped when a field changes meaning (mcar checks it)
+const size_t kMaxInput = size_t(1) << 30;  // mcar sends at most MCAR_MAX_INPUT_MB
+// libsdformat quotes the whole robot in some errors ("Unable to read SDF string: ...").
+const size_t kMaxMessage = 2000;
+const size_t kMaxCaptured = size_t(16) << 20;  // urdfdom's own lines on stderr
+
+std::string Clip(const std::string &text) {
+  return text.size() <= kMaxMessage ? text : text.substr(0, kMaxMessage) + "...";
+}
+
+// A JSON string: control characters and anything not valid UTF-8 escaped, so the
+// answer is always one valid document whatever names the robot holds.
+std::string Quote(const std::string &text) {
+  std::string out = "\"";
+  size_t i = 0;
+  while (i < text.size()) {
+    unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+      ++i;
+    } else if (c < 0x20 || c == 0x7f) {
+      char buffer[8];
+      std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
+      out += buffer;
+      ++i;
+    } else if (c < 0x80) {
+      out += static_cast<char>(c);
+      ++i;
+    } else {
+      size_t length = c >= 0xf0 ? 4 : c >= 0xe0 ? 3 : c >= 0xc2 ? 2 : 0;
+      bool valid = length > 0 && c < 0xf5 && i + length <= text.size();
+      for (size_t k = 1; valid && k < length; ++k) {
+        valid = (static_cast<unsigned char>(text[i + k]) & 0xc0) == 0x80;
+      }
+      if (valid) {
+        out.append(text, i, length);
+        i += length;
+      } else {
+        out += "\\ufffd";
+        ++i;
+      }
+    }
+  }
+  return out + "\"";
+}
+
+std::string Number(double value) {
+  if (!std::isfinite(value)) return "null";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
+}
+
+template <typename Pose>
+std::string PoseJson(const Pose &pose) {
+  auto euler = pose.Rot().Euler();
+  return "[" + Number(pose.Pos().X()) + ", " + Number(pose.Pos().Y()) + ", " +
+         Number(pose.Pos().Z()) + ", " + Number(euler.X()) + ", " +
+         Number(euler.Y()) + ", " + Number(euler.Z()) + "]";
+}
+
+const char *JointTypeName(sdf::JointType type) {
+  switch (type) {
+    case sdf::JointType::BALL: return "ball";
+    case sdf::JointType::CONTINUOUS: return "continuous";
+    case sdf::JointType::FIXED: return "fixed";
+    case sdf::JointType::GEARBOX: return "gearbox";
+    case sdf::JointType::PRISMATIC: return "prismatic";
+    case sdf::JointType::REVOLUTE: return "revolute";
+    case sdf::JointType::REVOLUTE2: return "revolute2";
+    case sdf::JointType::SCREW: return "screw";
+    case sdf::JointType::UNIVERSAL: return "universal";
+    default: return "invalid";
+  }
+}
+
+// One message libsdformat's console wrote: its level (Error, Warning, Dbg), where in
+// libsdformat it was written (parser_urdf.cc:2648), and its text.
+struct Message {
+  std::string level, where, text;
+};
+
+// The console writes "\033[1;<colour>m<Level> [<file>:<line>]\033[0m <text>" for each
+// message; split the captured stream back into messages.
+std::vector<Message> SplitConsole(const std::string &captured) {
+  std::vector<Message> messages;
+  const std::string start = "\033[1;", end = "\033[0m ";
+  size_t at = captured.find(start);
+  while (at != std::string::npos) {
+    size_t open = captured.find('m', at + start.size());
+    size_t close = captured.find(end, at);
+    size_t next = captured.find(start, at + start.size());
+    if (open == std::string::npos || close == std::string::npos ||
+        (next != std::string::npos && close > next)) {
+      break;
+    }
+    std::string label = captured.substr(open + 1, close - open - 1);
+    size_t bracket = label.find(" [");
+    Message message;
+    message.level = label.substr(0, bracket);
+    if (bracket != std::string::npos && label.size() > bracket + 3) {
+      message.where = label.substr(bracket + 2, label.size() - bracket - 3);
+    }
+    size_t body = close + end.size();
+    message.text = captured.substr(
+        body, (next == std::string::npos ? captured.size() : next) - body);
+    while (!message.text.empty() &&
+           (message.text.back() == '\n' || message.text.back() == ' ')) {
+      message.text.pop_back();
+    }
+    messages.push_back(message);
+    at = next;
+  }
+  return messages;
+}
+
+// urdfdom (through console_bridge) writes "Error:   <text>\n         at line N in F"
+// on stderr; its messages, by level, without the source line that follows each.
+std::vector<Message> SplitUrdfdom(const std::string &captured) {
+  std::vector<Message> messages;
+  std::istringstream lines(captured);
+  std::string line;
+  while (std::getline(lines, line)) {
+    for (const char *level : {"Error", "Warning"}) {
+      std::string prefix = std::string(level) + ":";
+      if (line.compare(0, prefix.size(), prefix) == 0) {
+        size_t text = line.find_first_not_of(' ', prefix.size());
+        messages.push_back({level, "urdfdom",
+                            text == std::string::npos ? "" : line.substr(text)});
+      }
+    }
+  }
+  return messages;
+}
+
+std::string MessagesJson(const std::vector<Message> &messages,
+                         const std::string &level) {
+  std::string out = "[";
+  for (const auto &message : messages) {
+    if (message.level != level) continue;
+    if (out.size() > 1) out += ", ";
+    out += "{\"where\": " + Quote(message.where) + ", \"text\": " +
+           Quote(Clip(message.text)) + "}";
+  }
+  return out + "]";
+}
+
+// The name between `before` and `after` in text, if text is exactly that.
+bool NameBetween(const std::string &text, const std::string &before,
+                 const std::string &after, std::string &name) {
+  if (text.size() < before.size() + after.size() ||
+      text.compare(0, before.size(), before) != 0 ||
+      text.compare(text.size() - after.size(), after.size(), after) != 0) {
+    return false;
+  }
+  name = text.substr(before.size(), text.size() - before.size() - after.size());
+  return true;
+}
+
+// What libsdformat says it did to links, in its own words (a debug note in
+// sdformat 12, a warning in later releases): lumped by a fixed joint into its parent,
+// or left out with everything below it for want of mass.
+std::string LinkFatesJson(const std::vector<Message> &messages) {
+  std::string lumped = "[", dropped = "[";
+  for (const auto &message : messages) {
+    std::string name;
+    const std::string &text = message.text;
+    const std::string from = "Fixed Joint Reduction: extension lumping from [";
+    size_t to = text.rfind("] to [");
+    if (text.compare(0, from.size(), from) == 0 && to != std::string::npos &&
+        to > from.size() && text.back() == ']') {
+      if (lumped.size() > 1) lumped += ", ";
+      lumped += "{\"link\": " + Quote(text.substr(from.size(), to - from.size())) +
+                ", \"into\": " + Quote(text.substr(to + 6, text.size() - to - 7)) + "}";
+    } else if (NameBetween(text, "urdf2sdf: link[", "] has no inertia, not modeled in sdf",
+                           name) ||
+               NameBetween(text, "urdf2sdf: link[", "] is not modeled in sdf.", name)) {
+      if (dropped.size() > 1) dropped += ", ";
+      dropped += "{\"link\": " + Quote(name) + ", \"text\": " + Quote(Clip(text)) + "}";
+    }
+  }
+  return "\"lumped\": " + lumped + "], \"dropped\": " + dropped + "]";
+}
+
+std::string ModelJson(const sdf::Model &model) {
+  std::string out = "{\"name\": " + Quote(model.Name()) +
+                    ", \"canonical_link\": " + Quote(model.CanonicalLinkName()) +
+                    ", \"links\": [";
+  for (uint64_t i = 0; i < model.LinkCount(); ++i) {
+    const sdf::Link *link = model.LinkByIndex(i);
+    const auto &inertial = link->Inertial();
+    const auto moi = inertial.Moi();  // about the centre of mass, link axes
+    auto pose = link->RawPose();
+    link->SemanticPose().Resolve(pose, "__model__");
+    out += std::string(i ? ", " : "") + "{\"name\": " + Quote(link->Name()) +
+           ", \"mass\": " + Number(inertial.MassMatrix().Mass()) +
+           ", \"centre_of_mass\": [" + Number(inertial.Pose().Pos().X()) + ", " +
+           Number(inertial.Pose().Pos().Y()) + ", " +
+           Number(inertial.Pose().Pos().Z()) + "]" +
+           ", \"inertia\": [" + Number(moi(0, 0)) + ", " + Number(moi(1, 1)) + ", " +
+           Number(moi(2, 2)) + ", " + Number(moi(0, 1)) + ", " + Number(moi(0, 2)) +
+           ", " + Number(moi(1, 2)) + "]" + ", \"pose\": " + PoseJson(pose) +
+           ", \"collisions\": " + std::to_string(link->CollisionCount()) +
+           ", \"visuals\": " + std::to_string(link->VisualCount()) +
+           ", \"sensors\": " + std::to_string(link->SensorCount()) + "}";
+  }
+  out += "], \"joints\": [";
+  for (uint64_t i = 0; i < model.JointCount(); ++i) {
+    const sdf::Joint *joint = model.JointByIndex(i);
+    out += std::string(i ? ", " : "") + "{\"name\": " + Quote(joint->Name()) +
+           ", \"type\": " + Quote(JointTypeName(joint->Type())) +
+           ", \"parent\": " + Quote(joint->ParentLinkName()) +
+           ", \"child\": " + Quote(joint->ChildLinkName()) + "}";
+  }
+  out += "], \"frames\": [";
+  for (uint64_t i = 0; i < model.FrameCount(); ++i) {
+    const sdf::Frame *frame = model.FrameByIndex(i);
+    std::string body;
+    frame->ResolveAttachedToBody(body);
+    out += std::string(i ? ", " : "") + "{\"name\": " + Quote(frame->Name()) +
+           ", \"attached_to\": " + Quote(frame->AttachedTo()) +
+           ", \"body\": " + Quote(body) + "}";
+  }
+  return out + "]}";
+}
+
+bool ReadAll(int fd, std::string &text) {
+  char buffer[1 << 16];
+  for (;;) {
+    ssize_t got = read(fd, buffer, sizeof buffer);
+    if (got == 0) return true;
+    if (got < 0) return false;
+    text.append(buffer, static_cast<size_t>(got));
+    if (text.size() > kMaxInput) return false;
+  }
+}
+
+// Everything written to fd since it was made (a memfd: no file in any folder).
+std::string Captured(int fd) {
+  std::string text;
+  if (lseek(fd, 0, SEEK_SET) == 0) {
+    char buffer[1 << 16];
+    ssize_t got;
+    while (text.size() < kMaxCaptured && (got = read(fd, buffer, sizeof buffer)) > 0) {
+      text.append(buffer, static_cast<size_t>(got));
+    }
+  }
+  return text;
+}
+
+bool WriteAll(int fd, const std::string &text) {
+  size_t done = 0;
+  while (done < text.size()) {
+    ssize_t wrote = write(fd, text.data() + done, text.size() - done);
+    if (wrote <= 0) return false;
+    done += static_cast<size_t>(wrote);
+  }
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  bool with_sdf = false;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--sdf") == 0) {
+      with_sdf = true;
+    } else if (std::strcmp(argv[i], "--version") == 0) {
+      std::printf("mcar-sdformat %d, libsdformat %s\n", kInterface, SDF_VERSION_FULL);
+      return 0;
+    } else {
+      std::fprintf(stderr, "usage: mcar-sdformat [--sdf] < robot.urdf\n");
+      return 2;
+    }
+  }
+  std::string robot;
+  if (!ReadAll(0, robot)) {
+    std::fprintf(stderr, "mcar-sdformat: cannot read the robot from stdin\n");
+    return 2;
+  }
+  // The answer goes to the real stdout. While libsdformat works, what any library
+  // prints on stdout or stderr (urdfdom's errors, through console_bridge) is kept in
+  // memory instead, and its errors and warnings become part of the answer.
+  int answer = dup(1), saved_stderr = dup(2);
+  int library_output = memfd_create("library-output", 0);
+  if (answer < 0 || saved_stderr < 0 || library_output < 0 ||
+      dup2(library_output, 1) < 0 || dup2(library_output, 2) < 0) {
+    return 2;
+  }
+
+  // No log file: the console opens ~/.sdformat/sdformat.log when HOME is set.
+  unsetenv("HOME");
+  std::ostringstream swallowed;
+  std::streambuf *stderr_buffer = std::cerr.rdbuf(swallowed.rdbuf());
+  auto console = sdf::Console::Instance();  // says "No HOME defined" to std::cerr
+  std::cerr.rdbuf(stderr_buffer);
+  std::ostringstream captured;
+  console->SetQuiet(false);
+  console->GetMsgStream().SetStream(&captured);  // errors and warnings
+  console->GetLogStream().SetStream(&captured);  // the debug notes
+
+  sdf::Root root;
+  sdf::Errors errors = root.LoadSdfString(robot);
+  std::string sdf_text;
+  if (with_sdf && root.Element()) {
+    sdf_text = root.Element()->ToString("");
+  }
+  console->GetMsgStream().SetStream(nullptr);
+  console->GetLogStream().SetStream(nullptr);
+  std::fflush(stdout);
+  std::cout.flush();
+  dup2(saved_stderr, 2);
+
+  // urdfdom's words first: when it cannot read a URDF, libsdformat only says that.
+  std::vector<Message> messages = SplitUrdfdom(Captured(library_output));
+  for (const auto &message : SplitConsole(captured.str())) messages.push_back(message);
+  for (const auto &error : errors) {
+    messages.push_back({"Error", "error code " +
+                        std::to_string(static_cast<int>(error.Code())), error.Message()});
+  }
+  std::string out = "{\"interface\": " + std::to_string(kInterface) +
+                    ", \"sdformat\": " + Quote(SDF_VERSION_FULL) +
+                    ", \"errors\": " + MessagesJson(messages, "Error") +
+                    ", \"warnings\": " + MessagesJson(messages, "Warning") + ", " +
+                    LinkFatesJson(messages) + ", \"model\": ";
+  const sdf::Model *model = root.Model();
+  out += model ? ModelJson(*model) : "null";
+  if (with_sdf) out += ", \"sdf\": " + Quote(sdf_text);
+  out += "}\n";
+  return WriteAll(answer, out) ? 0 : 2;
+}

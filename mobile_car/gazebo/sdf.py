@@ -1,0 +1,45 @@
+"""``mcar build --format sdf``: the SDF Gazebo would spawn, written by libsdformat itself
+(through the Gazebo helper, as ``gz sdf -p`` prints it), never by mcar.
+"""
+
+from __future__ import annotations
+
+from ..errors import GazeboError
+from .changes import MAX_NAMED, link_fates
+
+
+def sdf_of(loaded) -> tuple[bytes, list[str]]:
+    """(the SDF of a loaded robot, warnings to show): libsdformat's own warnings, and one
+    per link it leaves out for want of mass (``mcar check --gazebo`` says what is lost).
+    GazeboError (exit 1) where libsdformat cannot make a model of it; GazeboUnavailable
+    (exit 2) without the helper."""
+    from .helper import run_helper
+
+    report = run_helper(loaded.urdf, loaded.label, with_sdf=True)
+    if report.model is None or report.errors:
+        first = report.errors[0].text.strip().splitlines()[0] if report.errors else \
+            "no model"
+        raise GazeboError(f"libsdformat cannot make a Gazebo model of it: {first[:300]}",
+                          file=loaded.label,
+                          details=[f"{m.where}: {m.text.strip().splitlines()[0][:300]}"
+                                   for m in report.errors[1:] if m.text.strip()])
+    warnings = [f"libsdformat: {m.text.strip()} ({m.where})" for m in report.warnings]
+    _lumped, lost = link_fates(_link_names(loaded.urdf), report, None)
+    if lost:
+        warnings.append(f"Gazebo leaves out {len(lost)} link{'s' * (len(lost) != 1)} of the "
+                        f"URDF ({', '.join(lost[:MAX_NAMED])}{', ...' * (len(lost) > MAX_NAMED)})"
+                        ": a link without mass and everything that moves below it; "
+                        "mcar check --gazebo says which and why")
+    return report.sdf.encode("utf-8"), warnings
+
+
+def _link_names(urdf: bytes) -> list[str]:
+    """The names of the robot's links but "world" (the ground, never a Gazebo link)."""
+    from ..check.urdf_model import XmlError, parse_xml
+
+    try:
+        root = parse_xml(urdf)
+    except XmlError:  # libsdformat read it, lxml does not: no count of what is lost
+        return []
+    return [link.get("name") for link in root
+            if link.tag == "link" and link.get("name") not in (None, "world")]

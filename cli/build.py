@@ -24,7 +24,7 @@ from .common import (
     stdin_for,
 )
 
-HELP = f"""Expand xacro into URDF (or into MuJoCo's MJCF, --format mjcf).
+HELP = f"""Expand xacro into URDF.
 
 \b
   mcar build FILE.xacro [NAME:=VALUE ...]      URDF on stdout
@@ -35,7 +35,6 @@ HELP = f"""Expand xacro into URDF (or into MuJoCo's MJCF, --format mjcf).
   mcar build wheel chassis                     the robot files of those parts
   mcar build                                   every robot file of the package you
                                                stand in, into its build/
-  mcar build FILE.xacro --format mjcf -o R.xml the MuJoCo model `mcar sim` runs
 
 A robot file is a .xacro whose root is <robot name="...">; macro files (a <robot>
 with no name) are only included. Built files mirror the urdf/ tree:
@@ -56,12 +55,8 @@ Outputs are written atomically: a failed build leaves an earlier output untouche
 and a rebuilt file keeps its permissions. -o ending in / is a folder; -o OUT.urdf
 needs exactly one robot to build.
 
---format mjcf writes the model `mcar sim` simulates: the robot on a free joint, a
-floor, velocity motors on the drive wheels (limited to their effort) and sim's contact
-choices (docs/sim.md); built files are named .xml. Collision meshes are
-referenced by absolute path, so the file loads from wherever it is written (move the
-meshes with it to use it on another machine). A robot MuJoCo cannot simulate (a root
-or moving link without mass) is an error (exit 1).
+For MuJoCo (and other simulators), `mcar export ROBOT --to mjcf -o DIR` writes a
+folder with the model and its meshes.
 
 --deps prints the files the expansion reads (the input first, then includes and
 loaded YAML), relative to the current folder (--absolute: absolute). Alone it builds
@@ -74,8 +69,7 @@ Errors are printed as FILE:LINE: error: message, then xacro's macro/include stac
 \b
 Exit codes:
   0  every input was built
-  1  xacro could not expand an input (its error is printed, located); with
-     --format mjcf, MuJoCo cannot make a model of it
+  1  xacro could not expand an input (its error is printed, located)
   2  usage or I/O error: bad option or argument, missing or unreadable file, a macro
      file given as a robot, overrides the input cannot take, unknown package
   130  interrupted (Ctrl-C); 143 terminated
@@ -90,12 +84,15 @@ def _print_deps(deps: list[Path], absolute: bool) -> None:
 
 
 def _output(loaded, output_format: str) -> bytes:
-    """What is written of a loaded robot: its URDF, or the MJCF of its simulation."""
-    if output_format == "mjcf":
-        from mobile_car.sim.export import mjcf
-
-        return mjcf(loaded).encode()
+    """What is written of a loaded robot: its URDF."""
     return loaded.urdf
+
+
+def _format(ctx, param, value: str) -> str:
+    if value == "mjcf":  # one way to MuJoCo: a folder with its meshes, not one file
+        raise click.BadParameter("MuJoCo's model is written by `mcar export ROBOT --to mjcf "
+                                 "-o DIR`, a folder with the model and its meshes")
+    return value
 
 
 def _build_one(inp, options, stdin, output: str | None, deps: str | None,
@@ -131,7 +128,7 @@ def _build_many(inputs, options, outdir: Path | None, deps: str | None, quiet: b
     from mobile_car.load.robot import load_robot
 
     deps_only = outdir is None  # --deps without -o: print, build nothing
-    suffix = ".xml" if output_format == "mjcf" else ".urdf"
+    suffix = ".urdf"
     targets = [(outdir or Path()) / output_name(inp.path, inp.base or inp.path.parent)
                .with_suffix(suffix) for inp in inputs]
     if not deps_only:
@@ -177,9 +174,8 @@ def _build_many(inputs, options, outdir: Path | None, deps: str | None, quiet: b
 @click.option("--absolute", is_flag=True, help="--deps prints absolute paths (default: "
                                                 "relative to the current folder).")
 @click.option("--format", "output_format", type=click.Choice(("urdf", "mjcf")),
-              default="urdf", show_default=True,
-              help="urdf: the expanded URDF; mjcf: the MuJoCo model `mcar sim` runs "
-                   "(built files named .xml).")
+              default="urdf", show_default=True, callback=_format,
+              help="urdf: the expanded URDF (MuJoCo's model: `mcar export --to mjcf`).")
 @click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
 @robot_options
 @handle_errors

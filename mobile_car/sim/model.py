@@ -63,7 +63,7 @@ class SimModelError(McarError):
 @dataclass
 class SimModel:
     model: object       # mujoco.MjModel
-    spec: object        # mujoco.MjSpec (mcar build --format mjcf writes it)
+    spec: object        # mujoco.MjSpec
     root: str
     root_body: int
     drive: Drive | None
@@ -120,7 +120,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     spec.compiler.discardvisual = False  # (the URDF's visuals are gone; keep the floor's look)
     spec.option.timestep = TIMESTEP
     spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
-    _add_floor(spec, mj)
+    add_floor(spec, mj)
     for geom in spec.geoms:
         if geom.name != "mcar_floor":
             geom.contype, geom.conaffinity = 1, 0
@@ -270,7 +270,9 @@ def _prepare(root, base: Path, search) -> list[str]:
     return notes
 
 
-def _add_floor(spec, mj) -> None:
+def add_floor(spec, mj) -> None:
+    """A 20 m checkered floor at z = 0 (geom ``mcar_floor``, colliding with everything)
+    and a light above it; ``mcar export --to mjcf --floor`` adds the same."""
     texture = spec.add_texture(name="mcar_checker", type=mj.mjtTexture.mjTEXTURE_2D,
                                builtin=mj.mjtBuiltin.mjBUILTIN_CHECKER, width=256, height=256,
                                rgb1=[0.82, 0.84, 0.86], rgb2=[0.42, 0.45, 0.5])

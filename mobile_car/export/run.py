@@ -13,6 +13,7 @@ import json
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
+from ..load.inputs import display_path
 from .folder import MANIFEST, staged_folder
 
 MANIFEST_VERSION = 1
@@ -32,7 +33,7 @@ def export_robot(loaded, target: Path, to: str, options, verify: bool = False) -
     back as the description says (then nothing is written)."""
     protected = [loaded.input.path, *loaded.deps, *mesh_sources(loaded)]
     with staged_folder(target, protected) as staging:
-        exported, proven = _write(loaded, staging, to, options, verify)
+        exported, proven = _write(loaded, staging, to, options, verify, display_path(target))
         document = {"mcar_export": MANIFEST_VERSION, "format": to, "source": loaded.label,
                     **asdict(exported), "verified": proven if verify else None}
         (staging / MANIFEST).write_text(json.dumps(document, indent=1, ensure_ascii=False)
@@ -40,13 +41,13 @@ def export_robot(loaded, target: Path, to: str, options, verify: bool = False) -
     return ExportReport(to, target, exported, proven)
 
 
-def _write(loaded, staging: Path, to: str, options, verify: bool):
+def _write(loaded, staging: Path, to: str, options, verify: bool, shown: str):
     if to == "mjcf":
         from .mjcf import export_mjcf
         from .verify import verify_mjcf
 
         exported = export_mjcf(loaded, staging, options)
-        return exported, verify_mjcf(staging, exported) if verify else []
+        return exported, verify_mjcf(staging, exported, shown) if verify else []
     raise ValueError(f"unknown export format {to!r}")  # pragma: no cover - click's choice
 
 

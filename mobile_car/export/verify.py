@@ -31,7 +31,7 @@ MJCF_FILE_ATTRIBUTES = {"mesh": "file", "texture": "file", "hfield": "file", "sk
                         "include": "file", "model": "file"}
 
 
-def files_inside(folder: Path, names: list[tuple[str, str]]) -> None:
+def files_inside(folder: Path, label: Path, names: list[tuple[str, str]]) -> None:
     """ExportError unless each (what, path) is relative, stays in ``folder`` and exists."""
     root = Path(os.path.realpath(folder))
     for what, name in names:
@@ -41,7 +41,7 @@ def files_inside(folder: Path, names: list[tuple[str, str]]) -> None:
             why = ("an absolute path" if path.is_absolute() else
                    "outside the folder" if root not in real.parents else "missing")
             raise ExportError(f"{what} {name}: {why}; the folder would not load elsewhere",
-                              file=str(folder))
+                              file=str(label))
 
 
 def mass_matches(model_mass: float, described: float, folder: Path, added: float = 0.0) -> str:
@@ -66,16 +66,18 @@ def joints_match(found: list[str], expected: list[str], folder: Path) -> str:
     return f"{len(found)} moving joint{'s' * (len(found) != 1)}"
 
 
-def verify_mjcf(folder: Path, exported) -> list[str]:
-    """Load ``folder/exported.robot_file`` with MuJoCo and hold it to ``exported``."""
+def verify_mjcf(folder: Path, exported, shown: str | None = None) -> list[str]:
+    """Load ``folder/exported.robot_file`` with MuJoCo and hold it to ``exported``;
+    ``shown``: the folder's name in messages (the target, where ``folder`` is staged)."""
     from ..sim.engine import mujoco
     from .mjcf import FREE_JOINT
 
     mj = mujoco()
+    label = Path(shown or folder)
     path = folder / exported.robot_file
     document = etree.parse(str(path), etree.XMLParser(resolve_entities=False,
                                                       no_network=True)).getroot()
-    files_inside(folder, [(element.tag, element.get(attribute))
+    files_inside(folder, label, [(element.tag, element.get(attribute))
                           for tag, attribute in MJCF_FILE_ATTRIBUTES.items()
                           for element in document.iter(tag) if element.get(attribute)])
     try:
@@ -83,20 +85,20 @@ def verify_mjcf(folder: Path, exported) -> list[str]:
         model = spec.compile()
     except ValueError as error:
         raise ExportError(f"MuJoCo cannot load the export: {str(error).strip()}",
-                          file=str(path)) from None
+                          file=str(label / exported.robot_file)) from None
     proven = ["MuJoCo loads it from the folder alone"]
-    proven.append(mass_matches(float(model.body_mass.sum()), exported.urdf_mass, folder,
+    proven.append(mass_matches(float(model.body_mass.sum()), exported.urdf_mass, label,
                                exported.added_mass))
     names = [model.joint(j).name for j in range(model.njnt)
              if model.joint(j).name != FREE_JOINT]
-    proven.append(joints_match(names, exported.moving_joints, folder))
+    proven.append(joints_match(names, exported.moving_joints, label))
     if exported.base == "floating" and exported.drive:
         if not exported.floor:
             from ..sim.model import add_floor
 
             add_floor(spec, mj)
             model = spec.compile()
-        proven += _settles_and_drives(mj, model, exported.drive, folder)
+        proven += _settles_and_drives(mj, model, exported.drive, label)
     return proven
 
 

@@ -21,7 +21,7 @@ $(BIN)/python:
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
 install: $(BIN)/python
-	$(BIN)/pip install --quiet ".[test,view,sweep]"
+	$(BIN)/pip install --quiet ".[test,view,sweep,usd]"
 
 system-deps:
 	@missing=""; for p in $(APT_PACKAGES); do \

@@ -21,7 +21,7 @@ from .common import (
     stdin_for,
 )
 
-FORMATS = ("mjcf",)
+FORMATS = ("mjcf", "usd")
 
 HELP = f"""Export one robot as a folder another simulator loads on a machine without
 its packages: the robot file and every mesh it uses, paths relative to it.
@@ -71,7 +71,7 @@ Exit codes:
 @click.command("export", help=HELP, short_help="Export a robot for MuJoCo as a folder.")
 @click.argument("words", nargs=-1, metavar="[INPUT] [NAME:=VALUE]...")
 @click.option("--to", "to", type=click.Choice(FORMATS), required=True,
-              help="The format: mjcf (MuJoCo).")
+              help="The format: mjcf (MuJoCo), usd (OpenUSD: Isaac Sim, Newton).")
 @click.option("-o", "--output", metavar="DIR", required=True,
               help="The folder to write (made; an earlier export there is replaced).")
 @click.option("--base", type=click.Choice(("floating", "fixed")), default="floating",
@@ -93,6 +93,11 @@ def command(words, to, output, base, floor, fix_inertia, verify, quiet, package_
     from mobile_car.check.checker import check_input
     from mobile_car.export.mjcf import MjcfOptions
     from mobile_car.export.run import export_robot
+
+    if to == "usd":
+        from mobile_car.extras import require
+
+        require("mcar export --to usd", "usd")
 
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
         if len(selection.inputs) != 1:
@@ -122,12 +127,13 @@ def _print(report, label: str, quiet: bool) -> None:
         click.echo(f"mcar export: converted {shown(line)}", err=True)
     for line in exported.notes:
         click.echo(f"mcar export: {shown(line)}", err=True)
-    meshes = sum(1 for m in exported.meshes if m.startswith("meshes/"))
+    others = [m for m in exported.meshes if m != exported.robot_file]
     drive = exported.drive
     motors = (f"; {drive['kind']} drive, actuators on "
               f"{', '.join(drive['left'] + drive['right'])}" if drive else "")
     click.echo(f"mcar export: wrote {display_path(report.folder)}/ ({report.format}): "
-               f"{shown(exported.robot_file)} and {meshes} mesh file{'s' * (meshes != 1)}; "
+               f"{shown(exported.robot_file)} and {len(others)} other "
+               f"file{'s' * (len(others) != 1)}; "
                f"{exported.model_mass:.6g} kg, {len(exported.moving_joints)} moving joint"
                f"{'s' * (len(exported.moving_joints) != 1)}{shown(motors)}", err=True)
     for line in report.proven:

@@ -67,23 +67,38 @@ class Exported:
     added_mass: float = 0.0         # kg MuJoCo gave massless moving links (--fix-inertia)
 
 
-def export_mjcf(loaded, folder: Path, options: MjcfOptions) -> Exported:
-    """Write the MuJoCo model of a loaded robot (a LoadedRobot) and its meshes into
-    ``folder``; ExportError where MuJoCo cannot make the model asked for."""
+@dataclass
+class Prepared:
+    """A robot ready for an engine's importer: its URDF (``root``) with the simulators'
+    extras taken out and every mesh pointing at its copy in ``assets.folder``."""
+
+    root: object
+    joints: dict
+    sources: object       # sim's DriveSources, read before the extras went
+    assets: Assets
+    warnings: list[str]
+
+
+def prepare(loaded, folder: Path, readable=MUJOCO_READS) -> Prepared:
     from ..sim.drives import actuated_joints
-    from ..sim.engine import mujoco
     from ..sim.model import gazebo_friction
     from ..sim.servos import DriveSources
 
-    mj = mujoco()
     root = parse_robot(loaded.urdf, loaded.label)
     joints = {j.get("name"): j for j in root if j.tag == "joint"}
     sources = DriveSources([e for e in root if e.tag in ("gazebo", "ros2_control")],
                            actuated_joints(root), gazebo_friction(root))
     for element in list(root.iter("gazebo", "transmission", "ros2_control")):
         element.getparent().remove(element)
-    assets = Assets(folder, MUJOCO_READS)
+    assets = Assets(folder, readable)
     warnings = place_meshes(root, assets, loaded)
+    return Prepared(root, joints, sources, assets, warnings)
+
+
+def mujoco_spec(mj, prepared: Prepared, label: str):
+    """MuJoCo's reading of the prepared URDF (visuals and every link kept), its meshes
+    found in the assets' folder."""
+    root = prepared.root
     extension = etree.SubElement(root, "mujoco")
     etree.SubElement(extension, "compiler", discardvisual="false", fusestatic="false",
                      inertiafromgeom="false", balanceinertia="false", strippath="false")
@@ -91,9 +106,23 @@ def export_mjcf(loaded, folder: Path, options: MjcfOptions) -> Exported:
         spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
     except ValueError as error:
         raise ExportError(f"MuJoCo cannot read the robot: {_first_line(error)}",
-                          file=loaded.label) from None
-    spec.modelfiledir = str(folder)
-    return _complete(mj, spec, root, joints, sources, assets, loaded, options, warnings)
+                          file=label) from None
+    finally:
+        root.remove(extension)
+    spec.modelfiledir = str(prepared.assets.folder)
+    return spec
+
+
+def export_mjcf(loaded, folder: Path, options: MjcfOptions) -> Exported:
+    """Write the MuJoCo model of a loaded robot (a LoadedRobot) and its meshes into
+    ``folder``; ExportError where MuJoCo cannot make the model asked for."""
+    from ..sim.engine import mujoco
+
+    mj = mujoco()
+    prepared = prepare(loaded, folder)
+    spec = mujoco_spec(mj, prepared, loaded.label)
+    return _complete(mj, spec, prepared.root, prepared.joints, prepared.sources,
+                     prepared.assets, loaded, options, prepared.warnings)
 
 
 def _complete(mj, spec, root, joints, sources, assets, loaded, options, warnings):
@@ -251,4 +280,5 @@ def drive_summary(drive) -> dict | None:
     return {"kind": drive.kind, "left": [w.joint for w in drive.left],
             "right": [w.joint for w in drive.right], "radius": drive.radius,
             "speed": command_speed(SimpleNamespace(drive=drive)),  # it reads .drive only
-            "steering": [s.joint for s in drive.steering]}
+            "steering": [s.joint for s in drive.steering],
+            "motors": {w.joint: {"kv": w.gain, "effort": w.effort} for w in drive.driven}}

@@ -48,6 +48,12 @@ def _write(loaded, staging: Path, to: str, options, verify: bool, shown: str):
 
         exported = export_mjcf(loaded, staging, options)
         return exported, verify_mjcf(staging, exported, shown) if verify else []
+    if to == "usd":
+        from .usd import export_usd
+        from .verify import verify_usd
+
+        exported = export_usd(loaded, staging, options)
+        return exported, verify_usd(staging, exported, shown) if verify else []
     raise ValueError(f"unknown export format {to!r}")  # pragma: no cover - click's choice
 
 

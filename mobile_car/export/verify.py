@@ -149,3 +149,55 @@ def _tilt(quat) -> tuple[float, float]:
     roll = math.atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))
     pitch = math.asin(max(-1.0, min(1.0, 2 * (w * y - z * x))))
     return math.degrees(roll), math.degrees(pitch)
+
+
+def verify_usd(folder: Path, exported, shown: str | None = None) -> list[str]:
+    """Open the stage with ``pxr`` from the folder alone and hold it to ``exported``:
+    every layer and asset it depends on inside the folder, metres, kilograms and Z-up,
+    the total mass, the moving joints, a rigid body at each end of each moving joint,
+    and a drive on each drive wheel."""
+    from pxr import Usd, UsdGeom, UsdPhysics, UsdUtils
+
+    label = Path(shown or folder)
+    path = folder / exported.robot_file
+    layers, assets, unresolved = UsdUtils.ComputeAllDependencies(str(path))
+    if unresolved:
+        raise ExportError(f"the stage names files that are not there: "
+                          f"{', '.join(map(str, unresolved))}", file=str(label))
+    root = Path(os.path.realpath(folder))
+    files = [layer.realPath for layer in layers] + [str(a) for a in assets]
+    files_inside(folder, label, [("USD file", os.path.relpath(f, root)) for f in files])
+    stage = Usd.Stage.Open(str(path))
+    if stage is None:
+        raise ExportError("pxr cannot open the stage", file=str(label / exported.robot_file))
+    units = (UsdGeom.GetStageMetersPerUnit(stage), UsdPhysics.GetStageKilogramsPerUnit(stage),
+             UsdGeom.GetStageUpAxis(stage))
+    if units != (1.0, 1.0, "Z"):
+        raise ExportError(f"the stage says {units[0]} m and {units[1]} kg a unit, "
+                          f"{units[2]}-up (metres, kilograms, Z-up expected)", file=str(label))
+    from .usd import stage_mass
+
+    proven = ["pxr opens it from the folder alone (metres, kilograms, Z-up)",
+              mass_matches(stage_mass(stage), exported.urdf_mass, label)]
+    moving = [p for p in stage.Traverse() if p.IsA(UsdPhysics.Joint) and p.IsActive()
+              and not p.IsA(UsdPhysics.FixedJoint)]
+    proven.append(joints_match([p.GetName() for p in moving], exported.moving_joints, label))
+    for prim in moving:
+        joint = UsdPhysics.Joint(prim)
+        for rel in (joint.GetBody0Rel(), joint.GetBody1Rel()):
+            targets = rel.GetTargets()
+            body = stage.GetPrimAtPath(targets[0]) if targets else None
+            if not (body and body.HasAPI(UsdPhysics.RigidBodyAPI)):
+                raise ExportError(f"joint {prim.GetName()} moves no rigid body at "
+                                  f"{targets[0] if targets else 'one end'}", file=str(label))
+    bodies = sum(1 for p in stage.Traverse() if p.HasAPI(UsdPhysics.RigidBodyAPI))
+    proven.append(f"{bodies} rigid bodies, each moving joint between two")
+    wheels = list((exported.drive or {}).get("motors") or {})
+    driven = [p.GetName() for p in moving if p.GetName() in wheels and
+              p.HasAPI(UsdPhysics.DriveAPI, "angular")]
+    if sorted(driven) != sorted(wheels):
+        raise ExportError(f"drive wheels without a drive: "
+                          f"{', '.join(sorted(set(wheels) - set(driven)))}", file=str(label))
+    if wheels:
+        proven.append(f"a velocity drive on each drive wheel ({', '.join(sorted(wheels))})")
+    return proven

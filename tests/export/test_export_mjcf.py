@@ -161,7 +161,7 @@ def test_a_missing_mesh_is_left_out_with_a_warning(run_mcar, tmp_path):
                "(meshes/nowhere.stl)")
     assert f"ghost.urdf: warning: {warning}\n" in result.stderr
     assert json.loads((tmp_path / "out/mcar-export.json").read_text())["warnings"] == [warning]
-    assert "two_wheeler.xml and 0 mesh files" in result.stderr
+    assert "two_wheeler.xml and 0 other files" in result.stderr
 
 
 def test_build_format_mjcf_points_at_export(run_mcar, repo, tmp_path):

@@ -34,7 +34,7 @@ $(BIN)/python:
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
 install: $(BIN)/python
-	$(BIN)/pip install --quiet ".[test,view,sweep]"
+	$(BIN)/pip install --quiet ".[test,view,sweep,usd]"
 	@$(MAKE) --no-print-directory gazebo-helper
 
 # Built only where g++, pkg-config and libsdformat are there; elsewhere mcar check --gazebo

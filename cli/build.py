@@ -25,7 +25,7 @@ from .common import (
     stdin_for,
 )
 
-HELP = f"""Expand xacro into URDF (or into MuJoCo's MJCF, or Gazebo's SDF).
+HELP = f"""Expand xacro into URDF (or into Gazebo's SDF, --format sdf).
 
 \b
   mcar build FILE.xacro [NAME:=VALUE ...]      URDF on stdout
@@ -36,7 +36,6 @@ HELP = f"""Expand xacro into URDF (or into MuJoCo's MJCF, or Gazebo's SDF).
   mcar build wheel chassis                     the robot files of those parts
   mcar build                                   every robot file of the package you
                                                stand in, into its build/
-  mcar build FILE.xacro --format mjcf -o R.xml the MuJoCo model `mcar sim` runs
   mcar build FILE.xacro --format sdf -o R.sdf  the SDF Gazebo spawns (libsdformat's)
 
 A robot file is a .xacro whose root is <robot name="...">; macro files (a <robot>
@@ -58,12 +57,8 @@ Outputs are written atomically: a failed build leaves an earlier output untouche
 and a rebuilt file keeps its permissions. -o ending in / is a folder; -o OUT.urdf
 needs exactly one robot to build.
 
---format mjcf writes the model `mcar sim` simulates: the robot on a free joint, a
-floor, velocity motors on the drive wheels (limited to their effort) and sim's contact
-choices (docs/sim.md); built files are named .xml. Collision meshes are
-referenced by absolute path, so the file loads from wherever it is written (move the
-meshes with it to use it on another machine). A robot MuJoCo cannot simulate (a root
-or moving link without mass) is an error (exit 1).
+For MuJoCo (and other simulators), `mcar export ROBOT --to mjcf -o DIR` writes a
+folder with the model and its meshes.
 
 --format sdf writes the SDF Gazebo would spawn from the URDF, as libsdformat (Gazebo's
 URDF reader) converts and writes it: fixed joints lumped, links without mass left out
@@ -83,8 +78,7 @@ Errors are printed as FILE:LINE: error: message, then xacro's macro/include stac
 Exit codes:
   0  every input was built
   1  xacro could not expand an input (its error is printed, located); with
-     --format mjcf, MuJoCo cannot make a model of it; with --format sdf, libsdformat
-     cannot load it
+     --format sdf, libsdformat cannot load it
   2  usage or I/O error: bad option or argument, missing or unreadable file, a macro
      file given as a robot, overrides the input cannot take, unknown package; with
      --format sdf, no Gazebo helper
@@ -99,16 +93,12 @@ def _print_deps(deps: list[Path], absolute: bool) -> None:
         streams.echo(shown(dep))
 
 
-SUFFIXES = {"urdf": ".urdf", "mjcf": ".xml", "sdf": ".sdf"}
+SUFFIXES = {"urdf": ".urdf", "sdf": ".sdf"}
 
 
 def _output(loaded, output_format: str) -> bytes:
-    """What is written of a loaded robot: its URDF, the MJCF of its simulation, or the SDF
-    libsdformat writes of it (its warnings printed)."""
-    if output_format == "mjcf":
-        from mobile_car.sim.export import mjcf
-
-        return mjcf(loaded).encode()
+    """What is written of a loaded robot: its URDF, or the SDF libsdformat writes of it (its
+    warnings printed)."""
     if output_format == "sdf":
         from mobile_car.gazebo.sdf import sdf_of
 
@@ -117,6 +107,13 @@ def _output(loaded, output_format: str) -> bytes:
             print_warning(loaded.label, warning)
         return sdf
     return loaded.urdf
+
+
+def _format(ctx, param, value: str) -> str:
+    if value == "mjcf":  # one way to MuJoCo: a folder with its meshes, not one file
+        raise click.BadParameter("MuJoCo's model is written by `mcar export ROBOT --to mjcf "
+                                 "-o DIR`, a folder with the model and its meshes")
+    return value
 
 
 def _build_one(inp, options, stdin, output: str | None, deps: str | None,
@@ -230,11 +227,11 @@ def _build_into(inp, target: Path, options, deps: str | None, output_format: str
                    "-o build nothing, with -o write the outputs too.")
 @click.option("--absolute", is_flag=True, help="--deps prints absolute paths (default: "
                                                 "relative to the current folder).")
-@click.option("--format", "output_format", type=click.Choice(tuple(SUFFIXES)),
-              default="urdf", show_default=True,
-              help="urdf: the expanded URDF; mjcf: the MuJoCo model `mcar sim` runs "
-                   "(built files named .xml); sdf: the SDF Gazebo spawns, written by "
-                   "libsdformat (built files named .sdf).")
+@click.option("--format", "output_format", type=click.Choice(("urdf", "mjcf", "sdf")),
+              default="urdf", show_default=True, callback=_format,
+              help="urdf: the expanded URDF; sdf: the SDF Gazebo spawns, written by "
+                   "libsdformat (built files named .sdf). MuJoCo's model: `mcar export --to "
+                   "mjcf`.")
 @click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
 @robot_options
 @handle_errors

@@ -25,6 +25,7 @@ COMMANDS = {
     "check": ("check", "Check URDF/xacro files: check_urdf's tree, stricter, located."),
     "sim": ("sim", "Simulate the robot in MuJoCo: it stands, drives and turns."),
     "ci": ("ci", "Build, check --strict and render a whole package: the CI job."),
+    "export": ("export", "Export a robot as a folder MuJoCo loads, meshes and all."),
     "diff": ("diff", "Show what a change does to the robot: kinematics, masses, dimensions."),
     "sweep": ("sweep", "Sweep dimensions: build, check and simulate every variant."),
     "tree": ("tree", "Print the kinematic tree with joint types, origins and axes."),

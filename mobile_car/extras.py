@@ -15,7 +15,8 @@ from .errors import UsageError
 
 # extra -> the top-level modules it brings that mcar imports (pyproject.toml lists them)
 EXTRAS = {"view": ("viser", "websockets"),
-          "sweep": ("pandas", "pyarrow", "distributed", "matplotlib")}
+          "sweep": ("pandas", "pyarrow", "distributed", "matplotlib"),
+          "usd": ("pxr", "urdf_usd_converter")}
 
 
 def missing(modules) -> list[str]:

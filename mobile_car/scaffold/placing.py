@@ -56,7 +56,7 @@ def place(folder: Path, files: dict[str, str], optional: frozenset[str] = frozen
     folder = Path(os.path.abspath(folder))
     refuse_present(folder, files, optional)
     files = {rel: text for rel, text in files.items() if not os.path.lexists(folder / rel)}
-    made_parents = _make_parents(folder.parent)
+    made_parents = make_parents(folder.parent)
     staging = folder.parent / f".mcar-new-{secrets.token_hex(4)}"
     try:
         os.mkdir(staging)  # the umask's mode, as a plain mkdir: it becomes the folder
@@ -72,20 +72,20 @@ def place(folder: Path, files: dict[str, str], optional: frozenset[str] = frozen
         else:
             _move_in(staging, folder, list(files))
     except OSError as exc:
-        _remove_made(made_parents)
+        remove_made(made_parents)
         where = exc.filename if exc.filename and ".mcar-new-" not in str(exc.filename) \
             else folder
         raise InputError(f"cannot write: {exc.strerror or exc}; nothing was written",
                          file=display_path(where)) from None
     except BaseException:
-        _remove_made(made_parents)
+        remove_made(made_parents)
         raise
     finally:
         shutil.rmtree(staging, ignore_errors=True)
     return [folder / rel for rel in files]
 
 
-def _make_parents(parent: Path) -> list[Path]:
+def make_parents(parent: Path) -> list[Path]:
     """Make ``parent`` and its missing ancestors; returns those made, deepest first."""
     missing = []
     for directory in [parent, *parent.parents]:
@@ -96,13 +96,13 @@ def _make_parents(parent: Path) -> list[Path]:
         for directory in reversed(missing):
             os.mkdir(directory)
     except OSError as exc:
-        _remove_made(missing)
+        remove_made(missing)
         raise InputError(f"cannot make the folder: {exc.strerror or exc}",
                          file=str(parent)) from None
     return missing
 
 
-def _remove_made(folders: list[Path]) -> None:
+def remove_made(folders: list[Path]) -> None:
     for directory in folders:  # deepest first; only if still empty
         try:
             os.rmdir(directory)
@@ -132,5 +132,5 @@ def _move_in(staging: Path, folder: Path, relatives: list[str]) -> None:
                 os.unlink(target)
             except OSError:
                 pass
-        _remove_made(list(reversed(made)))
+        remove_made(list(reversed(made)))
         raise

@@ -346,7 +346,10 @@ def _sorted_steering(steering: list[Steering]) -> list[Steering]:
 def _wheel(mj, model, data, joints, name) -> Wheel:
     joint_id = model.joint(name).id
     body = int(model.jnt_bodyid[joint_id])
-    geoms = [g for g in range(model.ngeom) if model.geom_bodyid[g] == body]
+    # Its collision geoms only: a model with visuals (mcar export) has geoms that touch
+    # nothing (contype = conaffinity = 0), which neither roll nor size the tyre.
+    geoms = [g for g in range(model.ngeom) if model.geom_bodyid[g] == body
+             and (model.geom_contype[g] or model.geom_conaffinity[g])]
     limit = _child(joints[name], "limit")
 
     def number(key):

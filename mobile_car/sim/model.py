@@ -18,15 +18,15 @@ The simulation-only choices (docs/sim.md) are made here and nowhere else:
   its geometry; Gazebo leaves a moving one out: lint reports such links);
 * a drive joint's motor figures come from the description (:mod:`.motors`), a default
   torque when it gives none; its velocity servo's gain grows with the load the wheel
-  drives (:func:`servo_gain`), so that a heavy robot follows the speed ramp as the car does;
+  drives (:func:`.servos.servo_gain`), so that a heavy robot follows the speed ramp as the car does;
 * the wheel joints get an armature, the motor's rotor inertia seen through its gearbox:
   1e-4 kg m² on a small car (JGA25-370: ~2e-7 kg m² x 21²), a quarter of the wheel's
-  share of the robot (m·r²/n) on a larger one (:func:`wheel_armature`; Jackal: 0.011 kg m²),
+  share of the robot (m·r²/n) on a larger one (:func:`.servos.wheel_armature`; Jackal: 0.011 kg m²),
   as motors grow with what they drive: without it light wheels chatter against the stiff
   velocity servo and the robot over-travels as the speed ramps up (the car ~7%, Jackal
   2.8%); and a 1 ms step (0.6% over-travel, 2% at MuJoCo's default 2 ms);
 * an Ackermann car's steering joints get a position servo stiff enough that a tyre's
-  whole friction moves them by 0.3° at most (:func:`steering_gain`), within the joint's
+  whole friction moves them by 0.3° at most (:func:`.servos.steering_gain`), within the joint's
   effort limit; other revolute and prismatic joints (an arm, steering held straight
   when the car is driven as another kind) are welded at 0: with no motor they would fold.
 """
@@ -41,26 +41,14 @@ from lxml import etree
 
 from ..check.urdf_model import parse_number
 from ..errors import EXIT_PROBLEMS, McarError
-from .drives import Drive, actuated_joints, choose_drive, find_tree
+from .drives import Drive, actuated_joints
 from .engine import mujoco
-from .motors import motor_figures
+from .servos import DriveSources, add_motors, fit_drive
 
 TIMESTEP = 0.001
 # Above the floor by this much, a part does not rest on it (contacts, ground parts).
 GROUND_TOLERANCE = 0.003
 MESH_FORMATS = (".stl", ".obj", ".msh")
-# kv of the wheel motors' velocity servo (N m s/rad) for a wheel driving up to
-# SERVO_REFERENCE_INERTIA: stiff enough to follow a ramp of a few rad/s², within the effort
-# limit, which clamps it. Heavier loads get a gain in proportion (servo_gain), so the
-# servo's time constant stays under 1 ms on every robot (implicitfast integrates the gain
-# implicitly: stable at any size). The reference is above the bundled car's 4.7e-4 kg m²
-# (0.71 kg on 32.5 mm wheels) and its variants', which keep the gain they were tuned with.
-SERVO_GAIN = 0.5
-SERVO_REFERENCE_INERTIA = 1e-3  # kg m²
-WHEEL_ARMATURE = 1e-4  # kg m², the least, see the module's docstring ...
-ARMATURE_SHARE = 0.25  # ... and of the wheel's share of the robot's m·r², if more
-STEER_STIFFNESS = 0.005  # rad a steering servo yields to a tyre's full friction
-GRAVITY = 9.81
 # mu of a castor whose description gives none: a ball that rolls freely, modelled as
 # sliding (the bundled car's caster_friction).
 CASTOR_FRICTION = 0.01
@@ -75,7 +63,7 @@ class SimModelError(McarError):
 @dataclass
 class SimModel:
     model: object       # mujoco.MjModel
-    spec: object        # mujoco.MjSpec (mcar build --format mjcf writes it)
+    spec: object        # mujoco.MjSpec
     root: str
     root_body: int
     drive: Drive | None
@@ -114,7 +102,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     root = etree.fromstring(urdf, etree.XMLParser(resolve_entities=False, no_network=True))
     # The robot's own joints only: a <transmission> or <ros2_control> names joints too.
     joints = {j.get("name"): j for j in root if j.tag == "joint"}
-    friction = _gazebo_friction(root)
+    friction = gazebo_friction(root)
     colours = _link_colours(root)
     # The motor figures' other sources, kept before _prepare takes them out of the tree.
     root_figures = [e for e in root if e.tag in ("gazebo", "ros2_control")]
@@ -132,7 +120,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     spec.compiler.discardvisual = False  # (the URDF's visuals are gone; keep the floor's look)
     spec.option.timestep = TIMESTEP
     spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
-    _add_floor(spec, mj)
+    add_floor(spec, mj)
     for geom in spec.geoms:
         if geom.name != "mcar_floor":
             geom.contype, geom.conaffinity = 1, 0
@@ -145,18 +133,12 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     shape = _compile(spec, label)  # once with the description's own shapes, to look at
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)
-    lowest = _lowest_points(mj, shape, data)
-    tree = find_tree(mj, shape, data, joints)
-    drive, why = choose_drive(tree, actuated, left, right, kind)
+    lowest = lowest_points(mj, shape, data)
+    drive, why = fit_drive(mj, shape, data, joints, DriveSources(root_figures, actuated,
+                                                                friction), left, right, kind,
+                           effort, speed)
     wheels = drive.wheels if drive else []
     mass = float(shape.body_mass.sum())
-    for wheel in drive.driven if drive else []:
-        slip = friction.get(wheel.link, 1.0) if drive.kind == "skid-steer" else None
-        wheel.motor = motor_figures(root_figures, joints[wheel.joint], wheel.radius,
-                                    len(drive.driven), mass, effort, speed, slip)
-        wheel.effort, wheel.velocity = wheel.motor.effort, wheel.motor.velocity
-        wheel.gain = servo_gain(mass, wheel.radius, len(drive.driven),
-                                wheel_armature(mass, drive.radius, len(drive.wheels)))
     wheels_lowest = [lowest[g] for w in wheels for g in w.geom_ids]
     robot_geoms = [g for g in range(shape.ngeom) if shape.geom_bodyid[g] != 0]
     if not robot_geoms:
@@ -177,24 +159,10 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
             if geom.parent.name in parts and geom.parent.name not in friction:
                 geom.friction = [CASTOR_FRICTION, geom.friction[1], geom.friction[2]]
                 geom.priority = 1
-    armature = wheel_armature(mass, drive.radius, len(drive.wheels)) if drive else 0.0
     for wheel in wheels:
         _round_tyre(spec, wheel, mj)
-        spec.joint(wheel.joint).armature = armature
-    for wheel in drive.driven if drive else []:
-        actuator = spec.add_actuator(name=f"mcar_motor_{wheel.joint}", target=wheel.joint,
-                                     trntype=mj.mjtTrn.mjTRN_JOINT)
-        actuator.set_to_velocity(kv=wheel.gain)
-        _limit_force(actuator, wheel.effort)
+    add_motors(mj, spec, drive, mass)
     steering = drive.steering if drive else []
-    for steer in steering:
-        spec.joint(steer.joint).armature = armature
-        actuator = spec.add_actuator(name=f"mcar_steer_{steer.joint}", target=steer.joint,
-                                     trntype=mj.mjtTrn.mjTRN_JOINT)
-        actuator.set_to_position(kp=steering_gain(mass, drive.radius, len(drive.wheels)),
-                                 dampratio=1.0)
-        if steer.effort is not None:
-            _limit_force(actuator, steer.effort)
     held = _hold_the_rest(spec, joints, drive)
     model = _compile(spec, label)
     for wheel in wheels:  # (ids of the final model: held joints are gone from it)
@@ -208,13 +176,6 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
                     root_body=model.body(root_body.name).id, drive=drive,
                     why_no_drive=why, rest_height=-ground, ground_parts=parts, clearance=clearance,
                     floor_geom=model.geom("mcar_floor").id, notes=notes, mass=mass, held=held)
-
-
-def _limit_force(actuator, effort: float | None) -> None:
-    # MuJoCo refuses an empty range: a motor of no effort gets a vanishing one.
-    effort = max(effort if effort is not None else 0.0, 1e-12)
-    actuator.forcelimited = True
-    actuator.forcerange = [-effort, effort]
 
 
 def _hold_the_rest(spec, joints: dict, drive) -> list[str]:
@@ -233,28 +194,7 @@ def _hold_the_rest(spec, joints: dict, drive) -> list[str]:
     return held
 
 
-def steering_gain(mass: float, radius: float, wheels: int) -> float:
-    """kp of a steering servo (N·m/rad): a tyre's whole friction (mu 1) on its share of
-    the weight, pushing at the wheel's radius from the pivot, turns it by STEER_STIFFNESS
-    rad at most."""
-    return mass * GRAVITY * max(radius, 1e-3) / max(1, wheels) / STEER_STIFFNESS
-
-
-def wheel_armature(mass: float, radius: float, wheels: int) -> float:
-    """A wheel joint's armature (kg m²): WHEEL_ARMATURE, or ARMATURE_SHARE of the wheel's
-    share of the robot's m·r² where that is more."""
-    return max(WHEEL_ARMATURE, ARMATURE_SHARE * mass * radius ** 2 / max(1, wheels))
-
-
-def servo_gain(mass: float, radius: float, drive_wheels: int,
-               armature: float = WHEEL_ARMATURE) -> float:
-    """kv for a wheel that accelerates its share of the robot: SERVO_GAIN up to the
-    reference load, in proportion above it."""
-    load = mass * radius ** 2 / max(1, drive_wheels) + armature
-    return SERVO_GAIN * max(1.0, load / SERVO_REFERENCE_INERTIA)
-
-
-def _gazebo_friction(root) -> dict[str, float]:
+def gazebo_friction(root) -> dict[str, float]:
     """link -> mu1 of its ``<gazebo reference="link"><mu1>``."""
     found = {}
     for gazebo in root.iter("gazebo"):
@@ -330,7 +270,9 @@ def _prepare(root, base: Path, search) -> list[str]:
     return notes
 
 
-def _add_floor(spec, mj) -> None:
+def add_floor(spec, mj) -> None:
+    """A 20 m checkered floor at z = 0 (geom ``mcar_floor``, colliding with everything)
+    and a light above it; ``mcar export --to mjcf --floor`` adds the same."""
     texture = spec.add_texture(name="mcar_checker", type=mj.mjtTexture.mjTEXTURE_2D,
                                builtin=mj.mjtBuiltin.mjBUILTIN_CHECKER, width=256, height=256,
                                rgb1=[0.82, 0.84, 0.86], rgb2=[0.42, 0.45, 0.5])
@@ -358,7 +300,7 @@ def _engine_message(error) -> str:
     return (text[0] if text else type(error).__name__).removeprefix("Error: ")
 
 
-def _lowest_points(mj, model, data) -> dict[int, float]:
+def lowest_points(mj, model, data) -> dict[int, float]:
     """geom -> the z of its lowest point (the root at the origin, every joint at 0)."""
     lowest = {}
     for g in range(model.ngeom):

@@ -1,0 +1,284 @@
+"""``mcar export --to mjcf``: the robot as a complete MuJoCo model, written by MuJoCo
+(``MjSpec.to_xml``) into a folder with its meshes (:mod:`.assets`).
+
+MuJoCo's own URDF importer reads the description (so its joints, limits, ``<mimic>``
+equality constraints and inertias are MuJoCo's reading of them), told to keep the visuals
+and every link (``discardvisual``, ``fusestatic`` off) and to take masses from the
+description only (``inertiafromgeom`` off). Then, the choices of an export for people:
+
+* visual geoms in geom group 2, touching nothing; collision geoms in group 3 (MuJoCo's
+  viewer hides it until asked), colliding with the world but not with the robot itself
+  (URDF's and Gazebo's default); a converted mesh without a URDF material keeps its
+  own colour;
+* friction from the description's ``<gazebo reference><mu1>``, with a contact priority
+  so that the part's own value wins;
+* ``--base floating`` (a free joint ``floating_base`` on the root link) or ``fixed``
+  (welded to the world, as the importer leaves it);
+* ``--floor``: sim's floor and light, the robot standing on it (its lowest collision
+  point at z = 0); the default under a floating base;
+* the velocity servos (``mcar_motor_JOINT``), steering servos and wheel armature ``mcar
+  sim`` drives with, on the drive it finds (:mod:`mobile_car.sim.servos`), and sim's
+  1 ms implicit-fast step, so that ``data.ctrl`` (rad/s per drive wheel) drives at once;
+* inertias MuJoCo refuses are named link by link (:mod:`.inertia`).
+
+Lengths in m, masses in kg, the control in rad/s.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from lxml import etree
+
+from ..check.urdf_model import parse_number
+from ..errors import McarError
+from . import ExportError
+from .assets import Assets
+
+MUJOCO_READS = (".stl", ".obj", ".msh")
+VISUAL_GROUP = 2
+COLLISION_GROUP = 3
+FREE_JOINT = "floating_base"
+
+
+@dataclass
+class MjcfOptions:
+    base: str = "floating"          # or "fixed"
+    floor: bool | None = None       # None: a floor under a floating base
+    fix_inertia: bool = False
+
+
+@dataclass
+class Exported:
+    """What an export wrote and what the verification compares against."""
+
+    robot_file: str                 # relative to the folder
+    urdf_mass: float                # kg, the sum of the description's <mass>
+    model_mass: float               # kg, as the target's engine reads it
+    moving_joints: list[str]
+    meshes: list[str] = field(default_factory=list)       # files written, relative
+    converted: list[str] = field(default_factory=list)    # "uri -> relative" lines
+    warnings: list[str] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)     # said, not warned: no drive, why
+    drive: dict | None = None       # kind, driven joints, radius, command speed
+    base: str = "floating"
+    floor: bool = False
+    added_mass: float = 0.0         # kg MuJoCo gave massless moving links (--fix-inertia)
+
+
+@dataclass
+class Prepared:
+    """A robot ready for an engine's importer: its URDF (``root``) with the simulators'
+    extras taken out and every mesh pointing at its copy in ``assets.folder``."""
+
+    root: object
+    joints: dict
+    sources: object       # sim's DriveSources, read before the extras went
+    assets: Assets
+    warnings: list[str]
+
+
+def prepare(loaded, folder: Path, readable=MUJOCO_READS) -> Prepared:
+    from ..sim.drives import actuated_joints
+    from ..sim.model import gazebo_friction
+    from ..sim.servos import DriveSources
+
+    root = parse_robot(loaded.urdf, loaded.label)
+    joints = {j.get("name"): j for j in root if j.tag == "joint"}
+    sources = DriveSources([e for e in root if e.tag in ("gazebo", "ros2_control")],
+                           actuated_joints(root), gazebo_friction(root))
+    for element in list(root.iter("gazebo", "transmission", "ros2_control")):
+        element.getparent().remove(element)
+    assets = Assets(folder, readable)
+    warnings = place_meshes(root, assets, loaded)
+    return Prepared(root, joints, sources, assets, warnings)
+
+
+def mujoco_spec(mj, prepared: Prepared, label: str):
+    """MuJoCo's reading of the prepared URDF (visuals and every link kept), its meshes
+    found in the assets' folder."""
+    root = prepared.root
+    extension = etree.SubElement(root, "mujoco")
+    etree.SubElement(extension, "compiler", discardvisual="false", fusestatic="false",
+                     inertiafromgeom="false", balanceinertia="false", strippath="false")
+    try:
+        spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
+    except ValueError as error:
+        raise ExportError(f"MuJoCo cannot read the robot: {_first_line(error)}",
+                          file=label) from None
+    finally:
+        root.remove(extension)
+    spec.modelfiledir = str(prepared.assets.folder)
+    return spec
+
+
+def export_mjcf(loaded, folder: Path, options: MjcfOptions) -> Exported:
+    """Write the MuJoCo model of a loaded robot (a LoadedRobot) and its meshes into
+    ``folder``; ExportError where MuJoCo cannot make the model asked for."""
+    from ..sim.engine import mujoco
+
+    mj = mujoco()
+    prepared = prepare(loaded, folder)
+    spec = mujoco_spec(mj, prepared, loaded.label)
+    return _complete(mj, spec, prepared.root, prepared.joints, prepared.sources,
+                     prepared.assets, loaded, options, prepared.warnings)
+
+
+def _complete(mj, spec, root, joints, sources, assets, loaded, options, warnings):
+    from ..sim.model import TIMESTEP, add_floor, lowest_points
+    from ..sim.servos import add_motors, fit_drive
+    from .inertia import apply_fixes, fix_warnings, refuse, refused_links
+
+    refused = refused_links(mj, spec)
+    if not options.fix_inertia:
+        refuse(refused, loaded.label)
+    apply_fixes(mj, spec, refused, loaded.label)
+    _add_missing_mimics(spec, root, mj)
+    for geom in spec.geoms:
+        if geom.contype == 0 and geom.conaffinity == 0:
+            geom.group = VISUAL_GROUP
+            continue
+        geom.group, geom.contype, geom.conaffinity = COLLISION_GROUP, 1, 0
+        mu = sources.friction.get(geom.parent.name)
+        if mu is not None:
+            geom.friction = [mu, geom.friction[1], geom.friction[2]]
+            geom.priority = 1
+    root_body = spec.worldbody.first_body()
+    if root_body is None:
+        raise ExportError("the robot has no link MuJoCo can place", file=loaded.label)
+    if options.base == "floating":
+        root_body.add_freejoint(name=FREE_JOINT)
+    spec.option.timestep = TIMESTEP
+    spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
+    shape = _compile(spec, loaded.label)
+    data = mj.MjData(shape)
+    mj.mj_kinematics(shape, data)
+    drive, why = fit_drive(mj, shape, data, joints, sources)
+    mass = float(shape.body_mass.sum())
+    add_motors(mj, spec, drive, mass)
+    floor = options.floor if options.floor is not None else options.base == "floating"
+    if floor:
+        lowest = [z for g, z in lowest_points(mj, shape, data).items()
+                  if shape.geom_contype[g] or shape.geom_conaffinity[g]]
+        if lowest:
+            root_body.pos = [root_body.pos[0], root_body.pos[1], root_body.pos[2] - min(lowest)]
+        add_floor(spec, mj)
+    model = _compile(spec, loaded.label)
+    name = robot_file_name(root)
+    (Path(spec.modelfiledir) / name).write_text(spec.to_xml(), encoding="utf-8")
+    warnings += fix_warnings(model, refused)
+    added = sum(float(model.body(r.link).mass[0]) for r in refused if r.problem == "massless")
+    return Exported(
+        robot_file=name, urdf_mass=urdf_mass(root), model_mass=float(model.body_mass.sum()),
+        moving_joints=moving_joints(root), meshes=sorted(assets.taken),
+        converted=[f"{a.uri} -> {a.relative}" for a in assets.by_uri.values() if a.converted],
+        warnings=warnings, notes=[f"no drive actuators: {why}"] if drive is None and why else [],
+        drive=drive_summary(drive), base=options.base, floor=floor, added_mass=added)
+
+
+def parse_robot(urdf: bytes, label: str):
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                             huge_tree=False, remove_comments=True, remove_pis=True)
+    try:
+        return etree.fromstring(urdf, parser)
+    except etree.XMLSyntaxError as error:
+        raise ExportError(f"not well-formed XML: {error.msg}", file=label,
+                          line=error.lineno) from None
+
+
+def place_meshes(root, assets: Assets, loaded) -> list[str]:
+    """Point every ``<mesh>`` at its copy in the folder; a mesh that cannot be copied is
+    left out with its visual or collision, and a warning says so."""
+    warnings = []
+    for mesh in list(root.iter("mesh")):
+        uri = mesh.get("filename") or ""
+        holder = mesh.getparent().getparent()  # <visual> or <collision>
+        link = holder.getparent()
+        try:
+            asset = assets.add(uri, loaded.search, loaded.base, loaded.label)
+        except McarError as error:
+            warnings.append(f"link {link.get('name')}: {holder.tag} left out: {error.message}")
+            link.remove(holder)
+            continue
+        mesh.set("filename", asset.relative)
+        if holder.tag == "visual" and asset.colour is not None and \
+                _child(holder, "material") is None:
+            material = etree.SubElement(holder, "material", name=f"mcar_colour_{asset.relative}")
+            etree.SubElement(material, "color", rgba=" ".join(f"{c:.4g}" for c in asset.colour))
+    return warnings
+
+
+def _add_missing_mimics(spec, root, mj) -> None:
+    """A ``<mimic>`` the importer left out becomes the equality constraint newer MuJoCo
+    makes of it: joint = offset + multiplier * followed joint."""
+    have = {(e.name1, e.name2) for e in spec.equalities}
+    for joint in root.iter("joint"):
+        mimic = _child(joint, "mimic")
+        if mimic is None or (joint.get("name"), mimic.get("joint")) in have:
+            continue
+        if spec.joint(joint.get("name")) is None or spec.joint(mimic.get("joint")) is None:
+            continue
+        multiplier = parse_number(mimic.get("multiplier")) if mimic.get("multiplier") else 1.0
+        offset = parse_number(mimic.get("offset")) if mimic.get("offset") else 0.0
+        spec.add_equality(type=mj.mjtEq.mjEQ_JOINT, name1=joint.get("name"),
+                          name2=mimic.get("joint"),
+                          data=[offset or 0.0, 1.0 if multiplier is None else multiplier,
+                                0, 0, 0, 0, 0, 0, 0, 0, 0])
+
+
+def _compile(spec, label: str):
+    try:
+        return spec.compile()
+    except ValueError as error:
+        raise ExportError(f"MuJoCo cannot compile the robot: {_first_line(error)}",
+                          file=label) from None
+
+
+def _first_line(error) -> str:
+    text = str(error).strip().splitlines()
+    return (text[0] if text else type(error).__name__).removeprefix("Error: ")
+
+
+def _child(element, tag: str):
+    return next((c for c in element if c.tag == tag), None)
+
+
+def robot_file_name(root, suffix: str = ".xml") -> str:
+    """``NAME.xml`` after the robot's name, where that is a plain file name."""
+    from ..names import component_problem
+
+    name = (root.get("name") or "").strip()
+    if not name or component_problem(name + suffix) or name.startswith(".") or "\\" in name:
+        name = "robot"
+    return name + suffix
+
+
+def urdf_mass(root) -> float:
+    """The sum of the links' ``<inertial><mass value>`` (kg)."""
+    total = 0.0
+    for link in root.iterchildren("link"):
+        mass = link.find("inertial/mass")
+        value = parse_number(mass.get("value")) if mass is not None else None
+        total += value or 0.0
+    return total
+
+
+def moving_joints(root) -> list[str]:
+    """The robot's joints that move (every type but ``fixed``)."""
+    return [j.get("name") for j in root.iterchildren("joint") if j.get("type") != "fixed"]
+
+
+def drive_summary(drive) -> dict | None:
+    """What the manifest says of the drive, and what ``--verify`` commands."""
+    if drive is None:
+        return None
+    from types import SimpleNamespace
+
+    from ..sim.run import command_speed
+
+    return {"kind": drive.kind, "left": [w.joint for w in drive.left],
+            "right": [w.joint for w in drive.right], "radius": drive.radius,
+            "speed": command_speed(SimpleNamespace(drive=drive)),  # it reads .drive only
+            "steering": [s.joint for s in drive.steering],
+            "motors": {w.joint: {"kv": w.gain, "effort": w.effort} for w in drive.driven}}

@@ -1,0 +1,144 @@
+"""``mcar export --to usd``: the robot as an OpenUSD asset (Isaac Sim / Isaac Lab, Newton),
+written by the Newton project's ``urdf-usd-converter`` and completed with ``pxr``.
+
+Measured before choosing it (docs/exports.md): on the bundled car, TurtleBot3 burger, Husky
+and Jackal it keeps every mass exactly, states metres, kilograms and Z-up in the stage,
+writes meshes as ``UsdGeom.Mesh``, links as ``UsdPhysics`` rigid bodies with their mass
+and inertia, collision APIs, and joints with their limits. What it lacks is added here:
+
+* the converter reads only files mcar measured and wrote: the URDF it is given is mcar's
+  (extras stripped, a plain file name), and its meshes are copies within the mesh limits,
+  COLLADA and other formats converted to STL in metres by mcar's reader (:mod:`.assets`);
+* drives: each drive wheel's joint gets an angular velocity drive with the damping of the
+  velocity servo ``mcar sim`` drives it with (kv, N·m·s/rad, written per degree as USD
+  wants) and its effort limit (:mod:`mobile_car.sim.servos`, found on MuJoCo's model);
+* ``--base floating``: the converter welds a root that has no mass of its own to the stage
+  (Husky's ``root_joint``); that joint is deactivated.
+
+Masses in kg, lengths in m.
+"""
+
+from __future__ import annotations
+
+import math
+import tempfile
+from pathlib import Path
+
+from lxml import etree
+
+from ..errors import McarError
+from . import ExportError
+from .mjcf import Exported, moving_joints, prepare, robot_file_name, urdf_mass
+
+USD_READS = (".stl", ".obj")
+
+
+def export_usd(loaded, folder: Path, options) -> Exported:
+    """Write the USD asset of a loaded robot into ``folder``."""
+    from pxr import Usd
+
+    with tempfile.TemporaryDirectory(prefix=".mcar-usd-sources-", dir=folder.parent) as scratch:
+        prepared = prepare(loaded, Path(scratch), USD_READS)
+        root = prepared.root
+        stem = robot_file_name(root, "")
+        root.set("name", stem)
+        source = Path(scratch) / f"{stem}.urdf"
+        source.write_bytes(etree.tostring(root, xml_declaration=True, encoding="utf-8"))
+        drive = _drive(loaded, prepared)
+        from pxr import UsdUtils
+        from urdf_usd_converter import Converter
+
+        # USD's diagnostics (status lines, the converter's warnings) are kept, not printed
+        # on stderr: a library does not print; the warnings join the export's.
+        said = UsdUtils.CoalescingDiagnosticDelegate()
+        try:
+            asset = Converter(layer_structure=True, scene=True).convert(str(source),
+                                                                          str(folder))
+        except (ValueError, RuntimeError, OSError) as error:
+            raise ExportError(f"urdf-usd-converter cannot convert the robot: {error}",
+                              file=loaded.label) from None
+        finally:
+            told = [d for d in said.TakeUncoalescedDiagnostics()
+                    if "Warning" in str(d.diagnosticCodeString)]
+            del said
+        prepared.warnings += [f"urdf-usd-converter: {d.commentary}" for d in told]
+        converted = [f"{a.uri} -> {a.relative} (then into the USD layers)"
+                     for a in prepared.assets.by_uri.values() if a.converted]
+    path = Path(str(asset.path))
+    stage = Usd.Stage.Open(str(path))
+    notes = _complete(stage, drive, options.base)
+    stage.Save()
+    return Exported(
+        robot_file=path.relative_to(folder).as_posix(), urdf_mass=urdf_mass(root),
+        model_mass=stage_mass(stage), moving_joints=moving_joints(root),
+        meshes=sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*")
+                      if p.is_file()),
+        converted=converted, warnings=prepared.warnings, notes=notes, drive=drive,
+        base=options.base)
+
+
+def _drive(loaded, prepared) -> dict | None:
+    """The drive ``mcar sim`` finds on MuJoCo's reading of the robot, with its servos'
+    gains, or None where MuJoCo cannot read it (the USD then has no drives)."""
+    from ..sim.engine import mujoco
+    from ..sim.servos import fit_drive
+    from .mjcf import drive_summary, mujoco_spec
+
+    mj = mujoco()
+    try:
+        spec = mujoco_spec(mj, prepared, loaded.label)
+        spec.compiler.balanceinertia = True  # the drive's figures do not depend on it
+        spec.worldbody.first_body().add_freejoint()
+        shape = spec.compile()
+    except (McarError, ValueError, AttributeError):
+        return None
+    data = mj.MjData(shape)
+    mj.mj_kinematics(shape, data)
+    drive, _ = fit_drive(mj, shape, data, prepared.joints, prepared.sources)
+    return drive_summary(drive)
+
+
+def _complete(stage, drive: dict | None, base: str) -> list[str]:
+    from pxr import UsdPhysics
+
+    notes = []
+    joints = {p.GetName(): p for p in stage.Traverse() if p.IsA(UsdPhysics.Joint)}
+    if base == "floating":
+        for name, prim in joints.items():
+            if _welds_to_stage(stage, prim):
+                prim.SetActive(False)
+                notes.append(f"joint {name} (the converter's weld to the stage) "
+                             "deactivated: the base floats")
+    for joint, motor in ((drive or {}).get("motors") or {}).items():
+        prim = joints.get(joint)
+        if prim is None:
+            continue
+        api = UsdPhysics.DriveAPI.Apply(prim, "angular")
+        api.CreateTypeAttr("force")
+        api.CreateStiffnessAttr(0.0)
+        api.CreateDampingAttr(float(motor["kv"]) * math.pi / 180)  # per degree
+        api.CreateTargetVelocityAttr(0.0)
+        if motor.get("effort") is not None:
+            api.CreateMaxForceAttr(float(motor["effort"]))
+    return notes
+
+
+def _welds_to_stage(stage, prim) -> bool:
+    """A fixed joint whose first body is no rigid body (the stage itself)."""
+    from pxr import UsdPhysics
+
+    if not prim.IsA(UsdPhysics.FixedJoint):
+        return False
+    targets = UsdPhysics.Joint(prim).GetBody0Rel().GetTargets()
+    if not targets:
+        return True
+    body = stage.GetPrimAtPath(targets[0])
+    return not (body and body.HasAPI(UsdPhysics.RigidBodyAPI))
+
+
+def stage_mass(stage) -> float:
+    """The sum of the masses the stage's MassAPIs give (kg)."""
+    from pxr import UsdPhysics
+
+    return float(sum(UsdPhysics.MassAPI(p).GetMassAttr().Get() or 0.0
+                     for p in stage.Traverse() if p.HasAPI(UsdPhysics.MassAPI)))

@@ -20,7 +20,7 @@ import stat
 from pathlib import Path
 
 from ..errors import InputError
-from .inputs import MAX_INPUT_MB_ENV, check_size, display_path, input_limit_mb
+from .input_limit import MAX_INPUT_MB_ENV, check_size, display_path, input_limit_mb
 
 _CHUNK = 1 << 20
 _KINDS = ((stat.S_ISFIFO, "a FIFO"), (stat.S_ISSOCK, "a socket"),

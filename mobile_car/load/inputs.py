@@ -6,26 +6,22 @@ name is :mod:`mobile_car.load.selection`'s business.
 
 from __future__ import annotations
 
-import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..errors import InputError, UsageError
-from ..names import shown
+from ..errors import UsageError
+from .input_limit import (  # noqa: F401  (their home before; imported from here too)
+    DEFAULT_MAX_INPUT_MB,
+    MAX_INPUT_MB_ENV,
+    check_input_size,
+    check_size,
+    display_path,
+    input_limit_mb,
+)
 
 STDIN = "-"
 STDIN_LABEL = "<stdin>"
-
-
-def display_path(path: str | os.PathLike) -> str:
-    """A path for messages: relative to the working directory when below it, control
-    characters escaped (a file name is data: see mobile_car.names)."""
-    absolute = Path(os.path.abspath(path))
-    try:
-        return shown(absolute.relative_to(Path.cwd()))
-    except ValueError:
-        return shown(absolute)
 
 
 def parse_mapping_args(words: list[str]) -> dict[str, str]:
@@ -45,35 +41,6 @@ def parse_mapping_args(words: list[str]) -> dict[str, str]:
     from xacro.cli import load_mappings  # the xacro command's own rules
 
     return load_mappings(words)
-
-
-# xacro holds a document as a DOM of Python objects, tens of times the file's size (the
-# figures: bench/notes.md): refuse what would exhaust a CI runner's memory.
-MAX_INPUT_MB_ENV = "MCAR_MAX_INPUT_MB"
-DEFAULT_MAX_INPUT_MB = 16
-
-
-def check_input_size(path: Path) -> None:
-    """InputError if the file is larger than xacro (or the renderer) should take on."""
-    check_size(path.stat().st_size, display_path(path))
-
-
-def input_limit_mb() -> float:
-    """MCAR_MAX_INPUT_MB, validated."""
-    from ..settings import env_number
-
-    return env_number(MAX_INPUT_MB_ENV, DEFAULT_MAX_INPUT_MB, 0.001, 1e6, "MB")
-
-
-def check_size(size: int, shown: str) -> None:
-    """InputError if ``size`` bytes are more than the limit (see check_input_size)."""
-    limit_mb = input_limit_mb()
-    if size > limit_mb * 1024 * 1024:
-        raise InputError(f"{size / 1024 / 1024:.0f} MB is more than the {limit_mb:g} MB this "
-                         f"command reads (xacro and the renderer hold ~45x the file in memory); "
-                         f"set {MAX_INPUT_MB_ENV} to raise the limit (`mcar check` has none "
-                         "for regular files)",
-                         file=shown)
 
 
 def split_words(words) -> tuple[list[str], dict[str, str]]:

@@ -75,9 +75,14 @@ def test_check_gazebo_on_the_car_reports_lumping_as_notes_at_their_source_lines(
            "'base_footprint' by its fixed joint 'base_joint'" in result.stderr
     assert f"urdf/mobile_robot.gazebo.xacro:{laser}: note: <gazebo reference=\"laser_link\">: " \
            "Gazebo lumps link 'laser_link' into 'base_footprint'" in result.stderr
-    # a block a macro makes is found at the call that names its link
-    assert f"urdf/mobile_robot.gazebo.xacro:{call}: note: <gazebo reference=\"caster_link\">" \
-        in result.stderr
+    # a block a macro makes is found where the macro writes it, with the call that named
+    # its link (issue 26's exact locations)
+    block = line_of(GAZEBO_FILE, '<gazebo reference="${link}">')
+    made = [line for line in lines if 'reference="caster_link"' in line]
+    assert len(made) == 1 and made[0].startswith(
+        f"urdf/mobile_robot.gazebo.xacro:{block}: note: <gazebo reference=\"caster_link\">")
+    assert f"(in xacro:surface_friction called at urdf/mobile_robot.gazebo.xacro:{call}," \
+        in made[0]
     assert "note: Gazebo simulates 3 links: 0.7056 kg, as in the URDF [N403]" in result.stderr
     assert result.stdout == ""
 
@@ -132,8 +137,8 @@ def test_build_sdf_warns_of_the_links_gazebo_leaves_out(cli, gazebo, tmp_path):
 def test_build_sdf_of_a_folder_names_files_sdf(cli, gazebo, tmp_path):
     result = cli("build", "--format", "sdf", REPO / "urdf" / "laser", "-o", tmp_path / "out")
     assert result.exit_code == 0, result.output
-    assert [p.relative_to(tmp_path / "out").as_posix() for p in (tmp_path / "out").rglob("*.*")] \
-        == ["laser/test_laser.sdf"]
+    built = [p.relative_to(tmp_path / "out").as_posix() for p in (tmp_path / "out").rglob("*.*")]
+    assert sorted(built) == [".mcar-build.json", "laser/test_laser.sdf"]  # and its build record
 
 
 @pytest.fixture

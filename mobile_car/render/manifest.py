@@ -40,7 +40,7 @@ from ..freshness import (
 MANIFEST_NAME = ".mcar-render.json"
 CONTACT_SHEET = "index.png"
 # Bump when the same input and options give different pixels (lighting, overlays, camera).
-DRAWING_VERSION = 1
+DRAWING_VERSION = 2  # 2: COLLADA units applied, unread meshes drawn as markers
 
 
 def sha256(data: bytes) -> str:

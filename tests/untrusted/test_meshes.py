@@ -212,11 +212,11 @@ def test_a_binary_stl_whose_header_lies_is_a_broken_mesh(tmp_path):
     before = _digests(tmp_path)
     result, seconds, _ = _run("render", robot, "-o", "out.png", "--renderer", "raycast",
                               cwd=tmp_path)
-    assert result.returncode == 1
+    assert result.returncode == 0  # drawn, the mesh as a marker: a warning, as in check
     assert result.stderr.splitlines()[0] == (
         f"robot.urdf:{MESH_LINE}: warning: mesh 'lies.stl' cannot be loaded: its binary STL "
         "header says 1000000000 triangles, and the file of 234 bytes holds at most 3 [W207]")
-    assert not (tmp_path / "out.png").exists()
+    assert _magenta(tmp_path / "out.png") > 200
     after = _digests(tmp_path)
     assert {name: after.get(name) for name in before} == before
 

@@ -48,7 +48,7 @@ ROBOT = b"""<?xml version="1.0"?>
     </visual>
     <collision>
       <origin xyz="0 0 0.1"/>
-      <geometry><mesh filename="meshes/cube.stl" scale="0.1 0.1 0.2"/></geometry>
+      <geometry><mesh filename="meshes/cube.stl" scale="5 5 10"/></geometry>
     </collision>
   </link>
   <link name="tool">

@@ -791,9 +791,16 @@ def _sweep_split_rows(results: dict, first, mixed) -> list[str]:
     return [*text, ""]
 
 
+def section_meshes(rows: list[str], work: Path, quick: bool) -> None:
+    import mesh_check_bench
+
+    mesh_check_bench.section(rows, work, quick, sys.modules[__name__])
+
+
 SECTIONS = {"check": section_check, "build": section_build, "startup": section_startup,
             "batch": section_batch, "folder": section_folder, "render": section_render,
-            "noop": section_noop, "sim": section_sim, "sweep": section_sweep}
+            "noop": section_noop, "sim": section_sim, "sweep": section_sweep,
+            "meshes": section_meshes}
 NEEDS_CHECK_URDF = {"check", "startup", "batch"}
 
 

@@ -33,6 +33,8 @@ from .tree import KinematicTree, build_tree
 from .urdf_model import SourceLines, XmlError, axis_of, origin_of, parse_number, parse_xml
 from .urdf_reader import Robot, read_robot
 
+LARGE_ROBOT = 2000  # links: the rest pose is worked out with numpy (rest_pose_arrays.py)
+
 
 @dataclass
 class CheckResult:
@@ -115,13 +117,19 @@ def _check_document(root, data: bytes, file: str, base: Path, search: PackageSea
     materials = material_colours(robot, report)
     top_level = {element.get("name") for element, _ in robot.materials}
     moving, root_link = moving_links(tree), tree.root if len(tree.roots) == 1 else None
-    check_link_bodies(robot.links, report, materials, top_level, moving, root_link)
+    held = check_link_bodies(robot.links, report, materials, top_level, moving, root_link)
     result.mesh_files = check_meshes(root, base, search, report)
     # Size and plausibility on a robot without errors: a number beyond any robot's (E117)
     # or unreadable (E114) would only be said again, less clearly.
     if tree.is_sound and not any(d.is_error for d in report.diagnostics):
         bounds = {mesh.element: mesh.bounds for mesh in result.mesh_files}
-        pose = rest_pose(robot, tree, bounds)
+        pose = None
+        if len(robot.links) >= LARGE_ROBOT:  # numpy pays for its import from here on
+            from .rest_pose_arrays import rest_pose_arrays
+
+            pose = rest_pose_arrays(robot, tree, held, bounds)
+        if pose is None:
+            pose = rest_pose(robot, tree, held, bounds)
         result.extents = pose.extents()
         check_plausibility(robot, tree, pose, report)
     if not report.numbers_confirmed():

@@ -30,7 +30,7 @@ from math import sqrt
 
 from .context import Reporter
 from .inertia import principal_moments
-from .rest_pose import RestPose, Shape, frame, union
+from .rest_pose import ZERO, RestPose, Shape, firsts, frame_of, span
 from .structure import moving_links
 
 BUILDING_M = 20.0
@@ -42,20 +42,16 @@ INERTIA_BELOW_BOX = 100.0
 WHEEL_ABOVE = 1.25
 WHEEL_BELOW = 0.05
 _PARALLEL = 0.99  # |cos| between a cylinder's axis and the axle to call them parallel
-_INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 
 def check_plausibility(robot, tree, pose: RestPose, report: Reporter) -> None:
+    """The rules on ``pose`` (a RestPose, or the RestPose-like ArraysPose of a large
+    robot, which hands over only the links it could not clear itself)."""
     _robot_size(robot, pose, report)
     _mesh_scales(pose, report)
-    by_link: dict[str, list[Shape]] = {}
-    for shape in pose.shapes:
-        by_link.setdefault(shape.link, []).append(shape)
     moving = moving_links(tree)
-    for name, inertial in pose.inertials.items():
-        shapes = by_link.get(name)
-        if shapes:
-            _inertia(name, inertial, shapes, tree, name in moving, report)
+    for name, inertial, shapes in pose.judged_links():
+        _inertia(name, inertial, shapes, tree, name in moving, report)
 
 
 def metres(value: float) -> str:
@@ -66,14 +62,13 @@ def _robot_size(robot, pose: RestPose, report: Reporter) -> None:
     extents = pose.extents()
     if extents is None or max(extents) <= BUILDING_M:
         return
-    biggest = max(pose.shapes, key=lambda s: max(h - lo for lo, h in zip(s.low, s.high,
-                                                                          strict=True)))
-    span = max(h - lo for lo, h in zip(biggest.low, biggest.high, strict=True))
+    biggest = pose.largest()
+    across = span(biggest.low, biggest.high)
     hint = "a mesh in millimetres or inches read as metres?" if biggest.tag == "mesh" else \
         "a length in centimetres or millimetres written as metres?"
     report.add("W211", robot.element, f"the robot is {_sizes(extents)} m in its rest pose, "
                f"larger than a building; its largest part: link '{biggest.link}' "
-               f"{biggest.kind} {_named(biggest)}, {metres(span)} across ({hint})")
+               f"{biggest.kind} {_named(biggest)}, {metres(across)} across ({hint})")
 
 
 def _named(shape: Shape) -> str:
@@ -82,19 +77,12 @@ def _named(shape: Shape) -> str:
     return f"<{shape.tag}>"
 
 
-def _span(low, high) -> float:
-    return max(h - lo for lo, h in zip(low, high, strict=True))
-
-
 def _mesh_scales(pose: RestPose, report: Reporter) -> None:
-    meshes = [shape for shape in pose.shapes if shape.tag == "mesh"]
+    meshes = pose.meshes()
     if not meshes:
         return
-    others = [shape for shape in pose.shapes if shape.tag != "mesh"]
-    low, high = union(others)
-    frames = [t for _r, t in pose.poses.values()]
-    if low is not None:
-        frames += [low, high]
+    low, high = pose.rest_box()
+    frames = [] if low is None else [low, high]
     # The box around everything but one mesh: the rest, with each mesh left out in turn.
     before = _running(meshes, frames)
     after = _running(meshes[::-1], frames)[::-1]
@@ -102,7 +90,7 @@ def _mesh_scales(pose: RestPose, report: Reporter) -> None:
         rest_low, rest_high = _joined(before[index], after[index + 1])
         if rest_low is None:
             continue
-        rest, size = _span(rest_low, rest_high), max(shape.size)
+        rest, size = span(rest_low, rest_high), max(shape.size)
         if rest <= 0 or size <= 0:
             continue
         if size > MESH_LARGER * rest:
@@ -137,37 +125,24 @@ def _joined(a: tuple, b: tuple) -> tuple:
     return (tuple(map(min, a[0], b[0])), tuple(map(max, a[1], b[1])))
 
 
-def _inertial_values(inertial) -> tuple | None:
-    """(mass, six moments) of an <inertial>, None unless all read and the mass is > 0."""
-    mass, inertia = inertial.find("mass"), inertial.find("inertia")
-    if mass is None or inertia is None:
-        return None
-    try:
-        value = float(mass.get("value"))
-        moments = tuple(float(inertia.get(name)) for name in _INERTIA)
-    except (TypeError, ValueError):
-        return None
-    return (value, moments) if value > 0 else None
-
-
-def _inertia(name: str, inertial, shapes: list[Shape], tree, moving: bool,
+def _inertia(name: str, inertial: tuple, shapes: list[Shape], tree, moving: bool,
              report: Reporter) -> None:
-    values = _inertial_values(inertial)
-    if values is None:
+    """W213, or W214 for a wheel; ``inertial`` is (element, mass, moments, rpy)."""
+    element, mass, moments, rpy = inertial
+    if mass <= 0:
         return
-    mass, moments = values
     principal = principal_moments(*moments)
     if principal[0] <= 0:  # W204 says so
         return
-    element = inertial.find("inertia")
+    inertia = firsts(element)["inertia"]
     own = [s for s in shapes if s.kind == "collision"] or shapes
     wheel = _wheel(name, own, tree)
     if wheel is not None:
-        _wheel_inertia(name, element, inertial, mass, moments, wheel, report)
+        _wheel_inertia(name, inertia, frame_of(ZERO, rpy), mass, moments, wheel, report)
         return
     trace = sum(principal)
     if len(own) == 1 and own[0].tag != "mesh":
-        solid, what, below = _solid_trace(own[0], mass), _described(own[0]), INERTIA_BELOW_SHAPE
+        solid, what, below = solid_trace(own[0], mass), _described(own[0]), INERTIA_BELOW_SHAPE
     else:
         low, high = _local_union(own)
         size = tuple(h - lo for lo, h in zip(low, high, strict=True))
@@ -178,11 +153,11 @@ def _inertia(name: str, inertial, shapes: list[Shape], tree, moving: bool,
         return
     ratio = trace / solid
     if ratio > INERTIA_ABOVE:
-        report.add("W213", element, f"link '{name}': its inertia (trace {trace:.3g} kg m²) is "
+        report.add("W213", inertia, f"link '{name}': its inertia (trace {trace:.3g} kg m²) is "
                    f"{ratio:.0f} times that of a solid of {mass:g} kg filling {what} "
                    f"({solid:.3g} kg m²): more than its mass can have there")
     elif ratio * below < 1 and moving:
-        report.add("W213", element, f"link '{name}': its inertia (trace {trace:.3g} kg m²) is "
+        report.add("W213", inertia, f"link '{name}': its inertia (trace {trace:.3g} kg m²) is "
                    f"1/{1 / ratio:.0f} of that of a solid of {mass:g} kg filling {what} "
                    f"({solid:.3g} kg m²): too small for its size")
 
@@ -216,7 +191,7 @@ def _described(shape: Shape) -> str:
     return f"its {shape.kind} sphere (radius {shape.size[0]:.3g} m)"
 
 
-def _solid_trace(shape: Shape, mass: float) -> float:
+def solid_trace(shape: Shape, mass: float) -> float:
     """Ixx + Iyy + Izz of a solid box, cylinder or sphere of ``mass``."""
     if shape.tag == "box":
         return mass * sum(v * v for v in shape.size) / 6
@@ -238,10 +213,7 @@ def _wheel(name: str, shapes: list[Shape], tree) -> tuple | None:
         shape = shapes[0]
         if shape.tag == "sphere":
             return axis, shape.size[0]
-        placed = frame(shape.element.getparent().getparent().find("origin"))
-        if placed is None:
-            return None
-        rotation = placed[0]
+        rotation = shape.placed[0]  # the cylinder's axis is its frame's z
         along = abs(rotation[2] * axis[0] + rotation[5] * axis[1] + rotation[8] * axis[2])
         return (axis, shape.size[0]) if along > _PARALLEL else None
     along = max(range(3), key=lambda i: abs(axis[i]))
@@ -265,13 +237,10 @@ def _axis(joint) -> tuple | None:
     return None if length == 0 else (x / length, y / length, z / length)
 
 
-def _wheel_inertia(name: str, element, inertial, mass: float, moments: tuple, wheel: tuple,
-                   report: Reporter) -> None:
+def _wheel_inertia(name: str, element, placed: tuple, mass: float, moments: tuple,
+                   wheel: tuple, report: Reporter) -> None:
     (ax, ay, az), radius = wheel
     ixx, ixy, ixz, iyy, iyz, izz = moments
-    placed = frame(inertial.find("origin"))
-    if placed is None:
-        return
     r = placed[0]
     # The axle in the inertia's frame (Rᵀ a), then aᵀ I a.
     x = r[0] * ax + r[3] * ay + r[6] * az

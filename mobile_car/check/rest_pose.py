@@ -2,15 +2,16 @@
 box around each visual and collision shape, in metres, in the root's frame.
 
 ``mcar check`` states the robot's size from it and judges plausibility on it
-(:mod:`.plausibility`), without numpy: check must stay quick to start, and a robot of
-20,000 links is walked once, each link's pose composed from its parent's (rotations as
-9-tuples, row by row; the URDF's ``rpy`` is fixed-axis roll, pitch, yaw, as urdfdom reads
-it: R = Rz(yaw) Ry(pitch) Rx(roll)). A shape's box in the root's frame is the box around
-the rotated box of the shape (its corners' spread: ``|R| h``), so it may be looser than
-the shape, never tighter. A mesh's own box comes from :mod:`mobile_car.load.mesh_facts`
-(its file's unit applied), times its ``scale``; a mesh whose box is not known (missing,
-broken, over a limit) has none. Numbers are read as ``float`` reads them; one that is not
-a number leaves its element out (check reports it: E114).
+(:mod:`.plausibility`), without numpy (check must stay quick to start; a large robot's is
+worked out with numpy by :mod:`.rest_pose_arrays`). What each link holds comes read
+already (:class:`LinkShapes`): :mod:`.plain_links` reads it while proving a link clean, so
+a robot's elements are walked once; :func:`link_shapes` reads the other links. Each link's
+pose is composed from its parent's (rotations as 9-tuples, row by row; the URDF's ``rpy``
+is fixed-axis roll, pitch, yaw, as urdfdom reads it: R = Rz(yaw) Ry(pitch) Rx(roll)). A
+shape's box in the root's frame is the box around the rotated box of the shape (its
+corners' spread: ``|R| h``), so it may be looser than the shape, never tighter. A mesh's
+own box comes from :mod:`mobile_car.load.mesh_facts` (its file's unit applied), times its
+``scale``; a mesh whose box is not known (missing, broken, over a limit) has none.
 """
 
 from __future__ import annotations
@@ -18,7 +19,72 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from math import cos, sin
 
+ZERO = (0.0, 0.0, 0.0)
+ONE = (1.0, 1.0, 1.0)
 IDENTITY = ((1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0), (0.0, 0.0, 0.0))
+
+
+@dataclass(slots=True)
+class LinkShapes:
+    """What a link holds, its numbers read: ``bodies`` are (kind, shape element, xyz, rpy,
+    dims) per visual and collision, dims a box's size, a cylinder's (radius, length), a
+    sphere's (radius,), a mesh's scale; ``inertial`` is (element, mass, six moments, rpy)
+    of its first <inertial>, or None."""
+
+    bodies: list
+    inertial: tuple | None = None
+
+
+def link_shapes(element) -> LinkShapes:
+    """The LinkShapes of a ``<link>`` read here (one :mod:`.plain_links` did not prove
+    clean): the first <origin> and <geometry> of each body, as urdfdom reads them; a
+    body or inertial whose numbers do not read is left out (check reports it: E114)."""
+    bodies, inertial = [], None
+    for body in element:
+        kind = body.tag
+        if kind == "inertial":
+            if inertial is None:
+                inertial = _inertial_of(body)
+            continue
+        if kind != "visual" and kind != "collision":
+            continue
+        parts = firsts(body)
+        geometry, origin = parts.get("geometry"), parts.get("origin")
+        shape = None if geometry is None else next(
+            (child for child in geometry if child.tag.__class__ is str), None)
+        xyz = ZERO if origin is None else _numbers(origin.get("xyz"), ZERO)
+        rpy = ZERO if origin is None else _numbers(origin.get("rpy"), ZERO)
+        dims = None if shape is None else _dims(shape)
+        if xyz is not None and rpy is not None and dims is not None:
+            bodies.append((kind, shape, xyz, rpy, dims))
+    return LinkShapes(bodies, inertial)
+
+
+def _dims(shape) -> tuple | None:
+    get = shape.get
+    try:
+        if shape.tag == "box":
+            return _numbers(get("size"))
+        if shape.tag == "cylinder":
+            return float(get("radius")), float(get("length"))
+        if shape.tag == "sphere":
+            return (float(get("radius")),)
+    except (TypeError, ValueError):
+        return None
+    return _numbers(get("scale"), ONE) if shape.tag == "mesh" else None
+
+
+def _inertial_of(inertial) -> tuple | None:
+    parts = firsts(inertial)
+    mass, inertia, origin = parts.get("mass"), parts.get("inertia"), parts.get("origin")
+    try:
+        value = float(mass.get("value"))
+        moments = tuple(float(inertia.get(name)) for name in
+                        ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"))
+    except (AttributeError, TypeError, ValueError):
+        return None
+    rpy = ZERO if origin is None else _numbers(origin.get("rpy"), ZERO)
+    return None if rpy is None else (inertial, value, moments, rpy)
 
 
 @dataclass(slots=True)
@@ -47,14 +113,47 @@ class Shape:
 
 @dataclass
 class RestPose:
+    """The rest pose as the plausibility rules read it (:mod:`.rest_pose_arrays` makes the
+    same from numpy arrays for a large robot)."""
+
     poses: dict = field(default_factory=dict)   # link -> (rotation 9-tuple, origin)
     shapes: list[Shape] = field(default_factory=list)
-    inertials: dict = field(default_factory=dict)  # link -> its first <inertial>
+    inertials: dict = field(default_factory=dict)  # link -> LinkShapes.inertial
 
-    def extents(self, shapes: list[Shape] | None = None) -> tuple | None:
-        """(x, y, z) of the box around ``shapes`` (default: all), None if there are none."""
-        low, high = union(shapes if shapes is not None else self.shapes)
+    def extents(self) -> tuple | None:
+        """(x, y, z) of the box around every shape, None if there is none."""
+        low, high = union(self.shapes)
         return None if low is None else tuple(h - lo for lo, h in zip(low, high, strict=True))
+
+    def largest(self) -> Shape | None:
+        """The shape whose box is the widest."""
+        return max(self.shapes, key=lambda s: span(s.low, s.high), default=None)
+
+    def meshes(self) -> list[Shape]:
+        return [shape for shape in self.shapes if shape.tag == "mesh"]
+
+    def rest_box(self) -> tuple:
+        """(low, high) around every shape but the meshes, and every link's frame."""
+        low, high = union(shape for shape in self.shapes if shape.tag != "mesh")
+        points = [t for _r, t in self.poses.values()] + ([low, high] if low else [])
+        if not points:
+            return None, None
+        return (tuple(min(p[i] for p in points) for i in range(3)),
+                tuple(max(p[i] for p in points) for i in range(3)))
+
+    def judged_links(self):
+        """(link, its <inertial>, its shapes) of every link with both."""
+        by_link: dict[str, list[Shape]] = {}
+        for shape in self.shapes:
+            by_link.setdefault(shape.link, []).append(shape)
+        for name, inertial in self.inertials.items():
+            if name in by_link:
+                yield name, inertial, by_link[name]
+
+
+def span(low, high) -> float:
+    """The widest side of the box low..high."""
+    return max(high[0] - low[0], high[1] - low[1], high[2] - low[2])
 
 
 def union(shapes) -> tuple:
@@ -78,6 +177,17 @@ def union(shapes) -> tuple:
     if x0 > x1:
         return None, None
     return (x0, y0, z0), (x1, y1, z1)
+
+
+def firsts(element) -> dict:
+    """Tag -> the first child of that tag (urdfdom reads the first; lxml's find() is slow
+    Python, a loop over the children is not)."""
+    found = {}
+    for child in element:
+        tag = child.tag
+        if tag.__class__ is str and tag not in found:
+            found[tag] = child
+    return found
 
 
 def _numbers(text: str | None, default: tuple | None = None) -> tuple | None:
@@ -121,6 +231,18 @@ def frame(origin) -> tuple | None:
     return found
 
 
+def frame_of(xyz: tuple, rpy: tuple) -> tuple:
+    """(rotation, translation) of read numbers; identity rotations share one tuple."""
+    if rpy == ZERO:
+        return IDENTITY[0], xyz
+    roll, pitch, yaw = rpy
+    cr, sr, cp, sp = cos(roll), sin(roll), cos(pitch), sin(pitch)
+    cy, sy = cos(yaw), sin(yaw)
+    return ((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
+             sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
+             -sp, cp * sr, cp * cr), xyz)
+
+
 def compose(outer: tuple, inner: tuple) -> tuple:
     """The pose ``inner`` expressed in ``outer``'s parent frame."""
     a, b, u = outer[0], inner[0], inner[1]
@@ -160,40 +282,34 @@ def placed_box(pose: tuple, low: tuple, high: tuple) -> tuple:
     return (x - dx, y - dy, z - dz), (x + dx, y + dy, z + dz)
 
 
-def shape_box(element, mesh_bounds: dict) -> tuple | None:
-    """(size, (low, high)) of a shape in its own frame, or None (unknown, unreadable)."""
-    tag = element.tag
-    try:
-        if tag == "box":
-            size = _numbers(element.get("size"))
-            if size is None or min(size) <= 0:
-                return None
-            return size, (tuple(-v / 2 for v in size), tuple(v / 2 for v in size))
-        if tag == "cylinder":
-            radius, length = float(element.get("radius")), float(element.get("length"))
-            if not (radius > 0 and length > 0):
-                return None
-            return (radius, length), ((-radius, -radius, -length / 2),
-                                      (radius, radius, length / 2))
-        if tag == "sphere":
-            radius = float(element.get("radius"))
-            return ((radius,), ((-radius,) * 3, (radius,) * 3)) if radius > 0 else None
-    except (TypeError, ValueError):
+def own_box(tag: str, dims: tuple, element, mesh_bounds: dict) -> tuple | None:
+    """(size, (low, high)) of a shape in its own frame from its read numbers, or None
+    (a mesh whose box is not known, a size that is not positive)."""
+    if tag == "box":
+        if min(dims) <= 0:
+            return None
+        x, y, z = dims
+        return dims, ((-x / 2, -y / 2, -z / 2), (x / 2, y / 2, z / 2))
+    if tag == "cylinder":
+        radius, length = dims
+        if not (radius > 0 and length > 0):
+            return None
+        return dims, ((-radius, -radius, -length / 2), (radius, radius, length / 2))
+    if tag == "sphere":
+        radius = dims[0]
+        return (dims, ((-radius,) * 3, (radius,) * 3)) if radius > 0 else None
+    known = mesh_bounds.get(element)
+    if tag != "mesh" or known is None:
         return None
-    if tag != "mesh" or mesh_bounds.get(element) is None:
-        return None
-    scale = _numbers(element.get("scale"), (1.0, 1.0, 1.0))
-    if scale is None:
-        return None
-    low, high = mesh_bounds[element]
-    ends = [sorted((lo * s, h * s)) for lo, h, s in zip(low, high, scale, strict=True)]
+    ends = [sorted((lo * s, h * s)) for lo, h, s in zip(*known, dims, strict=True)]
     low, high = tuple(e[0] for e in ends), tuple(e[1] for e in ends)
     return tuple(h - lo for lo, h in zip(low, high, strict=True)), (low, high)
 
 
-def rest_pose(robot, tree, mesh_bounds: dict) -> RestPose:
-    """The rest pose of a robot whose tree is sound (``tree.is_sound``); ``mesh_bounds``
-    maps a ``<mesh>`` element to its box in its own frame (None: unknown)."""
+def rest_pose(robot, tree, shapes_of: dict, mesh_bounds: dict) -> RestPose:
+    """The rest pose of a robot whose tree is sound (``tree.is_sound``); ``shapes_of``
+    maps a link to its LinkShapes, ``mesh_bounds`` a ``<mesh>`` element to its box in its
+    own frame (None: unknown)."""
     result = RestPose()
     poses = result.poses
     poses[tree.root] = IDENTITY
@@ -207,40 +323,17 @@ def rest_pose(robot, tree, mesh_bounds: dict) -> RestPose:
             poses[joint.child] = pose if origin is None else compose(pose, origin)
             stack.append(joint.child)
     append = result.shapes.append
-    inertials = result.inertials
     for link in robot.links:
-        pose = poses.get(link.name)
-        if pose is None:
+        pose, held = poses.get(link.name), shapes_of.get(link.name)
+        if pose is None or held is None:
             continue
-        # The link's children in one loop (each find() would cost as much as the whole
-        # walk); the first <origin> and <geometry> of each body, as urdfdom reads them.
-        for body in link.element:
-            kind = body.tag
-            if kind != "visual" and kind != "collision":
-                if kind == "inertial" and link.name not in inertials:
-                    inertials[link.name] = body
-                continue
-            origin = geometry = None
-            for part in body:
-                tag = part.tag
-                if tag == "origin":
-                    if origin is None:
-                        origin = part
-                elif tag == "geometry" and geometry is None:
-                    geometry = part
-            element = None
-            if geometry is not None:
-                for element in geometry:
-                    if element.tag.__class__ is str:
-                        break
-                else:
-                    element = None
-            known = None if element is None else shape_box(element, mesh_bounds)
+        if held.inertial is not None:
+            result.inertials[link.name] = held.inertial
+        for kind, element, xyz, rpy, dims in held.bodies:
+            known = own_box(element.tag, dims, element, mesh_bounds)
             if known is None:
                 continue
-            placed = frame(origin)
-            if placed is None:
-                continue
+            placed = frame_of(xyz, rpy)
             size, own = known
             low, high = placed_box(compose(pose, placed), *own)
             append(Shape(link.name, kind, element.tag, element, size, low, high, placed, own))

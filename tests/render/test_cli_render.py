@@ -185,12 +185,12 @@ def test_a_failed_render_keeps_the_earlier_picture(cli, pkg_copy, tmp_path, monk
 def test_a_failing_file_does_not_stop_the_others(cli, pkg_copy, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     motor = pkg_copy / "urdf/motor/test_motor.urdf.xacro"
-    motor.write_text(motor.read_text().replace("motor.stl", "gone.stl"))
+    motor.write_text(motor.read_text().replace("motor.stl", "${gone}.stl"))
     result = cli("render", pkg_copy, *SMALL)
     assert result.exit_code == 1
     assert "5 pictures in renders: 4 rendered, 1 failed" in result.stderr
-    assert re.search(r"test_motor\.urdf\.xacro:\d+: warning: mesh "
-                     r"'package://render_test_parts/meshes/gone\.stl' not found", result.stderr)
+    assert re.search(r"test_motor\.urdf\.xacro:\d+: error: name 'gone' is not defined",
+                     result.stderr)
     assert not (tmp_path / "renders/motor/test_motor.png").exists()
     assert (tmp_path / "renders/index.png").exists()
 

@@ -104,3 +104,14 @@ def test_quick_folder_section_times_check_and_build_of_two_sizes(tmp_path, mcar_
         assert re.fullmatch(r"[\d.]+ m?s", cells[1]) and re.fullmatch(r"[\d.]+ m?s", cells[2])
         assert re.fullmatch(r"\d+\.\d", cells[3]) and cells[5] == "0 / 0", cells
     assert all(cells[6] in ("met", "**missed**") for cells in rows[1::2])  # 2N vs N
+
+
+def test_quick_meshes_section_sets_a_mesh_robot_beside_its_boxes(tmp_path, mcar_bin):
+    text = quick_section(tmp_path, "meshes", timeout=600)
+    assert "## `mcar check` of a mesh-heavy robot" in text
+    rows = [line.strip("| ").split(" | ") for line in text.splitlines()
+            if line.startswith(("| boxes", "| meshes"))]
+    assert [row[0] for row in rows] == ["boxes", "meshes, cache kept", "meshes, empty cache"]
+    for row in rows:  # real runs: a time, a ratio to the boxes, a peak, exit 0 every time
+        assert re.fullmatch(r"[\d.]+ m?s", row[1]) and re.fullmatch(r"[\d.]+x", row[2])
+        assert re.fullmatch(r"\d+ MiB", row[3]) and row[4] == "0"

@@ -193,6 +193,8 @@ def _content_digest(path: Path, reads) -> str | None:
         for file in (path, *reads):
             digest.update(str(Path(file).name).encode() + b"\0")
             with open_regular(file) as handle:
+                if os.fstat(handle.fileno()).st_size > max_mesh_bytes():
+                    return None  # a texture past the cap: not read, so not known by content
                 digest.update(hashlib.file_digest(handle, "sha256").digest())
     except (OSError, InputError):
         return None

@@ -47,10 +47,17 @@ def section_gazebo(rows: list[str], work: Path, quick: bool) -> None:
     gazebo_bench.section(rows, work, quick, measure)
 
 
+def section_meshes(rows: list[str], work: Path, quick: bool) -> None:
+    import measure
+    import mesh_check_bench
+
+    mesh_check_bench.section(rows, work, quick, measure)
+
+
 SECTIONS = {"check": section_check, "build": section_build, "startup": section_startup,
             "batch": section_batch, "folder": section_folder, "render": section_render,
             "noop": section_noop, "sim": section_sim, "robots": section_robots,
-            "sweep": section_sweep, "gazebo": section_gazebo}
+            "sweep": section_sweep, "gazebo": section_gazebo, "meshes": section_meshes}
 NEEDS_CHECK_URDF = {"check", "startup", "batch"}
 
 

@@ -11,9 +11,10 @@ import click
 
 from mobile_car.check.checker import CheckResult, as_json, check_input
 from mobile_car.check.diagnostics import github_annotation
+from mobile_car.check.plausibility import size_text
 from mobile_car.check.tree import check_urdf_batches
 from mobile_car.errors import combine_exit_codes
-from mobile_car.names import json_safe
+from mobile_car.names import json_safe, shown
 
 from . import signals, streams
 from .common import (
@@ -81,6 +82,10 @@ def _emit_text(results: list[CheckResult], quiet: bool) -> None:
                 write_batches(out, check_urdf_batches(result.robot.name, result.tree))
         for diagnostic in result.diagnostics:
             print_diagnostic(diagnostic)
+        if not quiet and result.extents is not None:
+            # On stderr: stdout is check_urdf's, byte for byte.
+            where = f"{shown(result.file)}: " if many else ""
+            click.echo(f"{where}size: {size_text(result.extents)}", err=True)
     errors = sum(r.errors for r in results)
     warnings = sum(r.warnings for r in results)
     failed = sum(1 for r in results if r.failure is not None)

@@ -140,3 +140,14 @@ def test_quick_gazebo_section_times_check_gazebo_and_the_helper(tmp_path, mcar_b
         # check, check --gazebo and the helper alone all ran and exited 0
         assert all(re.fullmatch(r"[\d.]+ (ms|s)", cell) for cell in cells[1:5]), cells
         assert cells[6] == "0" and cells[7] in ("met", "**missed**")
+
+
+def test_quick_meshes_section_sets_a_mesh_robot_beside_its_boxes(tmp_path, mcar_bin):
+    text = quick_section(tmp_path, "meshes", timeout=600)
+    assert "## `mcar check` of a mesh-heavy robot" in text
+    rows = [line.strip("| ").split(" | ") for line in text.splitlines()
+            if line.startswith(("| boxes", "| meshes"))]
+    assert [row[0] for row in rows] == ["boxes", "meshes, cache kept", "meshes, empty cache"]
+    for row in rows:  # real runs: a time, a ratio to the boxes, a peak, exit 0 every time
+        assert re.fullmatch(r"[\d.]+ m?s", row[1]) and re.fullmatch(r"[\d.]+x", row[2])
+        assert re.fullmatch(r"\d+ MiB", row[3]) and row[4] == "0"

@@ -24,12 +24,16 @@ from .joints import check_joints
 from .link_bodies import check_link_bodies
 from .links import material_colours
 from .meshes import MeshFile, check_meshes
+from .plausibility import check_plausibility
+from .rest_pose import rest_pose
 from .rules import RULES
 from .schema import check_schema
 from .structure import check_names, check_tree, moving_links
 from .tree import KinematicTree, build_tree
 from .urdf_model import SourceLines, XmlError, axis_of, origin_of, parse_number, parse_xml
 from .urdf_reader import Robot, read_robot
+
+LARGE_ROBOT = 2000  # links: the rest pose is worked out with numpy (rest_pose_arrays.py)
 
 
 @dataclass
@@ -43,6 +47,9 @@ class CheckResult:
     loaded: LoadedRobot | None = None  # what was checked: URDF text, search, files read
     mesh_files: list[MeshFile] = field(default_factory=list)  # every <mesh>, see meshes.py
     gazebo: object = None  # with --gazebo: what Gazebo makes of it (gazebo.changes.GazeboView)
+    # The box around every visual and collision shape in the rest pose, (x, y, z) in metres;
+    # None when the tree is not sound or no shape's size is known.
+    extents: tuple | None = None
 
     @property
     def errors(self) -> int:
@@ -111,8 +118,21 @@ def _check_document(root, data: bytes, file: str, base: Path, search: PackageSea
     materials = material_colours(robot, report)
     top_level = {element.get("name") for element, _ in robot.materials}
     moving, root_link = moving_links(tree), tree.root if len(tree.roots) == 1 else None
-    check_link_bodies(robot.links, report, materials, top_level, moving, root_link)
+    held = check_link_bodies(robot.links, report, materials, top_level, moving, root_link)
     result.mesh_files = check_meshes(root, base, search, report)
+    # Size and plausibility on a robot without errors: a number beyond any robot's (E117)
+    # or unreadable (E114) would only be said again, less clearly.
+    if tree.is_sound and not any(d.is_error for d in report.diagnostics):
+        bounds = {mesh.element: mesh.bounds for mesh in result.mesh_files}
+        pose = None
+        if len(robot.links) >= LARGE_ROBOT:  # numpy pays for its import from here on
+            from .rest_pose_arrays import rest_pose_arrays
+
+            pose = rest_pose_arrays(robot, tree, held, bounds)
+        if pose is None:
+            pose = rest_pose(robot, tree, held, bounds)
+        result.extents = pose.extents()
+        check_plausibility(robot, tree, pose, report)
     if not report.numbers_confirmed():
         return None
     return _finish(result, report)
@@ -172,6 +192,8 @@ def as_json(result: CheckResult) -> dict:
                 "root": tree.root if tree and len(tree.roots) == 1 else None,
                 "ok": result.failure is None and result.errors == 0,
                 "errors": result.errors, "warnings": result.warnings,
+                "extents": None if result.extents is None else
+                [round(v, 6) for v in result.extents],
                 "tree": None, "links": [], "joints": [],
                 "diagnostics": [d.as_json() for d in result.diagnostics]}
     if result.failure is not None:

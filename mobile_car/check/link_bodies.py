@@ -20,6 +20,7 @@ from .context import Reporter
 from .inertia import check_inertia
 from .links import check_links
 from .plain_links import plainly_clean
+from .rest_pose import LinkShapes, link_shapes
 from .schema import report_anomalies
 from .urdf_reader import Anomalies, Link, read_links
 from .urdf_vocabulary import LINK
@@ -29,34 +30,59 @@ _TRIAL = 500
 
 
 def check_link_bodies(links: list[Link], report: Reporter, materials: set[str],
-                      top_level: set, moving: set[str], root: str | None) -> None:
-    """Read ``links`` and check their geometry, materials, inertia and vocabulary."""
+                      top_level: set, moving: set[str], root: str | None
+                      ) -> dict[str, LinkShapes]:
+    """Read ``links`` and check their geometry, materials, inertia and vocabulary; return
+    what each holds, read (for the rest pose: :mod:`.rest_pose`), by link name."""
     notes = Anomalies()
+    held: dict[str, LinkShapes] = {}
     # Per robot: whether a material is defined depends on the robot, not on the content.
-    clean: set = set()
+    # A clean content's shapes are those of every link with that content.
+    clean: dict = {}
     compare, repeats = True, 0
     for count, link in enumerate(links):
         element = link.element
         if count == _TRIAL and repeats * 10 < _TRIAL:
             compare = False  # serialising every link would cost more than it saves
         key = (_content(element), link.name in moving, link.name == root) if compare else None
-        if key in clean:
+        known = clean.get(key) if key is not None else None
+        if known is not None:
             repeats += 1
             if not LINK.attrs_ok(element.keys()):  # the start tag is not in the key
                 notes.attributes.append(element)
+            held[link.name] = _same_content(known, element)
             continue
-        if plainly_clean(element, report, materials, top_level, link.name in moving,
-                         root is not None and link.name == root):
-            if key is not None:
-                clean.add(key)
+        shapes = plainly_clean(element, report, materials, top_level, link.name in moving,
+                               root is not None and link.name == root)
+        if shapes:  # (None, or False where a test turns the quick proof off)
+            held[link.name] = clean[key] = shapes
             continue
         before = _counts(report, notes)
         read_links([link], notes)
         check_links([link], report, materials, top_level)
         check_inertia([link], report, moving, root)
+        held[link.name] = shapes = link_shapes(element)
         if key is not None and _counts(report, notes) == before:
-            clean.add(key)
+            clean[key] = shapes
     report_anomalies(notes, report)
+    return held
+
+
+def _same_content(shapes: LinkShapes, element) -> LinkShapes:
+    """The shapes of a link whose content is byte for byte that of the link ``shapes``
+    were read from, pointing at this link's own elements (a message names the line of
+    the link it is about). A clean link keeps every body, in order: the i-th read body is
+    its i-th <visual> or <collision>."""
+    bodies = []
+    found = (child for child in element if child.tag in ("visual", "collision"))
+    for (kind, _shape, xyz, rpy, dims), body in zip(shapes.bodies, found, strict=False):
+        geometry = next(child for child in body if child.tag == "geometry")
+        shape = next(child for child in geometry if child.tag.__class__ is str)
+        bodies.append((kind, shape, xyz, rpy, dims))
+    inertial = shapes.inertial
+    if inertial is not None:
+        inertial = (next(child for child in element if child.tag == "inertial"), *inertial[1:])
+    return LinkShapes(bodies, inertial)
 
 
 def _content(element) -> bytes:

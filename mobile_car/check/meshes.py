@@ -3,10 +3,11 @@ a size or face limit is not read, and is drawn as a marker).
 
 ``package://PKG/...`` is resolved by the same :class:`~mobile_car.packages.search.PackageSearch` as
 ``mcar build``; ``file://`` and relative paths against the folder of the checked file.
-Every mesh is measured first without reading it whole (:mod:`mobile_car.load.mesh_limits`:
-file size, declared vertex and face counts); one within the limits is loaded with trimesh
-(imported only then) through :func:`mobile_car.load.mesh_reader.load_mesh`, once per
-process however many links use it. Formats trimesh cannot read on this machine are only
+What check needs of a mesh (that it loads, its bounding box, the files it reads) comes
+from :func:`mobile_car.load.mesh_facts.mesh_facts`: measured first without reading it whole
+(:mod:`mobile_car.load.mesh_limits`), read once (numpy for a binary STL, trimesh for the
+rest, imported only then), and kept in the user's cache, sealed, so that the next check of
+the same files reads none of them. Formats trimesh cannot read on this machine are only
 checked for existence, not reported as broken.
 """
 
@@ -18,9 +19,8 @@ from typing import NamedTuple
 
 from ..errors import InputError, McarError
 from ..load.bounded import not_regular
-from ..load.compressed import broken_errors, compressed_kind, suffix_of
 from ..load.inputs import display_path
-from ..load.mesh_limits import MeshOverLimit, scan_mesh
+from ..load.mesh_facts import mesh_facts
 from ..packages.search import PackageSearch
 from .context import Reporter, has_xacro_expression
 
@@ -32,6 +32,7 @@ class _Outcome(NamedTuple):
     problem: str | None  # why it cannot be loaded (W207)
     over_limit: str | None  # the limit it passes (W210)
     reads: tuple[Path, ...]  # the other files it reads
+    bounds: tuple | None = None  # its box in metres (mesh frame, no URDF scale), if known
 
 
 _loaded: dict[Path, _Outcome] = {}
@@ -46,6 +47,8 @@ class MeshFile(NamedTuple):
     sound: bool  # found, and loads or is over a limit (then drawn as a marker: over_limit)
     over_limit: str | None = None  # why it is not read: the limit it passes
     reads: tuple[Path, ...] = ()  # the files it pulls in: materials, textures
+    element: object = None  # the <mesh> element
+    bounds: tuple | None = None  # ((x, y, z) min, max) in metres, the URDF scale not applied
 
 
 def check_meshes(root, base: Path, search: PackageSearch, report: Reporter
@@ -64,17 +67,17 @@ def check_meshes(root, base: Path, search: PackageSearch, report: Reporter
             path = search.resolve_uri(filename, base)
         except McarError as error:
             report.add("W207", mesh, f"mesh '{filename}': {error.message}")
-            found.append(MeshFile(kind, None, False))
+            found.append(MeshFile(kind, None, False, element=mesh))
             continue
         special = not_regular(path)  # a FIFO would block the loader for ever
         if special:
             report.add("W207", mesh, f"mesh '{filename}' {special}")
-            found.append(MeshFile(kind, path, False))
+            found.append(MeshFile(kind, path, False, element=mesh))
             continue
         if not path.is_file():
             report.add("W207", mesh, f"mesh '{filename}' not found at {os.path.abspath(path)}"
                        f"{_where_looked(filename, search)}")
-            found.append(MeshFile(kind, path, False))
+            found.append(MeshFile(kind, path, False, element=mesh))
             continue
         outcome = inspect_mesh(path)
         if outcome.problem:
@@ -83,7 +86,7 @@ def check_meshes(root, base: Path, search: PackageSearch, report: Reporter
             report.add("W210", mesh, f"mesh '{filename}' not read: {outcome.over_limit}; "
                        f"{PLACEHOLDER}")
         found.append(MeshFile(kind, path, not outcome.problem, outcome.over_limit,
-                              outcome.reads))
+                              outcome.reads, mesh, outcome.bounds))
     return found
 
 
@@ -117,68 +120,10 @@ def inspect_mesh(path: Path) -> _Outcome:
 def _inspect(path: Path) -> _Outcome:
     if not os.access(path, os.R_OK):
         return _Outcome("permission denied", None, ())
-    shown = display_path(path)
     try:
-        scan = scan_mesh(path, shown)
-    except MeshOverLimit as error:
-        return _Outcome(None, error.message, ())
+        facts = mesh_facts(path, display_path(path))
     except InputError as error:
         return _Outcome(error.message, None, ())
     except OSError as error:
         return _Outcome(error.strerror or str(error), None, ())
-    if _sound_binary_stl(path):
-        return _Outcome(None, None, scan.reads)
-    try:
-        problem, reads = _try_load(path, shown)
-    except MeshOverLimit as error:  # a member of an archive, counted once decompressed
-        return _Outcome(None, error.message, ())
-    return _Outcome(problem, None, tuple(dict.fromkeys([*scan.reads, *reads])))
-
-
-def _sound_binary_stl(path: Path) -> bool:
-    """True for a binary STL whose size matches its triangle count: no need for trimesh.
-
-    Importing numpy and trimesh costs more than checking a whole robot; STL is
-    the common case, and its binary form says its own length.
-    """
-    if path.suffix.lower() != ".stl":
-        return False
-    try:
-        size = path.stat().st_size
-        with open(path, "rb") as handle:
-            header = handle.read(84)
-    except OSError:
-        return False
-    if len(header) < 84:
-        return False
-    triangles = int.from_bytes(header[80:84], "little")
-    return triangles > 0 and size == 84 + 50 * triangles
-
-
-def _try_load(path: Path, shown: str) -> tuple[str | None, list[Path]]:
-    from ..held_signals import import_held
-
-    # heavy (numpy): only for meshes the cheap test above cannot vouch for
-    trimesh = import_held("trimesh")
-
-    from ..load.mesh_reader import load_mesh
-
-    if compressed_kind(path) is None and suffix_of(path.name) not in trimesh.available_formats():
-        return None, []
-    try:
-        loaded, reads = load_mesh(path, shown, force="mesh")
-    except MeshOverLimit:
-        raise
-    except McarError as error:
-        return error.message, []
-    except broken_errors() as exc:
-        return _short(exc), []
-    except Exception as exc:  # trimesh raises anything from ValueError to struct.error
-        return _short(exc), []
-    if getattr(loaded, "vertices", None) is None or len(loaded.vertices) == 0:
-        return "it holds no geometry", reads
-    return None, reads
-
-
-def _short(exc: BaseException) -> str:
-    return " ".join(str(exc).split())[:200] or type(exc).__name__
+    return _Outcome(facts.problem, facts.over_limit, facts.reads, facts.bounds)

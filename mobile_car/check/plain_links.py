@@ -17,10 +17,9 @@ corpus and on mutated robots.
 
 from __future__ import annotations
 
-from math import inf
-
 from .context import MAX_ANGLE, MAX_INERTIA, MAX_LENGTH, MAX_MASS, MAX_SCALE, Reporter, within
 from .inertia import INERTIA, tensor_problem
+from .rest_pose import ONE, ZERO, LinkShapes
 from .urdf_vocabulary import COLLISION, GEOMETRY, INERTIAL, LINK, VISUAL
 
 _LINK_PARTS = LINK.lookup
@@ -28,33 +27,40 @@ _SHAPE_ATTRS_OK = {tag: spec.attrs_ok for tag, spec in GEOMETRY.children.items()
 
 
 def plainly_clean(element, report: Reporter, materials: set[str], top_level: set,
-                  moving: bool, is_root: bool) -> bool:
-    """True if the link ``element`` is written the usual way and the full checks would
-    find nothing in it; a colour it defines is then added to ``materials``, as the full
-    checks do. False says only "not proved here"."""
+                  moving: bool, is_root: bool) -> LinkShapes | None:
+    """What the link ``element`` holds, read (:class:`~.rest_pose.LinkShapes`), if it is
+    written the usual way and the full checks would find nothing in it; a colour it
+    defines is then added to ``materials``, as the full checks do. None says only "not
+    proved here"."""
     if not LINK.attrs_ok(element.keys()):
-        return False
+        return None
     defined: list[str] = []
-    has_inertial = False
+    inertial = None
+    bodies = []
     for part in element:
         tag = part.tag
         known = _LINK_PARTS.get(tag)
         if known is None:
             if tag.__class__ is str:
-                return False  # an unknown element
+                return None  # an unknown element
             continue  # a comment or processing instruction
         if not known[0](part.keys()):
-            return False
+            return None
         if tag == "inertial":
-            if has_inertial or is_root or not _inertial(part, report, moving):
-                return False
-            has_inertial = True
-        elif not _body(part, tag == "visual", report, materials, top_level, defined):
-            return False
-    if moving and not has_inertial:
-        return False
+            if inertial is not None or is_root:
+                return None
+            inertial = _inertial(part, report, moving)
+            if inertial is None:
+                return None
+        else:
+            body = _body(part, tag, report, materials, top_level, defined)
+            if body is None:
+                return None
+            bodies.append(body)
+    if moving and inertial is None:
+        return None
     materials.update(defined)
-    return True
+    return LinkShapes(bodies, inertial)
 
 
 def _parts(element, spec) -> dict | None:
@@ -72,66 +78,93 @@ def _parts(element, spec) -> dict | None:
     return parts
 
 
-def _origin(origin, report: Reporter) -> bool:
+def _origin(origin, report: Reporter) -> tuple | None:
+    """(xyz, rpy) of an <origin> (zeros where absent), or None where one is not sound."""
     if origin is None:
-        return True
+        return ZERO, ZERO
     xyz, rpy = origin.get("xyz"), origin.get("rpy")
-    return ((xyz is None or within(report.values(xyz, 3) or (inf,), MAX_LENGTH))
-            and (rpy is None or within(report.values(rpy, 3) or (inf,), MAX_ANGLE)))
+    xyz = ZERO if xyz is None else report.values(xyz, 3)
+    if xyz is None or not within(xyz, MAX_LENGTH):
+        return None
+    rpy = ZERO if rpy is None else report.values(rpy, 3)
+    if rpy is None or not within(rpy, MAX_ANGLE):
+        return None
+    return xyz, rpy
 
 
-def _inertial(inertial, report: Reporter, moving: bool) -> bool:
+def _inertial(inertial, report: Reporter, moving: bool) -> tuple | None:
+    """(element, mass, six moments, rpy) of a sound <inertial>, else None."""
     parts = _parts(inertial, INERTIAL)
-    if parts is None or not _origin(parts.get("origin"), report):
-        return False
+    if parts is None:
+        return None
+    origin = _origin(parts.get("origin"), report)
+    if origin is None:
+        return None
     mass, inertia = parts.get("mass"), parts.get("inertia")
     if mass is None or inertia is None:
-        return False
+        return None
     value = report.value(mass.get("value"))
     if value is None or value < 0 or (moving and value == 0) or not within((value,), MAX_MASS):
-        return False
+        return None
     get, number = inertia.get, report.value
-    moments = [number(get(name)) for name in INERTIA]
-    return (None not in moments and within(moments, MAX_INERTIA)
-            and tensor_problem(*moments) is None)
+    moments = tuple([number(get(name)) for name in INERTIA])
+    if None in moments or not within(moments, MAX_INERTIA) or \
+            tensor_problem(*moments) is not None:
+        return None
+    return inertial, value, moments, origin[1]
 
 
-def _body(body, is_visual: bool, report: Reporter, materials: set[str], top_level: set,
-          defined: list[str]) -> bool:
-    parts = _parts(body, VISUAL if is_visual else COLLISION)
-    if parts is None or not _origin(parts.get("origin"), report):
-        return False
+def _body(body, kind: str, report: Reporter, materials: set[str], top_level: set,
+          defined: list[str]) -> tuple | None:
+    """(kind, shape element, xyz, rpy, dims) of a sound <visual> or <collision>."""
+    parts = _parts(body, VISUAL if kind == "visual" else COLLISION)
+    if parts is None:
+        return None
+    origin = _origin(parts.get("origin"), report)
+    if origin is None:
+        return None
     geometry = parts.get("geometry")
-    if geometry is None or len(geometry) != 1 or not _shape(geometry[0], report):
-        return False
+    if geometry is None or len(geometry) != 1:
+        return None
+    dims = _shape(geometry[0], report)
+    if dims is None:
+        return None
     material = parts.get("material")
-    return material is None or _material(material, report, materials, top_level, defined)
+    if material is not None and not _material(material, report, materials, top_level,
+                                              defined):
+        return None
+    return kind, geometry[0], origin[0], origin[1], dims
 
 
-def _shape(shape, report: Reporter) -> bool:
+def _shape(shape, report: Reporter) -> tuple | None:
+    """The numbers of a sound shape: a box's size, a cylinder's (radius, length), a
+    sphere's (radius,), a mesh's scale; None where it is not sound."""
     tag = shape.tag
     attrs_ok = _SHAPE_ATTRS_OK.get(tag)
     if attrs_ok is None or len(shape) or not attrs_ok(shape.keys()):
-        return False
+        return None
     get = shape.get
     if tag == "box":
         size = report.values(get("size"), 3)
-        return size is not None and min(size) > 0 and max(size) <= MAX_LENGTH
+        return size if size is not None and min(size) > 0 and max(size) <= MAX_LENGTH \
+            else None
     if tag == "cylinder":
         radius, length = report.value(get("radius")), report.value(get("length"))
-        return (radius is not None and length is not None and 0 < radius <= MAX_LENGTH
-                and 0 < length <= MAX_LENGTH)
+        return (radius, length) if (radius is not None and length is not None
+                                    and 0 < radius <= MAX_LENGTH
+                                    and 0 < length <= MAX_LENGTH) else None
     if tag == "sphere":
         radius = report.value(get("radius"))
-        return radius is not None and 0 < radius <= MAX_LENGTH
+        return (radius,) if radius is not None and 0 < radius <= MAX_LENGTH else None
     # A mesh: whether its file exists and loads is check_meshes' business.
     scale = get("scale")
     if get("filename") is None:
-        return False
+        return None
     if scale is None:
-        return True
+        return ONE
     values = report.values(scale, 3)
-    return values is not None and 0 not in values and within(values, MAX_SCALE)
+    return values if values is not None and 0 not in values and \
+        within(values, MAX_SCALE) else None
 
 
 def _material(material, report: Reporter, materials: set[str], top_level: set,

@@ -122,7 +122,8 @@ _TABLE = [
          "(no rigid body has them)", "accepts"),
     Rule("W206", "inertial-missing", "a moving link with no `<inertial>`", "accepts"),
     Rule("W207", "mesh-unreadable", "a mesh that cannot be found or loaded (package://, "
-         "file:// and relative paths resolved like `mcar build`)", "accepts"),
+         "file:// and relative paths resolved like `mcar build`): drawn as a magenta box",
+         "accepts"),
     Rule("W208", "root-inertia", "a root link with an inertia: KDL (robot_state_publisher, "
          "MoveIt) ignores it", "accepts"),
     Rule("W209", "duplicate-element", "a second `<origin>`, `<geometry>`, `<limit>`, ... "
@@ -130,6 +131,18 @@ _TABLE = [
     Rule("W210", "mesh-over-limit", "a mesh over `MCAR_MAX_MESH_MB` (file or decompressed) "
          "or `MCAR_MAX_MESH_FACES` (its declared vertex or face count): not read, drawn as "
          "a magenta box", "accepts"),
+    Rule("W211", "robot-huge", "the robot is more than 20 m across in its rest pose, larger "
+         "than a building (a mesh in millimetres or inches read as metres?)", "accepts"),
+    Rule("W212", "mesh-scale", "a mesh more than 100 times larger, or under 1/1000 the size "
+         "of the rest of the robot (its other shapes and its link frames): a unit mistake",
+         "accepts"),
+    Rule("W213", "inertia-size", "an inertia over 10 times, or under 1/10, what a solid of "
+         "the link's mass filling its one collision box, cylinder or sphere has (1/100 for "
+         "the box around several shapes or a mesh); compared by the sum of the principal "
+         "moments", "accepts"),
+    Rule("W214", "wheel-inertia", "a wheel (turned by a continuous joint, round about its "
+         "axis) whose moment about the axle is over 1.25 m r² (a ring has m r²) or under "
+         "0.05 m r² (a tenth of a solid disc)", "accepts"),
     Rule("W220", "xacro-warning", "xacro printed a warning while expanding a `.xacro` input",
          "n/a"),
     Rule("W230", "gazebo-warning", "libsdformat warns while loading the robot", "n/a"),

@@ -305,7 +305,22 @@ _DAE_PRIMITIVES = {"triangles", "polylist", "polygons", "trifans", "tristrips", 
 
 def _dae(handle, size: int, shown: str, folder) -> MeshScan:
     """Counted in one pass of lxml's iterparse, no entities, no network; element text
-    (the numbers) dropped as it goes."""
+    (the numbers) dropped as it goes. A file that is not well-formed XML is counted again
+    as libxml2 recovers it: that is what the reader hands pycollada (:mod:`.collada`)."""
+    from lxml import etree
+
+    start = handle.tell()
+    try:
+        return _dae_counted(handle, shown, folder, recover=False)
+    except etree.XMLSyntaxError:
+        handle.seek(start)
+    try:
+        return _dae_counted(handle, shown, folder, recover=True)
+    except etree.LxmlError as error:
+        raise MeshBroken(f"not well-formed COLLADA: {error}", file=shown) from None
+
+
+def _dae_counted(handle, shown: str, folder, recover: bool) -> MeshScan:
     from lxml import etree
 
     geometry_faces: dict[str, int] = {}
@@ -321,7 +336,8 @@ def _dae(handle, size: int, shown: str, folder) -> MeshScan:
         for event, element in etree.iterparse(handle, events=("start", "end"),
                                               resolve_entities=False, no_network=True,
                                               load_dtd=False, huge_tree=False,
-                                              remove_comments=True, remove_pis=True):
+                                              remove_comments=True, remove_pis=True,
+                                              recover=recover):
             tag = etree.QName(element).localname if isinstance(element.tag, str) else ""
             if event == "start":
                 if tag == "geometry":
@@ -353,6 +369,8 @@ def _dae(handle, size: int, shown: str, folder) -> MeshScan:
             element.clear(keep_tail=False)
             while element.getprevious() is not None:  # done with: let it go
                 del element.getparent()[0]
+    except etree.XMLSyntaxError:
+        raise
     except etree.LxmlError as error:
         raise MeshBroken(f"not well-formed COLLADA: {error}", file=shown) from None
     own.update(geometry_faces)

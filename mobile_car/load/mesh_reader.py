@@ -22,6 +22,7 @@ from PIL import Image
 
 from ..errors import InputError
 from ..held_signals import import_held
+from .collada import readable_collada
 from .compressed import ZIP_FORMATS, compressed_kind, decompressed_members, max_mesh_bytes
 from .mesh_limits import MeshOverLimit, scan_bytes, scan_mesh, suffix_of
 
@@ -84,10 +85,11 @@ def _no_blocking(path, flags):
 
 
 def load_mesh(path: str | os.PathLike, shown: str | None = None, **kwargs):
-    """``trimesh.load(path, **kwargs)`` within every limit, and the files it read besides
-    the mesh. MeshOverLimit over a limit; MeshBroken, InputError or one of
-    compressed.broken_errors() for a file that cannot be measured; trimesh's own
-    exceptions for one it cannot parse."""
+    """``trimesh.load(path, **kwargs)`` within every limit, in metres, and the files it
+    read besides the mesh. COLLADA is read as RViz reads it (:mod:`.collada`: recovered
+    XML, repaired colours, ``<unit>`` applied). MeshOverLimit over a limit; MeshBroken,
+    InputError or one of compressed.broken_errors() for a file that cannot be measured;
+    trimesh's own exceptions for one it cannot parse."""
     path = Path(path)
     shown = shown or str(path)
     read: list[Path] = []
@@ -99,9 +101,7 @@ def load_mesh(path: str | os.PathLike, shown: str | None = None, **kwargs):
             data = handle.read(max_mesh_bytes() + 1)
         if len(data) > max_mesh_bytes():  # it grew since it was measured
             raise MeshOverLimit("grew past the mesh size limit while read", file=shown)
-        loaded = trimesh.load(io.BytesIO(data), file_type=suffix_of(path.name),
-                              resolver=resolver, **kwargs)
-        return loaded, read
+        return _load_bytes(path.name, data, shown, resolver, kwargs), read
     members = decompressed_members(path, shown)
     for name, data in members:
         scan_bytes(name, data, f"{shown} ({name})")
@@ -109,14 +109,40 @@ def load_mesh(path: str | os.PathLike, shown: str | None = None, **kwargs):
         raise InputError("an archive with no file in it", file=shown)
     if kind in ("bz2", "gz"):
         name, data = members[0]
-        return trimesh.load(io.BytesIO(data), file_type=suffix_of(name), resolver=resolver,
-                            **kwargs), read
-    # An archive again, its members stored as they are: trimesh reads what was measured.
+        return _load_bytes(name, data, shown, resolver, kwargs), read
+    # An archive again, its members stored as they are: trimesh reads what was measured;
+    # a COLLADA member as RViz reads it, its unit applied once loaded.
+    unit = 1.0
     stored = io.BytesIO()
     with zipfile.ZipFile(stored, "w", zipfile.ZIP_STORED) as archive:
         for name, data in members:
+            if suffix_of(name) == "dae":
+                document = readable_collada(data, f"{shown} ({name})")
+                data, unit = document.data, document.unit
             archive.writestr(name, data)
     del members
     stored.seek(0)
     file_type = kind if kind in ZIP_FORMATS else "zip"
-    return trimesh.load(stored, file_type=file_type, **kwargs), read
+    return in_metres(trimesh.load(stored, file_type=file_type, **kwargs), unit), read
+
+
+def _load_bytes(name: str, data: bytes, shown: str, resolver, kwargs: dict):
+    file_type = suffix_of(name)
+    unit = 1.0
+    if file_type == "dae":
+        document = readable_collada(data, shown)
+        data, unit = document.data, document.unit
+    loaded = trimesh.load(io.BytesIO(data), file_type=file_type, resolver=resolver, **kwargs)
+    return in_metres(loaded, unit)
+
+
+def in_metres(loaded, unit: float):
+    """A loaded Trimesh or Scene scaled by ``unit`` (metres per file unit)."""
+    if unit == 1.0:
+        return loaded
+    if isinstance(loaded, trimesh.Scene):
+        loaded = loaded.scaled(unit)
+    else:
+        loaded.apply_scale(unit)
+    loaded.units = "meters"  # trimesh noted the file's unit: it is applied now
+    return loaded

@@ -12,8 +12,11 @@ right angles at any size, a cylinder's side faces meet at 360°/sections whateve
 and length), so it is computed once per shape and colour instead of once per link.
 
 Mesh files are read through :func:`mobile_car.load.mesh_reader.load_mesh`, within every
-mesh limit; one over a limit becomes a placeholder piece (a box, drawn magenta by
-:mod:`.scene`) instead of being read.
+mesh limit and in metres. One over a limit, missing, or that cannot be read becomes a
+placeholder piece (a box, drawn magenta by :mod:`.scene`) and the rest of the robot is
+drawn: where the link's other geometry (its collision shapes for a visual, its visual
+shapes for a collision) says how big the part is, the box takes that size and place;
+else :mod:`.scene` sizes it from the rest of the robot.
 """
 
 from __future__ import annotations
@@ -27,7 +30,7 @@ import numpy as np
 import trimesh
 import yourdfpy
 
-from ..load.mesh_limits import MeshOverLimit
+from ..errors import McarError
 from ..load.mesh_reader import load_mesh
 
 # Joint types whose position yourdfpy applies (at zero it is the origin, but a mimic's
@@ -41,7 +44,8 @@ class Piece:
     (from a file, in its own frame, coloured) or ``primitive``, the name of a unit box,
     cylinder or sphere (see :func:`unit_primitive`; ``transform`` includes the size) with
     ``rgba``, the 0..255 colour yourdfpy would give it (None: no URDF colour).
-    ``placeholder``: a mesh over a limit, not read; a unit box, sized by the scene.
+    ``placeholder``: a mesh not read (over a limit, missing, broken): a unit box, sized by
+    the scene unless ``sized`` (its transform holds the size its link's shapes give).
     ``overlay``: drawn in ``rgba`` whatever the view colours (a link frame's axis)."""
 
     link: str
@@ -51,6 +55,7 @@ class Piece:
     rgba: tuple | None = None
     placeholder: bool = False
     overlay: bool = False
+    sized: bool = False
 
 
 def joint_position(joint: yourdfpy.Joint, positions: dict[str, float] | None) -> float:
@@ -143,19 +148,51 @@ def _primitive(geometry) -> tuple[str, np.ndarray] | None:
     return None
 
 
-def _mesh_scene(geometry, filename: Callable[[str], str], skip_materials: bool,
-                reads: list[Path]):
-    """A mesh file as a trimesh.Scene, scaled, loaded the way yourdfpy loads it (the
-    files it pulls in added to ``reads``); None if it is over a mesh limit."""
+def mesh_scene(geometry, filename: Callable[[str], str], skip_materials: bool,
+               reads: list[Path]):
+    """A mesh file as a trimesh.Scene in metres, scaled, loaded the way yourdfpy loads it
+    (the files it pulls in added to ``reads``); None if it is not read: over a mesh
+    limit, missing, or broken (mcar check says which, with the <mesh>'s line: W207,
+    W210)."""
     try:
         scene, pulled = load_mesh(filename(geometry.mesh.filename), ignore_broken=True,
                                   force="scene", skip_materials=skip_materials)
-    except MeshOverLimit:  # mcar check has said so, with the <mesh>'s line
+    except (McarError, OSError):  # over a limit, not found, not a regular file
         return None
+    except Exception:  # trimesh and pycollada raise anything on a file they cannot parse
+        return None
+    if not any(len(getattr(mesh, "faces", ())) for mesh in scene.geometry.values()):
+        return None  # nothing to draw: the marker shows where it belongs
     reads.extend(pulled)
     if geometry.mesh.scale is not None:
         scene = scene.scaled(geometry.mesh.scale)
     return scene
+
+
+_UNIT_BOUNDS = {"box": 0.5, "sphere": 1.0}  # half extent of the unit shapes; cylinder apart
+
+
+def _shapes_box(bodies) -> np.ndarray | None:
+    """The box (4x4: a unit box scaled and placed) around the primitive shapes of
+    ``bodies`` in their link's frame, or None when they hold no primitive."""
+    corners = []
+    for body in bodies:
+        primitive = None if body.geometry is None else _primitive(body.geometry)
+        if primitive is None:
+            continue
+        kind, scale = primitive
+        half = np.array([1.0, 1.0, 0.5]) if kind == "cylinder" else \
+            np.full(3, _UNIT_BOUNDS[kind])
+        unit = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * half
+        placed = (np.eye(4) if body.origin is None else body.origin) @ scale
+        corners.append(unit @ placed[:3, :3].T + placed[:3, 3])
+    if not corners:
+        return None
+    points = np.concatenate(corners)
+    low, high = points.min(axis=0), points.max(axis=0)
+    box = np.diag([*np.maximum(high - low, 1e-6), 1.0])
+    box[:3, 3] = (low + high) / 2
+    return box
 
 
 def pieces(robot: yourdfpy.Robot, filename: Callable[[str], str],
@@ -182,9 +219,14 @@ def pieces(robot: yourdfpy.Robot, filename: Callable[[str], str],
                 continue
             if body.geometry.mesh is None:
                 continue
-            scene = _mesh_scene(body.geometry, filename, collision, reads)
+            scene = mesh_scene(body.geometry, filename, collision, reads)
             if scene is None:
-                yield Piece(link.name, placed, primitive="box", placeholder=True)
+                known = _shapes_box(link.visuals if collision else link.collisions)
+                if known is not None:
+                    yield Piece(link.name, pose @ known, primitive="box", placeholder=True,
+                                sized=True)
+                else:
+                    yield Piece(link.name, placed, primitive="box", placeholder=True)
                 continue
             for node in scene.graph.nodes_geometry:
                 transform, name = scene.graph.get(node)

@@ -40,7 +40,8 @@ from ..freshness import (
 MANIFEST_NAME = ".mcar-render.json"
 CONTACT_SHEET = "index.png"
 # Bump when the same input and options give different pixels (lighting, overlays, camera).
-DRAWING_VERSION = 2  # 2: link frames with names (--frames; the skeleton is no longer empty)
+DRAWING_VERSION = 3  # 2: link frames with names; 3: COLLADA units applied, unread meshes drawn
+# as markers
 
 
 def sha256(data: bytes) -> str:

@@ -11,10 +11,11 @@ the mesh's face colours); meshes with their own materials (COLLADA) keep them. C
 geometry has no material in URDF, so it takes its link's first visual colour, as rviz does.
 
 Mesh files are resolved with :class:`~mobile_car.packages.search.PackageSearch`, the same search
-``mcar build`` uses, and are checked before loading so that a missing one is reported with
-its file and line instead of being dropped silently (yourdfpy only logs a warning). They
-are read within the mesh limits (:mod:`mobile_car.load.mesh_reader`); one over a limit
-is drawn as a magenta box (PLACEHOLDER_RGBA), a fifth of the rest of the robot in size.
+``mcar build`` uses, and read within the mesh limits, in metres
+(:mod:`mobile_car.load.mesh_reader`). One that is not read (over a limit, missing, broken:
+``mcar check`` reports it with its line, W207 or W210) is drawn as a magenta box
+(PLACEHOLDER_RGBA): the size and place of its link's other shapes where it has some, else
+a fifth of the rest of the robot; the rest of the robot is drawn.
 """
 
 from __future__ import annotations
@@ -34,7 +35,6 @@ from lxml import etree
 
 from ..errors import McarError, RenderError
 from ..expand.xacro_build import display_path
-from ..load.bounded import not_regular
 from ..packages.search import PackageSearch
 from .assembly import Piece, link_poses, pieces, unit_primitive
 from .frames import axis_boxes, axis_length, chosen_frames, labels
@@ -124,43 +124,13 @@ def _line(element, source: ModelSource) -> int | None:
     return element.sourceline if source.lines_match else None
 
 
-def mesh_files(root: etree._Element, source: ModelSource, search: PackageSearch,
-               collision: bool) -> list[Path]:
-    """Every mesh file the chosen geometry (visual or collision) reads, checked to exist."""
-    return [path for _uri, path, _where in _meshes(root, source, search, collision)]
-
-
-def _meshes(root: etree._Element, source: ModelSource, search: PackageSearch,
-            collision: bool):
-    """(uri, file, where) of each mesh of the chosen geometry; RenderError if missing."""
-    kind = "collision" if collision else "visual"
-    for mesh in root.iterfind(f"link/{kind}/geometry/mesh"):
-        uri = (mesh.get("filename") or "").strip()
-        link = mesh.getparent().getparent().getparent().get("name", "?")
-        where = {"file": display_path(source.path), "line": _line(mesh, source)}
-        if not uri:
-            raise RenderError(f"link '{link}': <mesh> without a filename", **where)
-        try:
-            path = search.resolve_uri(uri, base=source.path.parent)
-        except McarError as exc:
-            raise RenderError(f"link '{link}': mesh {uri}: {exc.message}", **where) from None
-        special = not_regular(path)  # a FIFO would block the loader for ever
-        if special:
-            raise RenderError(f"link '{link}': mesh {uri} {special}", **where)
-        if not path.is_file():
-            raise RenderError(f"link '{link}': mesh {uri} not found (looked at "
-                              f"{display_path(path)})", **where)
-        yield uri, path, dict(where, link=link)
-
-
 def load_scene(source: ModelSource, search: PackageSearch, collision: bool = False,
                joints=(), with_links: bool = False, frames: str = "auto") -> Scene:
     """Pose the robot (joints at zero, or as ``joints``, (name, value text) pairs of
     ``--joint``) and flatten its geometry into triangles; ``with_links`` also notes which
     link each corner belongs to; ``frames`` says which link frames get axes and names
     (:mod:`.frames`)."""
-    root = parse_urdf(source)
-    mesh_files(root, source, search, collision)  # report a missing mesh before yourdfpy hides it
+    parse_urdf(source)  # a located error for what is no robot, before yourdfpy reads it
     return _load_model(source, search, collision, joints, with_links, frames)
 
 
@@ -322,9 +292,9 @@ def _sized_markers(markers: list[Piece], bounds) -> list[Piece]:
 def _flatten(placed: Iterator[Piece], link_colors: dict[str, tuple],
              with_links: bool = False, frames=()) -> Scene:
     placed = list(placed)
-    markers = [piece for piece in placed if piece.placeholder]
+    markers = [piece for piece in placed if piece.placeholder and not piece.sized]
     if markers:
-        placed = [piece for piece in placed if not piece.placeholder]
+        placed = [piece for piece in placed if not (piece.placeholder and not piece.sized)]
         placed += _sized_markers(markers, _flatten(iter(placed), link_colors).bounds)
     if frames:  # axes sized by the rest of the robot
         length = axis_length(frames, _flatten(iter(placed), link_colors).bounds)

@@ -35,9 +35,9 @@ from .picture import DrawnView, draw_views, finish_picture
 from .scene import ModelSource, load_scene
 from .sheet import THUMBNAIL_WIDTH, contact_sheet
 
-# The check's warnings shown with a picture: xacro's, and a mesh over a limit (drawn as
-# a marker).
-SHOWN_WARNINGS = ("W210", "W220")
+# The check's warnings shown with a picture: xacro's, and a mesh not read, missing or
+# broken (W207) or over a limit (W210), drawn as a marker.
+SHOWN_WARNINGS = ("W207", "W210", "W220")
 # Pictures finished (overlays, PNG, write) in parallel with drawing the next ones.
 FINISH_THREADS = 1
 
@@ -100,13 +100,12 @@ def model_source(loaded: LoadedRobot) -> ModelSource:
 
 
 def blocking_diagnostics(result: CheckResult, collision: bool) -> list:
-    """What stops a robot from being drawn: any check error, and a missing or broken mesh
-    (W207) of the geometry to draw; all the check's diagnostics then, else none."""
+    """What stops a robot from being drawn: any check error; all the check's diagnostics
+    then, else none. A mesh that is missing or broken (W207) does not: it is drawn as a
+    marker, as one over a limit is, and the warning shown with the picture."""
     if result.failure is not None:
         raise result.failure
-    kind = "collision" if collision else "visual"
-    mesh_missing = any(not mesh.sound for mesh in result.mesh_files if mesh.kind == kind)
-    if result.errors or not result.tree_is_drawable or mesh_missing:
+    if result.errors or not result.tree_is_drawable:
         return result.diagnostics
     return []
 
@@ -184,10 +183,14 @@ class RenderSession:
                 raise CheckFailed(job.input.label, blocking)
             warnings = [d for d in result.diagnostics if d.rule in SHOWN_WARNINGS]
             kind = "collision" if self.options.collision else "visual"
-            drawn = [mesh for mesh in result.mesh_files if mesh.kind == kind]
+            drawn = [mesh for mesh in result.mesh_files if mesh.kind == kind and mesh.path]
             # A mesh's materials and textures are inputs too: never overwritten, stamped.
-            meshes = [*(mesh.path for mesh in drawn), *(p for mesh in drawn for p in mesh.reads)]
-            files = [*result.loaded.deps, *meshes]
+            # One that is missing is stamped (as missing: the picture is redrawn until it
+            # is there), not hashed.
+            meshes = [*(mesh.path for mesh in drawn if mesh.path.is_file()),
+                      *(p for mesh in drawn for p in mesh.reads)]
+            files = [*result.loaded.deps, *meshes,
+                     *(mesh.path for mesh in drawn if not mesh.path.is_file())]
             source = model_source(result.loaded)
             if job.target is not None:
                 refuse_overwriting(job.target, files)

@@ -40,7 +40,7 @@ import numpy as np
 from lxml import etree
 
 from ..check.urdf_model import parse_number
-from ..errors import EXIT_PROBLEMS, McarError
+from ..errors import EXIT_PROBLEMS, InputError, McarError
 from .drives import Drive, actuated_joints
 from .engine import mujoco
 from .servos import DriveSources, add_motors, fit_drive
@@ -48,7 +48,6 @@ from .servos import DriveSources, add_motors, fit_drive
 TIMESTEP = 0.001
 # Above the floor by this much, a part does not rest on it (contacts, ground parts).
 GROUND_TOLERANCE = 0.003
-MESH_FORMATS = (".stl", ".obj", ".msh")
 # mu of a castor whose description gives none: a ball that rolls freely, modelled as
 # sliding (the bundled car's caster_friction).
 CASTOR_FRICTION = 0.01
@@ -224,23 +223,12 @@ def _link_colours(root) -> dict[str, list[float]]:
     return found
 
 
-def _over_limit(path: Path) -> str | None:
-    """Why a mesh is not handed to MuJoCo (a mesh limit it passes, or it is unreadable)."""
-    from ..errors import InputError
-    from ..load.mesh_limits import scan_mesh
-
-    try:
-        scan_mesh(path, str(path))
-    except InputError as error:
-        return error.message
-    except OSError as error:
-        return error.strerror or str(error)
-    return None
-
-
 def _prepare(root, base: Path, search) -> list[str]:
     """Strip what MuJoCo must not read (visuals, Gazebo and ros2_control extras), point
-    collision meshes at their files; the notes say what was left out."""
+    collision meshes at files MuJoCo reads (:mod:`.meshes`: converted where needed, in
+    metres); the notes say what was left out."""
+    from .meshes import mujoco_mesh
+
     notes = []
     for element in list(root.iter("visual", "gazebo", "transmission", "ros2_control")):
         element.getparent().remove(element)
@@ -249,21 +237,14 @@ def _prepare(root, base: Path, search) -> list[str]:
         filename = mesh.get("filename") or ""
         try:
             path = search.resolve_uri(filename, base)
-        except McarError:
-            path = None
-        if path is None or not path.is_file() or path.suffix.lower() not in MESH_FORMATS:
+            if not path.is_file():
+                raise InputError("no such file", file=str(path))
+            mesh.set("filename", str(mujoco_mesh(path).resolve()))
+        except (McarError, OSError) as error:
+            why = error.message if isinstance(error, McarError) else error.strerror or error
             link = collision.getparent()
-            notes.append(f"link {link.get('name')}: collision mesh {filename} left out "
-                         f"(MuJoCo reads {', '.join(MESH_FORMATS)} files that exist)")
+            notes.append(f"link {link.get('name')}: collision mesh {filename} left out: {why}")
             link.remove(collision)
-            continue
-        over = _over_limit(path)
-        if over is not None:  # MuJoCo would read it whole
-            link = collision.getparent()
-            notes.append(f"link {link.get('name')}: collision mesh {filename} left out: {over}")
-            link.remove(collision)
-            continue
-        mesh.set("filename", str(path.resolve()))
     extension = etree.SubElement(root, "mujoco")
     etree.SubElement(extension, "compiler", discardvisual="true", fusestatic="false",
                      inertiafromgeom="false", balanceinertia="false", strippath="false")

@@ -1,8 +1,12 @@
 """One robot input, loaded and checked as ``mcar render`` does, as a yourdfpy model for viser.
 
-A robot that ``mcar check`` rejects (any error, or a missing visual mesh) is refused with
+A robot that ``mcar check`` rejects (any error) is refused with
 :class:`~mobile_car.errors.CheckFailed`, carrying check's diagnostics, so the viewer shows
-what the command line would print, and never a half-built robot.
+what the command line would print, and never a half-built robot. yourdfpy builds the
+scene, but every mesh is read by mcar's reader (:class:`MeshesReadByMcar`): within the mesh
+limits and in metres, COLLADA as RViz reads it, as ``mcar render`` draws it. A mesh that
+is not read (missing, broken, over a limit: check's W207 and W210, shown as warnings) is
+left out.
 """
 
 from __future__ import annotations
@@ -19,7 +23,8 @@ from ..check.checker import check_input
 from ..errors import CheckFailed, McarError, RenderError
 from ..load.inputs import RobotInput
 from ..load.robot import LoadOptions
-from ..render.session import blocking_diagnostics, model_source
+from ..render.assembly import mesh_scene
+from ..render.session import SHOWN_WARNINGS, blocking_diagnostics, model_source
 
 # The joint types a slider moves (and ``mcar render --joint`` poses).
 MOVING = ("revolute", "continuous", "prismatic")
@@ -68,8 +73,9 @@ def load_model(inp: RobotInput, options: LoadOptions, stdin=None) -> ViewModel:
     generated = options.overrides.path if options.overrides is not None else None
     files = [path for path in dict.fromkeys([*loaded.deps, *meshes]) if path != generated]
 
-    # A mesh over a limit (W210) is not read: a name that is no file, which yourdfpy skips.
-    unread = {mesh.path for mesh in result.mesh_files if mesh.over_limit}
+    # A mesh over a limit (W210), missing or broken (W207) is not read: a name that is no
+    # file, which is left out.
+    unread = {mesh.path for mesh in result.mesh_files if mesh.over_limit or not mesh.sound}
 
     def resolve(fname: str) -> str:
         path = loaded.search.resolve_uri(fname, base=source.path.parent)
@@ -80,17 +86,35 @@ def load_model(inp: RobotInput, options: LoadOptions, stdin=None) -> ViewModel:
     logging.getLogger("yourdfpy").addHandler(logging.NullHandler())
     logging.getLogger("yourdfpy").propagate = False
     try:
-        urdf = yourdfpy.URDF.load(io.BytesIO(source.xml), filename_handler=resolve,
-                                  build_scene_graph=True, load_meshes=True,
-                                  build_collision_scene_graph=True,
-                                  load_collision_meshes=True)
+        parsed = yourdfpy.URDF.load(io.BytesIO(source.xml), build_scene_graph=False,
+                                    load_meshes=False, build_collision_scene_graph=False,
+                                    load_collision_meshes=False)
+        urdf = MeshesReadByMcar(robot=parsed.robot, filename_handler=resolve,
+                                build_scene_graph=True, load_meshes=True,
+                                build_collision_scene_graph=True, load_collision_meshes=True)
     except McarError:
         raise
     except Exception as exc:  # yourdfpy and trimesh raise anything from KeyError to ValueError
         raise RenderError(f"cannot build the model: {type(exc).__name__}: {exc}",
                           file=inp.label) from None
-    warnings = [d for d in result.diagnostics if d.rule in ("W210", "W220")]
+    warnings = [d for d in result.diagnostics if d.rule in SHOWN_WARNINGS]
     return ViewModel(urdf, joint_ranges(urdf), files, warnings)
+
+
+class MeshesReadByMcar(yourdfpy.URDF):
+    """yourdfpy's model, its meshes read by mcar's reader instead of ``trimesh.load``
+    (the one place yourdfpy reads a file: ``_geometry2trimeshscene``)."""
+
+    def _geometry2trimeshscene(self, geometry, load_file, force_mesh, skip_materials):
+        if geometry.mesh is None:
+            return super()._geometry2trimeshscene(geometry, load_file, force_mesh,
+                                                  skip_materials)
+        if not load_file:
+            return None
+        path = self._filename_handler(fname=geometry.mesh.filename)
+        if not path:
+            return None
+        return mesh_scene(geometry, lambda _name: path, skip_materials, [])
 
 
 def joint_ranges(urdf: yourdfpy.URDF) -> list[JointRange]:

@@ -48,7 +48,7 @@ ROBOT = b"""<?xml version="1.0"?>
     </visual>
     <collision>
       <origin xyz="0 0 0.1"/>
-      <geometry><mesh filename="meshes/cube.stl" scale="0.1 0.1 0.2"/></geometry>
+      <geometry><mesh filename="meshes/cube.stl" scale="5 5 10"/></geometry>
     </collision>
   </link>
   <link name="tool">
@@ -116,7 +116,14 @@ def test_the_robot_is_clean_and_its_links_are_proved_so_quickly(monkeypatch):
                             is_root=False)
               for name in ("upper", "tool", "camera")
               for link in root.iterfind(f"link[@name='{name}']")]
-    assert proved == [True, True, True]
+    assert None not in proved and len(proved) == 3
+    # What a link holds comes back read, for the rest pose (mobile_car/check/rest_pose.py).
+    upper = proved[0]
+    assert [(kind, shape.tag, xyz, rpy, dims) for kind, shape, xyz, rpy, dims in upper.bodies] \
+        == [("visual", "cylinder", (0, 0, 0.1), (0, 1.5708, 0), (0.03, 0.2)),
+            ("visual", "box", (0, 0, 0), (0, 0, 0), (0.05, 0.05, 0.02)),
+            ("collision", "mesh", (0, 0, 0.1), (0, 0, 0), (5, 5, 10))]
+    assert upper.inertial[1:] == (1.5, (0.01, 0.001, 0, 0.012, 0, 0.004), (0, 0, 0))
     assert materials == {"grey", "orange"}  # the colour upper's visual defines
     assert report.diagnostics == [] and report.numbers_confirmed()
 

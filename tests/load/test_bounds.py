@@ -32,7 +32,7 @@ ADDRESS_SPACE = 2 * 1024 ** 3
 TIMEOUT = 120
 # Lines every run may add after its error: summaries, and the error's own indented
 # context (xacro's "when processing file: ..."), not further errors.
-_SUMMARY = re.compile(r"^(mcar check: |\d+ pictures? in |  when processing file: )")
+_SUMMARY = re.compile(r"^(mcar check: |\d+ pictures? in |  when processing file: |size: )")
 _MESH_URDF = """<?xml version="1.0"?>
 <robot name="bomb">
   <link name="base">

@@ -94,21 +94,33 @@ def test_collision_geometry_takes_the_link_colour():
     assert collision.triangle_count != visual.triangle_count  # the box became a sphere
 
 
-def test_missing_mesh_names_file_line_and_link():
-    with pytest.raises(RenderError) as caught:
-        scene_of(PKG / "models/missing_mesh.urdf")
-    error = caught.value
-    assert error.line == 7 and error.file.endswith("missing_mesh.urdf")
-    assert "link 'base_link'" in error.message and "no_such_mesh.stl not found" in error.message
-    assert error.exit_code == 1
+PLACEHOLDER = (255, 0, 255, 255)
 
 
-def test_mesh_in_an_unknown_package():
+def test_a_missing_mesh_is_a_marker_and_the_rest_is_drawn():
+    """mcar check says which mesh, and where (W207); the scene draws the robot with a magenta
+    box where the mesh belongs, a fifth of the rest of the robot in size."""
     text = ('<robot name="r">\n<link name="a"><visual><geometry>\n'
-            '<mesh filename="package://nowhere_pkg/m.stl"/></geometry></visual></link></robot>')
-    with pytest.raises(RenderError) as caught:
-        scene_of(PKG / "models/inline.urdf", text=text)
-    assert caught.value.line == 3 and "package 'nowhere_pkg' not found" in caught.value.message
+            '<mesh filename="package://render_test_parts/meshes/no_such_mesh.stl"/>'
+            '</geometry></visual></link>\n<link name="b"><visual><geometry>'
+            '<box size="1 1 1"/></geometry></visual></link>\n<joint name="j" type="fixed">'
+            '<parent link="a"/><child link="b"/><origin xyz="2 0 0"/></joint></robot>')
+    scene = scene_of(PKG / "models/inline.urdf", text=text)
+    assert PLACEHOLDER in colours(scene)
+    marker = scene.positions[np.all(np.rint(scene.colors * 255) == PLACEHOLDER, axis=1)]
+    assert np.ptp(marker, axis=0) == pytest.approx([0.2, 0.2, 0.2])  # a fifth of 1 m
+    assert scene.bounds == pytest.approx(np.array([[-0.1, -0.5, -0.5], [2.5, 0.5, 0.5]]))
+
+
+def test_a_missing_mesh_takes_the_size_and_place_of_its_link_s_collision_shapes():
+    text = ('<robot name="r"><link name="a"><visual><origin xyz="5 5 5"/><geometry>'
+            '<mesh filename="package://nowhere_pkg/m.stl"/></geometry></visual>'
+            '<collision><origin xyz="0 0 0.05"/><geometry><box size="0.4 0.2 0.1"/>'
+            '</geometry></collision><collision><origin xyz="0.3 0 0"/><geometry>'
+            '<cylinder radius="0.05" length="0.02"/></geometry></collision></link></robot>')
+    scene = scene_of(PKG / "models/inline.urdf", text=text)
+    assert colours(scene) == {PLACEHOLDER}
+    assert scene.bounds == pytest.approx(np.array([[-0.2, -0.1, -0.01], [0.35, 0.1, 0.1]]))
 
 
 def test_malformed_xml_names_its_line():

@@ -16,7 +16,7 @@ def urdf() -> str:
             f'  <link name="link_{i}">'
             + ("" if i == 0 else
                '<inertial><mass value="0.1"/>'
-               '<inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial>')
+               '<inertia ixx="1e-6" ixy="0" ixz="0" iyy="1e-6" iyz="0" izz="1e-6"/></inertial>')
             + '<visual><geometry><box size="0.01 0.01 0.01"/></geometry>'
               '<material name="grey"/></visual>'
               '<collision><geometry><sphere radius="0.005"/></geometry></collision></link>')

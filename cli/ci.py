@@ -255,7 +255,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
             click.echo(f"mcar: skipped {display_path(file.path)}: {shown(file.reason)}",
                        err=True)
     _emit(items, output_format, quiet, time.perf_counter() - started, no_render, no_sim,
-          helper is not None, 0 if verbose else len(skipped))
+          helper is not None, 0 if verbose else len(skipped), strict)
     if revision is not None:
         changed = sum(1 for entry in compared if entry.diff is not None and entry.diff.changed
                       or entry.summary.startswith("added"))
@@ -353,7 +353,7 @@ def _render(checked, items, manifest, renderer: str, basis) -> None:
 
 
 def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: bool,
-          no_sim: bool, gazebo: bool, skipped: int) -> None:
+          no_sim: bool, gazebo: bool, skipped: int, strict: bool = True) -> None:
     if output_format == "junit":
         from mobile_car.ci.junit import junit_report
 
@@ -393,7 +393,8 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
     if not quiet or output_format == "github":
         streams.echo("\n".join(_table(items)))
     passed = sum(item.ok for item in items)
-    steps = "build, check --strict" + (", gazebo" if gazebo else "") + \
+    steps = "build, " + ("check --strict" if strict else "check") + \
+        (", gazebo" if gazebo else "") + \
         ("" if no_sim else ", sim") + ("" if no_render else ", render")
     if skipped:
         files = "file that is" if skipped == 1 else "files that are"

@@ -108,7 +108,10 @@ def run_isolated(func, *args, read_roots: list[Path] = (), codec: Codec = JSON_V
         gc.callbacks.clear()
         status = 0
         try:
-            limit = memory_mb * 1024 * 1024
+            # The limit is on what xacro adds: a fork shares the parent's address space,
+            # which in a large program (a Dask worker, the viewer, a test run with USD,
+            # MuJoCo and their thread pools loaded) may itself exceed any fixed bound.
+            limit = _address_space() + memory_mb * 1024 * 1024
             # Under a lower hard limit (prlimit, a CI runner's ulimit) keep that one:
             # raising it is refused, and the child would die without a word.
             hard = resource.getrlimit(resource.RLIMIT_AS)[1]
@@ -145,6 +148,16 @@ def run_isolated(func, *args, read_roots: list[Path] = (), codec: Codec = JSON_V
         except wire.ChildOutOfMemory:
             raise OutOfMemory(memory_mb) from None
     return codec.unpack(header, body)
+
+
+def _address_space() -> int:
+    """This process's address space in bytes, what RLIMIT_AS counts (0 where /proc
+    cannot tell: the limit is then the bound alone, as it was)."""
+    try:
+        with open("/proc/self/statm", "rb") as statm:
+            return int(statm.read().split()[0]) * resource.getpagesize()
+    except (OSError, ValueError, IndexError):
+        return 0
 
 
 def _read_result(read_fd: int, timeout: float, most: int, output_mb: float) -> bytes:

@@ -4,6 +4,8 @@ and memory, and the parent process is left as it was."""
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 import threading
 
 import pytest
@@ -91,3 +93,23 @@ def test_the_embedding_programs_gc_hooks_stay_out_of_the_child(repo):
     finally:
         gc.callbacks.remove(noisy)
     assert loaded.warnings == [] and in_parent == []
+
+
+def test_the_memory_limit_counts_from_the_parents_own_size(tmp_path):
+    """A fork starts with its parent's address space: in a large program (a Dask worker,
+    the viewer, a test run with USD and MuJoCo loaded) that alone passed a fixed 4 GB
+    limit, and every xacro failed "out of memory", or stranger, on the first allocation."""
+    script = tmp_path / "large_parent.py"
+    script.write_text(
+        "import mmap, sys\n"
+        "from mobile_car.expand.isolate import run_isolated\n"
+        "# address space that costs nothing: reserved, never touched\n"
+        "held = mmap.mmap(-1, 1024 * 1024**2, prot=0)  # PROT_NONE\n"
+        "def grab(size):\n"
+        "    return len(bytearray(size))\n"
+        "print(run_isolated(grab, 100 * 1024**2))\n")
+    env = {**os.environ, "MCAR_XACRO_MEMORY_MB": "512"}
+    result = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                            env=env, timeout=60, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout == f"{100 * 1024**2}\n"

@@ -33,6 +33,28 @@ class LinkShapes:
 
     bodies: list
     inertial: tuple | None = None
+    # The link's own element when the elements above are those of an earlier link whose
+    # content is byte for byte the same (link_bodies.py): the numbers are the same, a
+    # message must name this link's lines (own_elements).
+    twin: object = None
+
+
+def own_elements(shapes: LinkShapes) -> LinkShapes:
+    """``shapes`` pointing at its own link's elements. A clean link keeps every body, in
+    order: the i-th read body is its i-th <visual> or <collision>."""
+    if shapes.twin is None:
+        return shapes
+    bodies = []
+    found = (child for child in shapes.twin if child.tag in ("visual", "collision"))
+    for (kind, _shape, xyz, rpy, dims), body in zip(shapes.bodies, found, strict=False):
+        geometry = next(child for child in body if child.tag == "geometry")
+        shape = next(child for child in geometry if child.tag.__class__ is str)
+        bodies.append((kind, shape, xyz, rpy, dims))
+    inertial = shapes.inertial
+    if inertial is not None:
+        own = next(child for child in shapes.twin if child.tag == "inertial")
+        inertial = (own, *inertial[1:])
+    return LinkShapes(bodies, inertial)
 
 
 def link_shapes(element) -> LinkShapes:
@@ -327,6 +349,7 @@ def rest_pose(robot, tree, shapes_of: dict, mesh_bounds: dict) -> RestPose:
         pose, held = poses.get(link.name), shapes_of.get(link.name)
         if pose is None or held is None:
             continue
+        held = own_elements(held)
         if held.inertial is not None:
             result.inertials[link.name] = held.inertial
         for kind, element, xyz, rpy, dims in held.bodies:

@@ -190,29 +190,6 @@ def span(low, high) -> float:
     return max(high[0] - low[0], high[1] - low[1], high[2] - low[2])
 
 
-def union(shapes) -> tuple:
-    """(low, high) around the shapes' boxes, or (None, None)."""
-    x0 = y0 = z0 = float("inf")
-    x1 = y1 = z1 = float("-inf")
-    for shape in shapes:
-        low, high = shape.low, shape.high
-        if low[0] < x0:
-            x0 = low[0]
-        if low[1] < y0:
-            y0 = low[1]
-        if low[2] < z0:
-            z0 = low[2]
-        if high[0] > x1:
-            x1 = high[0]
-        if high[1] > y1:
-            y1 = high[1]
-        if high[2] > z1:
-            z1 = high[2]
-    if x0 > x1:
-        return None, None
-    return (x0, y0, z0), (x1, y1, z1)
-
-
 def firsts(element) -> dict:
     """Tag -> the first child of that tag (urdfdom reads the first; lxml's find() is slow
     Python, a loop over the children is not)."""

@@ -50,7 +50,7 @@ def check_link_bodies(links: list[Link], report: Reporter, materials: set[str],
             repeats += 1
             if not LINK.attrs_ok(element.keys()):  # the start tag is not in the key
                 notes.attributes.append(element)
-            held[link.name] = _same_content(known, element)
+            held[link.name] = LinkShapes(known.bodies, known.inertial, element)
             continue
         shapes = plainly_clean(element, report, materials, top_level, link.name in moving,
                                root is not None and link.name == root)
@@ -66,23 +66,6 @@ def check_link_bodies(links: list[Link], report: Reporter, materials: set[str],
             clean[key] = shapes
     report_anomalies(notes, report)
     return held
-
-
-def _same_content(shapes: LinkShapes, element) -> LinkShapes:
-    """The shapes of a link whose content is byte for byte that of the link ``shapes``
-    were read from, pointing at this link's own elements (a message names the line of
-    the link it is about). A clean link keeps every body, in order: the i-th read body is
-    its i-th <visual> or <collision>."""
-    bodies = []
-    found = (child for child in element if child.tag in ("visual", "collision"))
-    for (kind, _shape, xyz, rpy, dims), body in zip(shapes.bodies, found, strict=False):
-        geometry = next(child for child in body if child.tag == "geometry")
-        shape = next(child for child in geometry if child.tag.__class__ is str)
-        bodies.append((kind, shape, xyz, rpy, dims))
-    inertial = shapes.inertial
-    if inertial is not None:
-        inertial = (next(child for child in element if child.tag == "inertial"), *inertial[1:])
-    return LinkShapes(bodies, inertial)
 
 
 def _content(element) -> bytes:

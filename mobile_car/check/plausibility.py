@@ -127,36 +127,39 @@ def _joined(a: tuple, b: tuple) -> tuple:
 
 def _inertia(name: str, inertial: tuple, shapes: list[Shape], tree, moving: bool,
              report: Reporter) -> None:
-    """W213, or W214 for a wheel; ``inertial`` is (element, mass, moments, rpy)."""
+    """W213, or W214 for a wheel; ``inertial`` is (element, mass, moments, rpy). A tensor
+    that is not positive definite is W204's, not these rules': looked at only before a
+    warning, as most links are within every bound."""
     element, mass, moments, rpy = inertial
     if mass <= 0:
         return
-    principal = principal_moments(*moments)
-    if principal[0] <= 0:  # W204 says so
-        return
-    inertia = firsts(element)["inertia"]
     own = [s for s in shapes if s.kind == "collision"] or shapes
     wheel = _wheel(name, own, tree)
     if wheel is not None:
-        _wheel_inertia(name, inertia, frame_of(ZERO, rpy), mass, moments, wheel, report)
+        _wheel_inertia(name, element, frame_of(ZERO, rpy), mass, moments, wheel, report)
         return
-    trace = sum(principal)
-    if len(own) == 1 and own[0].tag != "mesh":
-        solid, what, below = solid_trace(own[0], mass), _described(own[0]), INERTIA_BELOW_SHAPE
+    trace = moments[0] + moments[3] + moments[5]  # the sum of the principal moments
+    single = len(own) == 1 and own[0].tag != "mesh"
+    if single:
+        solid, below = solid_trace(own[0], mass), INERTIA_BELOW_SHAPE
     else:
         low, high = _local_union(own)
         size = tuple(h - lo for lo, h in zip(low, high, strict=True))
-        solid = mass * sum(v * v for v in size) / 6
-        what = f"the box around its {own[0].kind} shapes ({_sizes(size)} m)"
-        below = INERTIA_BELOW_BOX
+        solid, below = mass * sum(v * v for v in size) / 6, INERTIA_BELOW_BOX
     if solid <= 0:
         return
     ratio = trace / solid
-    if ratio > INERTIA_ABOVE:
+    above, under = ratio > INERTIA_ABOVE, ratio * below < 1 and moving
+    if not (above or under) or principal_moments(*moments)[0] <= 0:
+        return
+    what = _described(own[0]) if single else \
+        f"the box around its {own[0].kind} shapes ({_sizes(size)} m)"
+    inertia = firsts(element)["inertia"]
+    if above:
         report.add("W213", inertia, f"link '{name}': its inertia (trace {trace:.3g} kg m²) is "
                    f"{ratio:.0f} times that of a solid of {mass:g} kg filling {what} "
                    f"({solid:.3g} kg m²): more than its mass can have there")
-    elif ratio * below < 1 and moving:
+    else:
         report.add("W213", inertia, f"link '{name}': its inertia (trace {trace:.3g} kg m²) is "
                    f"1/{1 / ratio:.0f} of that of a solid of {mass:g} kg filling {what} "
                    f"({solid:.3g} kg m²): too small for its size")
@@ -237,7 +240,7 @@ def _axis(joint) -> tuple | None:
     return None if length == 0 else (x / length, y / length, z / length)
 
 
-def _wheel_inertia(name: str, element, placed: tuple, mass: float, moments: tuple,
+def _wheel_inertia(name: str, inertial, placed: tuple, mass: float, moments: tuple,
                    wheel: tuple, report: Reporter) -> None:
     (ax, ay, az), radius = wheel
     ixx, ixy, ixz, iyy, iyz, izz = moments
@@ -252,12 +255,15 @@ def _wheel_inertia(name: str, element, placed: tuple, mass: float, moments: tupl
     if ring <= 0:
         return
     share = axle / ring
+    if WHEEL_BELOW <= share <= WHEEL_ABOVE or principal_moments(*moments)[0] <= 0:
+        return
+    element = firsts(inertial)["inertia"]
     if share > WHEEL_ABOVE:
         report.add("W214", element, f"link '{name}' is a wheel of {mass:g} kg and radius "
                    f"{radius:.3g} m: its moment about the axle, {axle:.3g} kg m², is "
                    f"{share:.3g} m r², more than a ring of that mass and radius has (m r² = "
                    f"{ring:.3g}); a solid disc has m r² / 2")
-    elif share < WHEEL_BELOW:
+    else:
         report.add("W214", element, f"link '{name}' is a wheel of {mass:g} kg and radius "
                    f"{radius:.3g} m: its moment about the axle, {axle:.3g} kg m², is "
                    f"{share:.2g} m r², under a tenth of a solid disc's (m r² / 2 = "

@@ -33,6 +33,28 @@ class LinkShapes:
 
     bodies: list
     inertial: tuple | None = None
+    # The link's own element when the elements above are those of an earlier link whose
+    # content is byte for byte the same (link_bodies.py): the numbers are the same, a
+    # message must name this link's lines (own_elements).
+    twin: object = None
+
+
+def own_elements(shapes: LinkShapes) -> LinkShapes:
+    """``shapes`` pointing at its own link's elements. A clean link keeps every body, in
+    order: the i-th read body is its i-th <visual> or <collision>."""
+    if shapes.twin is None:
+        return shapes
+    bodies = []
+    found = (child for child in shapes.twin if child.tag in ("visual", "collision"))
+    for (kind, _shape, xyz, rpy, dims), body in zip(shapes.bodies, found, strict=False):
+        geometry = next(child for child in body if child.tag == "geometry")
+        shape = next(child for child in geometry if child.tag.__class__ is str)
+        bodies.append((kind, shape, xyz, rpy, dims))
+    inertial = shapes.inertial
+    if inertial is not None:
+        own = next(child for child in shapes.twin if child.tag == "inertial")
+        inertial = (own, *inertial[1:])
+    return LinkShapes(bodies, inertial)
 
 
 def link_shapes(element) -> LinkShapes:
@@ -114,28 +136,39 @@ class Shape:
 @dataclass
 class RestPose:
     """The rest pose as the plausibility rules read it (:mod:`.rest_pose_arrays` makes the
-    same from numpy arrays for a large robot)."""
+    same from numpy arrays for a large robot). Only the shapes a rule looks at one by one
+    are kept (meshes, and the shapes of links with an inertia that the inertia rules
+    read: their collision shapes, else their visual ones); the boxes around all of them,
+    and the widest, are kept as they are placed."""
 
     poses: dict = field(default_factory=dict)   # link -> (rotation 9-tuple, origin)
     shapes: list[Shape] = field(default_factory=list)
     inertials: dict = field(default_factory=dict)  # link -> LinkShapes.inertial
+    low: list = field(default_factory=lambda: [float("inf")] * 3)  # around every shape
+    high: list = field(default_factory=lambda: [float("-inf")] * 3)
+    rest_low: list = field(default_factory=lambda: [float("inf")] * 3)  # but meshes
+    rest_high: list = field(default_factory=lambda: [float("-inf")] * 3)
+    widest: tuple | None = None  # (span, Shape)
+    judged: dict = field(default_factory=dict)  # link -> the kind of shape its inertia is read with
 
     def extents(self) -> tuple | None:
         """(x, y, z) of the box around every shape, None if there is none."""
-        low, high = union(self.shapes)
-        return None if low is None else tuple(h - lo for lo, h in zip(low, high, strict=True))
+        if self.widest is None:
+            return None
+        return tuple(h - lo for lo, h in zip(self.low, self.high, strict=True))
 
     def largest(self) -> Shape | None:
         """The shape whose box is the widest."""
-        return max(self.shapes, key=lambda s: span(s.low, s.high), default=None)
+        return None if self.widest is None else self.widest[1]
 
     def meshes(self) -> list[Shape]:
         return [shape for shape in self.shapes if shape.tag == "mesh"]
 
     def rest_box(self) -> tuple:
         """(low, high) around every shape but the meshes, and every link's frame."""
-        low, high = union(shape for shape in self.shapes if shape.tag != "mesh")
-        points = [t for _r, t in self.poses.values()] + ([low, high] if low else [])
+        points = [t for _r, t in self.poses.values()]
+        if self.rest_low[0] <= self.rest_high[0]:
+            points += [tuple(self.rest_low), tuple(self.rest_high)]
         if not points:
             return None, None
         return (tuple(min(p[i] for p in points) for i in range(3)),
@@ -147,36 +180,14 @@ class RestPose:
         for shape in self.shapes:
             by_link.setdefault(shape.link, []).append(shape)
         for name, inertial in self.inertials.items():
-            if name in by_link:
-                yield name, inertial, by_link[name]
+            own = [shape for shape in by_link.get(name, ()) if shape.kind == self.judged[name]]
+            if own:
+                yield name, inertial, own
 
 
 def span(low, high) -> float:
     """The widest side of the box low..high."""
     return max(high[0] - low[0], high[1] - low[1], high[2] - low[2])
-
-
-def union(shapes) -> tuple:
-    """(low, high) around the shapes' boxes, or (None, None)."""
-    x0 = y0 = z0 = float("inf")
-    x1 = y1 = z1 = float("-inf")
-    for shape in shapes:
-        low, high = shape.low, shape.high
-        if low[0] < x0:
-            x0 = low[0]
-        if low[1] < y0:
-            y0 = low[1]
-        if low[2] < z0:
-            z0 = low[2]
-        if high[0] > x1:
-            x1 = high[0]
-        if high[1] > y1:
-            y1 = high[1]
-        if high[2] > z1:
-            z1 = high[2]
-    if x0 > x1:
-        return None, None
-    return (x0, y0, z0), (x1, y1, z1)
 
 
 def firsts(element) -> dict:
@@ -323,18 +334,49 @@ def rest_pose(robot, tree, shapes_of: dict, mesh_bounds: dict) -> RestPose:
             poses[joint.child] = pose if origin is None else compose(pose, origin)
             stack.append(joint.child)
     append = result.shapes.append
+    low, high, rest_low, rest_high = result.low, result.high, result.rest_low, result.rest_high
+    widest = 0.0
     for link in robot.links:
         pose, held = poses.get(link.name), shapes_of.get(link.name)
         if pose is None or held is None:
             continue
-        if held.inertial is not None:
-            result.inertials[link.name] = held.inertial
+        held = own_elements(held)
+        placed_shapes = []
         for kind, element, xyz, rpy, dims in held.bodies:
-            known = own_box(element.tag, dims, element, mesh_bounds)
+            tag = element.tag
+            known = own_box(tag, dims, element, mesh_bounds)
             if known is None:
                 continue
             placed = frame_of(xyz, rpy)
             size, own = known
-            low, high = placed_box(compose(pose, placed), *own)
-            append(Shape(link.name, kind, element.tag, element, size, low, high, placed, own))
+            box_low, box_high = placed_box(compose(pose, placed), *own)
+            placed_shapes.append((kind, tag, element, size, box_low, box_high, placed, own))
+            for i in range(3):
+                if box_low[i] < low[i]:
+                    low[i] = box_low[i]
+                if box_high[i] > high[i]:
+                    high[i] = box_high[i]
+                if tag != "mesh":
+                    if box_low[i] < rest_low[i]:
+                        rest_low[i] = box_low[i]
+                    if box_high[i] > rest_high[i]:
+                        rest_high[i] = box_high[i]
+        # The inertia rules read a link's collision shapes, else its visual ones.
+        judged = None
+        if held.inertial is not None:
+            result.inertials[link.name] = held.inertial
+            judged = "collision" if any(p[0] == "collision" for p in placed_shapes) \
+                else "visual"
+            result.judged[link.name] = judged
+        for kind, tag, element, size, box_low, box_high, placed, own in placed_shapes:
+            shape = None
+            if tag == "mesh" or kind == judged:
+                shape = Shape(link.name, kind, tag, element, size, box_low, box_high, placed,
+                              own)
+                append(shape)
+            across = span(box_low, box_high)
+            if result.widest is None or across > widest:
+                widest = across
+                result.widest = (across, shape or Shape(link.name, kind, tag, element, size,
+                                                        box_low, box_high, placed, own))
     return result

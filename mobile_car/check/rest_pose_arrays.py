@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import plausibility as rules
-from .rest_pose import ZERO, Shape, frame_of, own_box
+from .rest_pose import ZERO, Shape, frame_of, own_box, own_elements
 
 _SLACK = 1.01  # candidates a hair beyond each bound: the link's own judgement decides
 
@@ -39,7 +39,7 @@ class ArraysPose:
     own_high: np.ndarray
     frames_low: np.ndarray   # (3,) around every link's origin
     frames_high: np.ndarray
-    bodies: list             # per shape: (link, kind, shape element, xyz, rpy)
+    bodies: list             # per shape: (link, kind, element, xyz, rpy, LinkShapes, index)
     tags: np.ndarray         # per shape: 0 box, 1 cylinder, 2 sphere, 3 mesh
     dims: np.ndarray         # (shapes, 3): box size, (r, r, length), (r, r, r); meshes 0
     judged: list = field(default_factory=list)  # (link, <inertial>, [Shape]) to judge
@@ -51,7 +51,9 @@ class ArraysPose:
 
     def shape(self, index: int) -> Shape:
         """Shape ``index`` as :func:`.rest_pose.rest_pose` makes it."""
-        link, kind, element, xyz, rpy = self.bodies[index]
+        link, kind, element, xyz, rpy, held, order = self.bodies[index]
+        if held.twin is not None:  # a repeated link's: its own element, for messages
+            element = own_elements(held).bodies[order][1]
         own = (tuple(self.own_low[index].tolist()), tuple(self.own_high[index].tolist()))
         tag, (a, b, c) = int(self.tags[index]), self.dims[index].tolist()
         size = ((a, b, c), (a, c), (a,), tuple(h - lo for lo, h in zip(*own, strict=True)))[tag]
@@ -147,8 +149,8 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict) -> ArraysP
             continue
         if held.inertial is not None:
             inertial_rows.append(index)
-            inertials.append(held.inertial)
-        for kind, element, xyz, rpy, dims in held.bodies:
+            inertials.append(held)
+        for order, (kind, element, xyz, rpy, dims) in enumerate(held.bodies):
             tag = _TAGS.get(element.tag)
             if tag == 3:
                 known = own_box("mesh", dims, element, mesh_bounds)
@@ -158,7 +160,7 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict) -> ArraysP
                 dims = ZERO
             elif tag is None:
                 continue
-            bodies.append((link.name, kind, element, xyz, rpy))
+            bodies.append((link.name, kind, element, xyz, rpy, held, order))
             links.append(index)
             tags.append(tag)
             numbers.append((*xyz, *rpy, *(dims * 3)[:3]))  # (r,) -> r r r; (r, l) -> r l r
@@ -189,12 +191,14 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict) -> ArraysP
                       centre - half, centre + half, shift.min(axis=0), shift.max(axis=0),
                       bodies, tags, dims)
     doubtful = _doubtful(pose, links, count, np.array(turning, dtype=int), axes,
-                         np.array(inertial_rows, dtype=int), inertials)
+                         np.array(inertial_rows, dtype=int),
+                         [held.inertial for held in inertials])
     shapes: dict[str, list] = {}
     for i in np.flatnonzero(doubtful[links]).tolist():
         shapes.setdefault(bodies[i][0], []).append(pose.shape(i))
-    pose.judged = [(robot.links[row].name, inertial, shapes[robot.links[row].name])
-                   for row, inertial in zip(inertial_rows, inertials, strict=True)
+    pose.judged = [(robot.links[row].name, own_elements(held).inertial,
+                    shapes[robot.links[row].name])
+                   for row, held in zip(inertial_rows, inertials, strict=True)
                    if robot.links[row].name in shapes]
     return pose
 

@@ -123,3 +123,26 @@ def test_husky_and_jackal_raise_no_plausibility_warning(cli, robot, args):
     document = _json(cli, "--package-path", FOLDER, FOLDER / robot, *args)
     assert not [d for d in document["diagnostics"] if d["rule"] in PLAUSIBILITY]
     assert 0.5 < max(document["extents"]) < 1.0  # about a metre long
+
+
+@pytest.mark.parametrize("large", [False, True], ids=["python", "numpy"])
+def test_repeated_parts_are_each_named_at_their_own_line(cli, tmp_path, monkeypatch, large):
+    """Links whose content is byte for byte the same are checked once (link_bodies.py);
+    a warning about each still points at its own <inertia>, whichever way the rest pose
+    is worked out."""
+    from mobile_car.check import checker
+
+    monkeypatch.setattr(checker, "LARGE_ROBOT", 0 if large else 10**9)
+    castor = ('<collision><geometry><box size="0.03 0.009 0.02"/></geometry></collision>\n'
+              '<inertial><mass value="0.005"/>\n<inertia ixx="0.001" ixy="0" ixz="0" '
+              'iyy="0.001" iyz="0" izz="0.001"/></inertial>')
+    links = "".join(f'<link name="castor_{i}">\n{castor}</link>\n<joint name="j{i}" '
+                    f'type="fixed"><parent link="base"/><child link="castor_{i}"/>'
+                    f'<origin xyz="{0.1 * i} 0 0"/></joint>\n' for i in range(3))
+    robot = tmp_path / "r.urdf"
+    robot.write_text(f'<robot name="r">\n<link name="base"/>\n{links}</robot>\n')
+    lines = robot.read_text().splitlines()
+    expected = [number for number, text in enumerate(lines, 1) if "<inertia " in text]
+    found = [(d["rule"], d["line"], d["message"].split("'")[1])
+             for d in _json(cli, robot)["diagnostics"]]
+    assert found == [("W213", line, f"castor_{i}") for i, line in enumerate(expected)]

@@ -26,8 +26,10 @@ def announcement(signum: int) -> str:
 
 def _on_signal(signum, frame):
     # Nothing is imported here: the signal may have come in the middle of an import.
-    holds = sys.modules.get("mobile_car.held_signals")  # not loaded: nothing is held
-    if holds is not None and holds.defer(signum, _on_signal):
+    # Not loaded, or still being imported (the signal came during its own imports, when
+    # `defer` is not defined yet): nothing is held.
+    defer = getattr(sys.modules.get("mobile_car.held_signals"), "defer", None)
+    if defer is not None and defer(signum, _on_signal):
         return  # a few lines that must not be cut in two: raised when they are done
     if not _armed:  # before or after the command: nothing half-done to clean up
         for stream in (sys.stdout, sys.stderr):

@@ -1,13 +1,24 @@
 """Ctrl-C, SIGTERM and SIGHUP end a run: exit 130 / 143 / 129, no temporary file left,
 every output either whole or absent (issue 13, item 4). A seeded loop sends the signal at
-random moments of real runs."""
+random moments of real runs.
+
+The loops run mcar on one CPU beside a busy process (issue 30, item 8), as on a loaded
+machine, whatever else runs at the time: a race hides in a window of microseconds (a
+module half imported, a fork), and mcar preempted inside one holds it open for a time
+slice. Even so a window that small is met about once in a thousand runs; each race found
+gets a test of its own that hits its window every time (the last one below).
+"""
 
 from __future__ import annotations
 
+import contextlib
+import os
 import random
 import re
 import signal
 import subprocess
+import sys
+import textwrap
 import time
 
 import pytest
@@ -15,6 +26,25 @@ from conftest import MCAR, REPO
 from lxml import etree
 
 RUNS = 50
+
+
+@contextlib.contextmanager
+def _sharing_a_busy_cpu():
+    """Processes started from this thread run on one CPU beside a CPU-bound process.
+    sched_setaffinity(0) pins only the calling thread, and children inherit it: the other
+    CPUs stay free for the rest of the suite."""
+    pinned = getattr(os, "sched_setaffinity", None) is not None
+    if pinned:
+        cpus = os.sched_getaffinity(0)
+        os.sched_setaffinity(0, {max(cpus)})
+    busy = subprocess.Popen([sys.executable, "-c", "while True: pass"])
+    try:
+        yield
+    finally:
+        busy.kill()
+        busy.wait()
+        if pinned:
+            os.sched_setaffinity(0, cpus)
 
 
 def _run_and_signal(args, cwd, delay, signum, stdin=subprocess.DEVNULL):
@@ -28,31 +58,31 @@ def _run_and_signal(args, cwd, delay, signum, stdin=subprocess.DEVNULL):
     return process.returncode, err
 
 
+@pytest.mark.slow
 def test_a_signal_at_any_moment_leaves_no_temporary_file(tmp_path):
     rng = random.Random(11)
     (tmp_path / "timing").mkdir()
-    whole = {render: min(2.5, _seconds(_args(render, tmp_path / "timing"), tmp_path))
-             for render in (False, True)}
     ended = {143: 0, 129: 0, 0: 0, -15: 0, -1: 0}
-    for run in range(RUNS):
-        out = tmp_path / f"run{run}"
-        out.mkdir()
-        render = run % 5 == 4  # one run in five draws (pictures written on a second thread)
-        args = (["render", str(REPO / "urdf"), "--renderer", "raycast", "--size", "160x120",
-                 "-o", str(out / "renders")] if render
-                else ["build", str(REPO / "urdf"), "-o", str(out / "build")])
-        signum = signal.SIGHUP if run % 7 == 6 else signal.SIGTERM
-        code, err = _run_and_signal(args, out, rng.uniform(0.05, whole[render]), signum)
-        # -signum: the signal came as the interpreter was shutting down, after every output
-        # was written, when Python has given the default handlers back (a shell shows
-        # 128 + signum for it as well).
-        assert code in (0, 128 + signum, -signum), (run, code, err)
-        assert "Traceback" not in err and "internal error" not in err, err
-        ended[code] += 1
-        leftovers = [p.name for p in out.rglob("*") if p.name.endswith(".tmp")]
-        assert leftovers == [], (run, leftovers)
-        for urdf in out.rglob("*.urdf"):
-            etree.parse(str(urdf))  # whole, or it would not parse
+    with _sharing_a_busy_cpu():
+        whole = {render: min(2.5, _seconds(_args(render, tmp_path / "timing"), tmp_path))
+                 for render in (False, True)}
+        for run in range(RUNS):
+            out = tmp_path / f"run{run}"
+            out.mkdir()
+            render = run % 5 == 4  # one run in five draws (pictures on a second thread)
+            signum = signal.SIGHUP if run % 7 == 6 else signal.SIGTERM
+            code, err = _run_and_signal(_args(render, out), out,
+                                        rng.uniform(0.05, whole[render]), signum)
+            # -signum: the signal came before Python put its handlers in (nothing ran), or
+            # as the interpreter was shutting down, after every output was written, when
+            # Python has given the default handlers back (a shell shows 128 + signum).
+            assert code in (0, 128 + signum, -signum), (run, code, err)
+            assert "Traceback" not in err and "internal error" not in err, (run, err)
+            ended[code] += 1
+            leftovers = [p.name for p in out.rglob("*") if p.name.endswith(".tmp")]
+            assert leftovers == [], (run, leftovers)
+            for urdf in out.rglob("*.urdf"):
+                etree.parse(str(urdf))  # whole, or it would not parse
     assert ended[143] + ended[129] > RUNS // 2, ended  # most runs were really interrupted
 
 
@@ -64,7 +94,7 @@ def test_the_exit_code_names_the_signal(signum, tmp_path):
 
 
 SIGINT_RUNS = 50
-_FRAME = re.compile(r'File "([^"]*)", line (\d+)')
+_FRAME = re.compile(r'File "([^"]*)", line (\d+), in (\S+)')
 
 
 def _install_line() -> int:
@@ -73,19 +103,45 @@ def _install_line() -> int:
     return next(n for n, line in enumerate(lines, 1) if line.startswith("signals.install()"))
 
 
-def _before_mcar_started(err: str) -> bool:
-    """A Ctrl-C that came while Python itself was starting (site, the .pth files) or
-    importing mcar's first module, before mcar's handler was in: Python's own
-    KeyboardInterrupt traceback, whose frames never reach past the handler's install."""
-    if not err.rstrip().endswith("KeyboardInterrupt"):
-        return False
-    for path, line in _FRAME.findall(err):
+def _frames_before_mcar(text: str) -> bool:
+    """Every frame of a traceback is Python's own start (site, the .pth files, importlib)
+    or mcar's first module before the line that installs mcar's handlers (mcar's handler
+    itself in a traceback means it was in)."""
+    for path, line, function in _FRAME.findall(text):
+        if path.endswith("/cli/signals.py") and function == "_on_signal":
+            return False
         if "/mobile_car/" not in path or path.endswith(("/mobile_car/__init__.py",
                                                         "/cli/__init__.py", "/cli/signals.py")):
             continue
         if not (path.endswith("/cli/main.py") and int(line) <= _install_line()):
             return False
     return True
+
+
+def _before_mcar_started(code: int, err: str, out) -> bool:
+    """A Ctrl-C that ended the process before mcar's handler was in. Either it came before
+    Python had put in its own handler, and the default action ended the process (-2,
+    nothing printed: any program started that moment ends so), or while Python was
+    starting (site, the .pth files) or importing mcar's first module: Python's own
+    KeyboardInterrupt traceback, whose frames never reach past the handler's install."""
+    if code == -2 and err == "" and not any(out.iterdir()):
+        return True
+    return err.rstrip().endswith("KeyboardInterrupt") and _frames_before_mcar(err)
+
+
+# What Python prints where its start-up code swallows a KeyboardInterrupt and goes on
+# (importlib's module-lock weakref callback, zipimport's look at argv[0]): the Ctrl-C is
+# lost before mcar's first line, and mcar then runs as if it had not come.
+_SWALLOWED = re.compile(r"\A(?:Exception ignored in: |Failed checking if argv\[0\] is an "
+                        r"import path entry\n)(?:.*\n)*?KeyboardInterrupt(?:: )?\n")
+
+
+def _swallowed_by_python(err: str) -> str | None:
+    """The rest of stderr after Python's start-up swallowed the Ctrl-C, or None."""
+    noise = _SWALLOWED.match(err)
+    if noise is None or not _frames_before_mcar(noise.group(0)):
+        return None
+    return err[noise.end():]
 
 
 def _args(render: bool, out):
@@ -101,37 +157,48 @@ def _seconds(args, cwd) -> float:
     return time.monotonic() - started
 
 
+@pytest.mark.slow
 def test_ctrl_c_at_any_moment_exits_130(tmp_path):
     """Ctrl-C at random moments of real runs: during Python's start, mcar's imports,
     click's parsing, the command, the cleanup (issue 13, item 6)."""
     rng = random.Random(13)
     (tmp_path / "timing").mkdir()
-    whole = {render: min(2.5, _seconds(_args(render, tmp_path / "timing"), tmp_path))
-             for render in (False, True)}
-    ended = {130: 0, 0: 0, "python's start": 0, -2: 0}
-    for run in range(SIGINT_RUNS):
-        out = tmp_path / f"run{run}"
-        out.mkdir()
-        render = run % 4 == 3
-        code, err = _run_and_signal(_args(render, out), out,
-                                    rng.uniform(0.01, whole[render]), signal.SIGINT)
-        leftovers = [p.name for p in out.rglob("*") if p.name.endswith(".tmp")]
-        assert leftovers == [], (run, leftovers)
-        if _before_mcar_started(err):  # nothing of mcar ran: nothing it could clean up
-            assert not any(out.iterdir()), (run, err)
-            ended["python's start"] += 1
-            continue
-        for bad in ("Aborted!", "internal error", "Traceback", "Exception ignored"):
-            assert bad not in err, (run, code, err)
-        # -2: the signal came as the interpreter was shutting down, everything written (a
-        # shell shows 130 for it as well).
-        assert code in (0, 130, -2), (run, code, err)
-        ended[code] += 1
-        if code == 130:
-            assert err.rstrip().endswith("mcar: interrupted"), (run, err)
-        else:  # it had finished: every output is there and whole
-            _assert_complete(out, render)
+    ended = {130: 0, 0: 0, "python's start": 0, "lost in python's start": 0, -2: 0}
+    with _sharing_a_busy_cpu():
+        whole = {render: min(2.5, _seconds(_args(render, tmp_path / "timing"), tmp_path))
+                 for render in (False, True)}
+        for run in range(SIGINT_RUNS):
+            out = tmp_path / f"run{run}"
+            out.mkdir()
+            render = run % 4 == 3
+            code, err = _run_and_signal(_args(render, out), out,
+                                        rng.uniform(0.01, whole[render]), signal.SIGINT)
+            ended[_judge_ctrl_c(run, code, err, out, render)] += 1
     assert ended[130] > SIGINT_RUNS // 2, ended
+
+
+def _judge_ctrl_c(run: int, code: int, err: str, out, render: bool):
+    """What one interrupted run came to, once what it printed and left is checked."""
+    leftovers = [p.name for p in out.rglob("*") if p.name.endswith(".tmp")]
+    assert leftovers == [], (run, leftovers)
+    if _before_mcar_started(code, err, out):  # nothing of mcar ran: nothing to clean up
+        assert not any(out.iterdir()), (run, err)
+        return "python's start"
+    rest = _swallowed_by_python(err)
+    if rest is not None:  # then mcar ran, untouched: as a run that was not interrupted
+        assert code == 0 and "Traceback" not in rest, (run, code, err)
+        _assert_complete(out, render)
+        return "lost in python's start"
+    for bad in ("Aborted!", "internal error", "Traceback", "Exception ignored"):
+        assert bad not in err, (run, code, err)
+    # -2: the signal came as the interpreter was shutting down, everything written (a
+    # shell shows 130 for it as well).
+    assert code in (0, 130, -2), (run, code, err)
+    if code == 130:
+        assert err.rstrip().endswith("mcar: interrupted"), (run, err)
+    else:  # it had finished: every output is there and whole
+        _assert_complete(out, render)
+    return code
 
 
 def _assert_complete(out, render: bool) -> None:
@@ -156,3 +223,27 @@ def test_ctrl_c_says_interrupted_and_exits_130(tmp_path):
     assert code == 130, err
     assert err.rstrip().endswith("mcar: interrupted")
     assert "Aborted!" not in err
+
+
+def test_a_signal_while_the_hold_module_is_still_importing_unwinds_as_usual(tmp_path):
+    """A signal that lands while mobile_car/held_signals.py runs its own imports finds it
+    in sys.modules without its functions yet: the handler must take it as "nothing held"
+    (it raised AttributeError there, an internal error or an "Exception ignored" line
+    and a lost Ctrl-C, 1 loop in 4 under load)."""
+    script = textwrap.dedent("""
+        import os, signal, sys, types
+        from mobile_car.cli import signals
+        signals.install()
+        signals.arm()
+        sys.modules["mobile_car.held_signals"] = types.ModuleType("mobile_car.held_signals")
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            sum(range(1000))  # the handler runs at the next bytecode boundary
+        except BaseException as error:
+            print(type(error).__name__, flush=True)
+            os._exit(0)
+        print("nothing raised", flush=True)
+    """)
+    done = subprocess.run([sys.executable, "-c", script], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=60)
+    assert (done.stdout, done.stderr) == ("KeyboardInterrupt\n", "")

@@ -95,6 +95,6 @@ def test_build_failure_skips_the_later_steps_and_others_go_on(run_mcar, package_
 
 
 def test_missing_package_exits_2(run_mcar, tmp_path):
-    result = run_mcar("ci", tmp_path / "nowhere")
+    result = run_mcar("ci", tmp_path / "nowhere", cwd=tmp_path)
     assert result.returncode == 2
     assert "nowhere: error: no such file" in result.stderr

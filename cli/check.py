@@ -42,7 +42,7 @@ HELP = f"""Check URDF files: check_urdf's verdict and tree, and the errors it mi
 
 For a sound file, stdout is byte for byte what check_urdf prints (children in
 check_urdf's order: by joint name). Every problem is one line on stderr:
-FILE:LINE: error: message [E104]. Rule ids and what they find: README, "mcar check".
+FILE:LINE: error: message [E104]. Rule ids and what they find: docs/rules.md.
 Errors (E1xx) fail the check; warnings (W2xx) fail it only with --strict. For a
 .xacro input, FILE:LINE point into the xacro sources where the element's name can
 be found there, else at the input with the line of the expanded URDF.

@@ -8,7 +8,7 @@ are what Gazebo's libsdformat changes in the robot, found by ``mcar check --gaze
 ``rejects`` (exit 255), ``ignores`` (logs an error or nothing, still exits 0, drops the
 element), or ``hangs`` (prints the tree forever, then crashes).
 
-The README's rule table is generated from :data:`RULES` (``tests/check/test_rules.py`` keeps the
+The rule table of docs/rules.md is generated from :data:`RULES` (``tests/check/test_rules.py`` keeps the
 two equal).
 """
 
@@ -168,7 +168,7 @@ _TREE_BLOCKERS = {"E100", "E101", "E102", "E104", "E106", "E107", "E108", "E120"
 
 
 def markdown_table() -> str:
-    """The rule table as Markdown, for the README."""
+    """The rule table as Markdown, for docs/rules.md."""
     lines = ["| id | name | what it finds | check_urdf |", "|---|---|---|---|"]
     for rule in _TABLE:
         lines.append(f"| {rule.id} | {rule.name} | {rule.summary} | {rule.urdfdom} |")

@@ -41,3 +41,57 @@ def test_makefile_installs_the_debian_packages_the_readme_names():
     named = {word for span in re.findall(r"`([^`]+)`", section) for word in span.split()}
     missing = [package for package in packages if package not in named]
     assert not missing, f"the README's set-up section does not name {missing} (in `...`)"
+
+
+# The README is what a newcomer reads in five minutes (issue 28); the reference is docs/.
+README_MAX_LINES = 300
+DOCS = REPO / "docs"
+_LINK = re.compile(r"\]\(([^)#\s]+)(?:#[^)]*)?\)")
+
+
+def _local_links(page) -> list[str]:
+    """The targets of a page's Markdown links that are files of the repository."""
+    return [target for target in _LINK.findall(page.read_text(encoding="utf-8"))
+            if "://" not in target and not target.startswith("mailto:")]
+
+
+def test_readme_is_short():
+    lines = (REPO / "README.md").read_text(encoding="utf-8").splitlines()
+    assert len(lines) <= README_MAX_LINES, f"README.md has {len(lines)} lines"
+
+
+def test_readme_opening_list_names_every_command():
+    """Every command `mcar --help` lists, each on one line of the list before the set-up."""
+    from mobile_car.cli.main import COMMANDS
+
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    opening = readme.split("## Set-up on a fresh machine", 1)[0]
+    for name in COMMANDS:  # `mcar new` as `mcar new part`, its one subcommand
+        lines = [line for line in opening.splitlines()
+                 if re.match(rf"^(?:\| |- )`mcar {name}(?: part)?`", line)]
+        assert len(lines) == 1, f"the README's opening list has no line for mcar {name}"
+
+
+def test_every_link_to_a_file_reaches_it():
+    for page in [REPO / "README.md", *sorted(DOCS.glob("*.md"))]:
+        for target in _local_links(page):
+            assert (page.parent / target).exists(), f"{page.name}: {target} does not exist"
+
+
+def test_every_docs_page_is_linked_from_the_readme():
+    linked = {(REPO / target).resolve() for target in _local_links(REPO / "README.md")}
+    pages = set(DOCS.glob("*.md"))
+    assert pages, "docs/ has no pages"
+    unlinked = sorted(page.name for page in pages if page.resolve() not in linked)
+    assert not unlinked, f"the README links no docs/{unlinked}"
+
+
+def test_every_mcar_variable_is_documented():
+    """Each MCAR_* environment variable mcar reads is on docs/limits.md."""
+    source = "\n".join(path.read_text(encoding="utf-8")
+                       for folder in ("mobile_car", "cli") for path in (REPO / folder).rglob("*.py"))
+    read = set(re.findall(r"[\"'](MCAR_[A-Z_]+)[\"']", source)) - {"MCAR_REQUIREMENT"}
+    assert {"MCAR_MAX_INPUT_MB", "MCAR_XACRO_TIMEOUT", "MCAR_DEBUG"} <= read
+    page = (DOCS / "limits.md").read_text(encoding="utf-8")
+    missing = sorted(name for name in read if f"`{name}" not in page)
+    assert not missing, f"docs/limits.md does not document {missing}"

@@ -24,7 +24,7 @@ from ..load.mesh_facts import mesh_facts
 from ..packages.search import PackageSearch
 from .context import Reporter, has_xacro_expression
 
-# What stands for a mesh that is not read (say it where the pictures do: README).
+# What stands for a mesh that is not read (say it where the pictures do: docs/render.md).
 PLACEHOLDER = "drawn as a magenta box"
 
 

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from ..check.diagnostics import Diagnostic
 
 ERROR, WARNING = "error", "warning"
-# id -> (name, summary), for the README and --format json.
+# id -> (name, summary), for docs/sim.md and --format json.
 SIM_RULES = {
     "E301": ("diffdrive-separation", "the DiffDrive plugin's wheel separation differs from "
              "the distance between the drive wheels by more than 1% (not for a skid-steer "

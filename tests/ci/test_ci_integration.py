@@ -54,9 +54,11 @@ def test_example_workflow_runs_the_commands_the_readme_documents():
             for line in step["run"].splitlines() if line.strip()]
     mcar_runs = [line for line in runs if line.startswith("mcar ")]
     # The pull-request run adds the diff against the base branch (a GitHub expression);
-    # README's "Reviewing a change" documents --against and --diff-report.
+    # docs/diff.md documents --against and --diff-report (and the README points there).
     against = re.compile(r" --against .+? --diff-report \S+$")
     assert all("--against" not in line or against.search(line) for line in mcar_runs)
+    diff_page = (REPO / "docs" / "diff.md").read_text()
+    assert "mcar ci --against" in diff_page and "--diff-report" in diff_page
     assert "mcar ci --against" in (REPO / "README.md").read_text()
     plain = {against.sub("", line) for line in mcar_runs}
     assert mcar_runs and plain <= set(readme_ci_commands())

@@ -12,7 +12,7 @@ from lxml import etree
 
 CAR = REPO / "urdf" / "mobile_robot.xacro"
 GAZEBO_FILE = REPO / "urdf" / "mobile_robot.gazebo.xacro"
-CAR_MASS = 0.70564  # kg: README, "Reviewing a change"
+CAR_MASS = 0.70564  # kg: docs/diff.md's example
 DROPPING = REPO / "tests" / "gazebo" / "cases" / "massless_middle_link.urdf"
 
 

@@ -95,3 +95,17 @@ def test_every_mcar_variable_is_documented():
     page = (DOCS / "limits.md").read_text(encoding="utf-8")
     missing = sorted(name for name in read if f"`{name}" not in page)
     assert not missing, f"docs/limits.md does not document {missing}"
+
+
+def test_every_docs_page_the_code_names_exists():
+    """Help texts, docstrings and comments send readers to docs/ pages: each one is there
+    (mcar export --help named docs/exports.md before anyone wrote it)."""
+    named = set()
+    for folder in ("mobile_car", "cli", "bench", "scripts", "examples"):
+        for path in (REPO / folder).rglob("*"):
+            if path.is_file() and path.suffix in (".py", ".yml", ".yaml", ".md", ".cc"):
+                named |= set(re.findall(r"docs/[\w.-]+\.(?:md|png)",
+                                        path.read_text(encoding="utf-8", errors="replace")))
+    assert named
+    missing = sorted(name for name in named if not (REPO / name).is_file())
+    assert not missing, f"named but not there: {missing}"

@@ -111,6 +111,7 @@ def command(words, to, output, base, floor, fix_inertia, verify, quiet, package_
     from mobile_car.export.mjcf import MjcfOptions
     from mobile_car.export.run import export_robot
 
+    _refuse_options_of_other_formats(to, click.get_current_context(), floor, fix_inertia)
     if to == "usd":
         from mobile_car.extras import require
 
@@ -132,6 +133,29 @@ def command(words, to, output, base, floor, fix_inertia, verify, quiet, package_
         report = export_robot(checked.loaded, Path(output), to,
                               MjcfOptions(base, floor, fix_inertia), verify)
     _print(report, checked.loaded.label, quiet)
+
+
+# The options each format takes beyond the common ones: another is a usage error rather
+# than silently ignored (--base fixed --to urdf would otherwise write a floating robot).
+TAKES = {"mjcf": {"--base", "--floor", "--no-floor", "--fix-inertia"}, "usd": {"--base"},
+         "urdf": set(), "sdf": set()}
+
+
+def _refuse_options_of_other_formats(to: str, context, floor, fix_inertia) -> None:
+    from click.core import ParameterSource
+
+    given = []
+    if context.get_parameter_source("base") == ParameterSource.COMMANDLINE:
+        given.append("--base")
+    if floor is not None:
+        given.append("--floor" if floor else "--no-floor")
+    if fix_inertia:
+        given.append("--fix-inertia")
+    refused = [option for option in given if option not in TAKES[to]]
+    if refused:
+        takers = sorted(f for f, options in TAKES.items() if refused[0] in options)
+        raise UsageError(f"{refused[0]} applies to --to {' and '.join(takers)}, not to "
+                         f"--to {to}")
 
 
 def _print(report, label: str, quiet: bool) -> None:

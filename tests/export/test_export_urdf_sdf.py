@@ -189,3 +189,15 @@ def test_sdf_without_the_helper_is_an_environment_error(run_mcar, repo, tmp_path
     assert result.returncode == 2
     assert result.stderr.count("\n") == 1 and "make gazebo-helper" in result.stderr
     assert not (tmp_path / "sdf").exists()
+
+
+@pytest.mark.parametrize(("to", "option", "said"), [
+    ("urdf", "--base=fixed", "--base applies to --to mjcf and usd, not to --to urdf"),
+    ("sdf", "--fix-inertia", "--fix-inertia applies to --to mjcf, not to --to sdf"),
+    ("usd", "--no-floor", "--no-floor applies to --to mjcf, not to --to usd")])
+def test_an_option_of_another_format_is_a_usage_error(repo, tmp_path, to, option, said):
+    result = _invoke("export", repo / "urdf/mobile_robot.xacro", "--to", to, "-o",
+                     tmp_path / "out", option)
+    assert result.exit_code == 2
+    assert result.stderr == f"mcar: error: {said}\n"
+    assert not (tmp_path / "out").exists()

@@ -62,8 +62,12 @@ def _top_down(links: dict, joints: list) -> list[str]:
         children.setdefault(_end(joint, "parent"), []).append(_end(joint, "child"))
         has_parent.add(_end(joint, "child"))
     order = [name for name in links if name not in has_parent]
+    seen = set(order)
     for name in order:  # grows as it goes: breadth first
-        order += [c for c in children.get(name, ()) if c in links and c not in order]
+        for child in children.get(name, ()):
+            if child in links and child not in seen:
+                seen.add(child)
+                order.append(child)
     return order
 
 

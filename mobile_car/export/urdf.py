@@ -54,7 +54,8 @@ def export_sdf(loaded, folder: Path, options) -> Exported:
         raise GazeboError(f"libsdformat cannot make a Gazebo model of it: {first}",
                           file=loaded.label)
     warnings += [f"libsdformat: {m.text.strip()} ({m.where})" for m in report.warnings]
-    notes = sdf_notes(report, root)
+    notes, lost = sdf_notes(report, root)
+    warnings += lost
     name = robot_file_name(root, ".sdf")
     (folder / name).write_text(report.sdf, encoding="utf-8")
     exported = _exported(name, root, prepared, folder, warnings, notes)
@@ -62,8 +63,9 @@ def export_sdf(loaded, folder: Path, options) -> Exported:
     return exported
 
 
-def sdf_notes(report, root) -> list[str]:
-    """What Gazebo's model keeps of the URDF's links, in words."""
+def sdf_notes(report, root) -> tuple[list[str], list[str]]:
+    """What Gazebo's model keeps of the URDF's links, in words: (notes, a warning for
+    links it leaves out, whose mass the SDF lacks)."""
     links = [link.get("name") for link in root.iterchildren("link")
              if link.get("name") != "world"]
     notes = [f"{len(links)} URDF links become {len(report.model.links)} Gazebo "
@@ -73,10 +75,10 @@ def sdf_notes(report, root) -> list[str]:
     from ..gazebo.changes import link_fates
 
     _lumped, lost = link_fates(links, report, None)
-    if lost:
-        notes.append(f"left out by libsdformat (no mass, and what moves below): "
-                     f"{', '.join(lost)}; mcar check --gazebo says why")
-    return notes
+    warnings = [f"libsdformat leaves out {', '.join(lost)} (a link without mass and what "
+                f"moves below it): the SDF has {report.model.mass:.6g} kg of the URDF's "
+                f"{urdf_mass(root):.6g}; mcar check --gazebo says why"] if lost else []
+    return notes, warnings
 
 
 def _portable_urdf(loaded, folder: Path):

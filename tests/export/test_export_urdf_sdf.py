@@ -201,3 +201,17 @@ def test_an_option_of_another_format_is_a_usage_error(repo, tmp_path, to, option
     assert result.exit_code == 2
     assert result.stderr == f"mcar: error: {said}\n"
     assert not (tmp_path / "out").exists()
+
+
+@needs_helper
+def test_links_libsdformat_leaves_out_are_warned_and_fail_verify(repo, tmp_path):
+    robot = repo / "tests/gazebo/cases/massless_middle_link.urdf"
+    result = _invoke("export", robot, "--to", "sdf", "-o", tmp_path / "sdf")
+    assert result.exit_code == 0
+    assert "warning: libsdformat leaves out arm, tip, tip2 (a link without mass and what " \
+           "moves below it): the SDF has 1 kg of the URDF's 1.75" in result.stderr
+    result = _invoke("export", robot, "--to", "sdf", "-o", tmp_path / "verified", "--verify")
+    assert result.exit_code == 1
+    assert result.stderr.endswith("verified: error: total mass 1 kg, the description's "
+                                  "1.75 kg (42.9% apart, more than 0.1%)\n")
+    assert not (tmp_path / "verified").exists()

@@ -77,7 +77,7 @@ def sdf_notes(report, root) -> tuple[list[str], list[str]]:
     _lumped, lost = link_fates(links, report, None)
     warnings = [f"libsdformat leaves out {', '.join(lost)} (a link without mass and what "
                 f"moves below it): the SDF has {report.model.mass:.6g} kg of the URDF's "
-                f"{urdf_mass(root):.6g}; mcar check --gazebo says why"] if lost else []
+                f"{urdf_mass(root):.6g} kg; mcar check --gazebo says why"] if lost else []
     return notes, warnings
 
 

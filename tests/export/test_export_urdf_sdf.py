@@ -209,7 +209,7 @@ def test_links_libsdformat_leaves_out_are_warned_and_fail_verify(repo, tmp_path)
     result = _invoke("export", robot, "--to", "sdf", "-o", tmp_path / "sdf")
     assert result.exit_code == 0
     assert "warning: libsdformat leaves out arm, tip, tip2 (a link without mass and what " \
-           "moves below it): the SDF has 1 kg of the URDF's 1.75" in result.stderr
+           "moves below it): the SDF has 1 kg of the URDF's 1.75 kg" in result.stderr
     result = _invoke("export", robot, "--to", "sdf", "-o", tmp_path / "verified", "--verify")
     assert result.exit_code == 1
     assert result.stderr.endswith("verified: error: total mass 1 kg, the description's "

@@ -47,6 +47,13 @@ def section_gazebo(rows: list[str], work: Path, quick: bool) -> None:
     gazebo_bench.section(rows, work, quick, measure)
 
 
+def section_export(rows: list[str], work: Path, quick: bool) -> None:
+    import export_bench
+    import measure
+
+    export_bench.section(rows, work, quick, measure)
+
+
 def section_meshes(rows: list[str], work: Path, quick: bool) -> None:
     import measure
     import mesh_check_bench
@@ -57,7 +64,8 @@ def section_meshes(rows: list[str], work: Path, quick: bool) -> None:
 SECTIONS = {"check": section_check, "build": section_build, "startup": section_startup,
             "batch": section_batch, "folder": section_folder, "render": section_render,
             "noop": section_noop, "sim": section_sim, "robots": section_robots,
-            "sweep": section_sweep, "gazebo": section_gazebo, "meshes": section_meshes}
+            "sweep": section_sweep, "gazebo": section_gazebo, "meshes": section_meshes,
+            "export": section_export}
 NEEDS_CHECK_URDF = {"check", "startup", "batch"}
 
 

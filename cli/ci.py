@@ -63,6 +63,15 @@ it, saying why, unless the package's mcar.yaml opts it out with a reason that ci
     skip:
       "urdf/mecanum_base.urdf.xacro": "mecanum rollers, tested on the real robot"
 
+Where the package's mcar.yaml has an export section, each robot it names is also
+exported to each format, verified, as `mcar export --to FORMAT --verify` does, into
+BUILD/exports/ROBOT/FORMAT/ (docs/exports.md):
+
+\b
+  export:
+    formats: [mjcf, urdf]
+    robots: ["urdf/mobile_robot.xacro"]
+
 Exit 0 only if every step of every file passed; 1 if any file has problems; 2 if the
 run could not be made (no package, no renderer: --no-render skips drawing).
 
@@ -183,6 +192,10 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
     from mobile_car.ci import simulation
 
     configs = simulation.package_configs(items, selection.root)
+    from mobile_car.ci.exports import export_step, formats_for
+
+    for item in items:  # mcar.yaml's export: folders made on every run (never replayed)
+        item.exports = formats_for(item, configs)
     revision = None
     if against:  # a wrong REV is a usage error before anything is built
         from mobile_car.ci.against import resolve_revision
@@ -205,7 +218,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
         manifest = Manifest(render_dir)
     fresh = _picture_fresh(manifest, pictures, renderer)
     todo = [item for item in items
-            if not cache.replay(item, basis, strict, fresh, sim=not no_sim)]
+            if item.exports or not cache.replay(item, basis, strict, fresh, sim=not no_sim)]
     checked = []
     compared = []
     try:
@@ -221,6 +234,8 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
                             pipeline.gazebo_step(item, strict)
                         if not no_sim:
                             simulation.sim_step(item, simulation.skip_reason(item, configs))
+                        if item.exports:
+                            export_step(item, build_dir)
                     cache.record(item, basis, strict)
                 if revision is not None:
                     from mobile_car.ci.against import diff_items
@@ -379,9 +394,9 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
             for line in skip_lines(items):
                 click.echo(f"mcar: {shown(line)}", err=True)
         for item in items:
-            if not quiet:  # what Gazebo simulates
+            if not quiet:  # what Gazebo simulates, the folders exported
                 for step in item.steps:
-                    if step.name == "gazebo" and step.status == "passed":
+                    if step.name in ("gazebo", "export") and step.status == "passed":
                         click.echo(f"mcar: {item.label}: {shown(step.message)}", err=True)
             for line in _problems(item):
                 if isinstance(line, str):
@@ -395,7 +410,8 @@ def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: boo
     passed = sum(item.ok for item in items)
     steps = "build, " + ("check --strict" if strict else "check") + \
         (", gazebo" if gazebo else "") + \
-        ("" if no_sim else ", sim") + ("" if no_render else ", render")
+        ("" if no_sim else ", sim") + ("" if no_render else ", render") + \
+        (", export" if any(item.exports for item in items) else "")
     if skipped:
         files = "file that is" if skipped == 1 else "files that are"
         click.echo(f"mcar ci: skipped {skipped} {files} not robots (-v lists them)", err=True)

@@ -21,7 +21,7 @@ from .common import (
     stdin_for,
 )
 
-FORMATS = ("mjcf", "usd")
+FORMATS = ("mjcf", "usd", "urdf", "sdf")
 
 HELP = f"""Export one robot as a folder another simulator loads on a machine without
 its packages: the robot file and every mesh it uses, paths relative to it.
@@ -30,6 +30,9 @@ its packages: the robot file and every mesh it uses, paths relative to it.
   mcar export ROBOT --to mjcf -o out/robot_mjcf         MuJoCo
   mcar export ROBOT --to mjcf -o out/m --verify         ... loaded back and checked
   mcar export ROBOT --to mjcf -o out/m --base fixed     welded to the world
+  mcar export ROBOT --to usd -o out/robot_usd           OpenUSD (Isaac Sim, Newton)
+  mcar export ROBOT --to urdf -o out/robot_urdf         URDF, no package:// left
+  mcar export ROBOT --to sdf -o out/robot_sdf           Gazebo (libsdformat's SDF)
 
 \b
 --to mjcf: NAME.xml, written by MuJoCo from its own reading of the URDF, and
@@ -41,6 +44,16 @@ from <gazebo><mu1>, and on a vehicle the velocity servos `mcar sim` drives with
 a floating base) adds a floor with the robot standing on it. Meshes MuJoCo cannot
 read (COLLADA, PLY, ...) are converted to STL in metres, each listed.
 
+--to usd: the stage urdf-usd-converter writes (NAME.usda and its layers), with a
+velocity drive on each drive wheel; a massless frame link's children are re-hung on
+the body fixed to it, in the same place (the converter makes no body of a frame).
+
+--to urdf: NAME.urdf with every mesh and texture below meshes/ by relative paths
+(COLLADA, STL and OBJ as they are, others converted to STL), <gazebo> kept.
+
+--to sdf: the SDF libsdformat writes from that URDF (the Gazebo helper, `make
+gazebo-helper`), mesh URIs relative to it; fixed joints lumped, as Gazebo does.
+
 Inertias MuJoCo refuses (principal moments that break A + B >= C, a moving link
 without mass) are named link by link (exit 1); --fix-inertia applies MuJoCo's own
 fixes instead, one warning per link.
@@ -48,7 +61,9 @@ fixes instead, one warning per link.
 --verify loads the export back from its folder with the target's engine: every
 file inside the folder, the total mass within 0.1% of the description's, the same
 moving joints; in MuJoCo a vehicle settles on a floor and drives forward under its
-actuators. A mismatch is an error naming what differs, and nothing is written.
+actuators; a URDF loads in yourdfpy (meshes too) and urdfdom's check_urdf where
+installed; an SDF in libsdformat without errors. A mismatch is an error naming
+what differs, and nothing is written.
 
 The robot is checked first, as by `mcar check`; one with errors is not exported.
 The folder is written whole or not at all (staged beside it, renamed into place);
@@ -61,17 +76,19 @@ holds mcar-export.json, the manifest of what was written). See docs/exports.md.
 Exit codes:
   0  the folder was written (and verified)
   1  the robot fails its check, the target cannot take it (an inertia MuJoCo
-     refuses), or --verify found a mismatch
+     refuses, a robot libsdformat makes no model of), or --verify found a mismatch
   2  usage or I/O error: no -o, several robots, a folder that is not an export,
-     a folder holding an input, a file that cannot be written
+     a folder holding an input, a file that cannot be written; --to sdf without
+     the Gazebo helper, --to usd without the usd extra
   130  interrupted (Ctrl-C); 143 terminated
 """
 
 
-@click.command("export", help=HELP, short_help="Export a robot for MuJoCo as a folder.")
+@click.command("export", help=HELP, short_help="Export a robot as a folder for another simulator.")
 @click.argument("words", nargs=-1, metavar="[INPUT] [NAME:=VALUE]...")
 @click.option("--to", "to", type=click.Choice(FORMATS), required=True,
-              help="The format: mjcf (MuJoCo), usd (OpenUSD: Isaac Sim, Newton).")
+              help="The format: mjcf (MuJoCo), usd (OpenUSD: Isaac Sim, Newton), urdf "
+                   "(PyBullet, Genesis, ...: meshes beside it), sdf (Gazebo).")
 @click.option("-o", "--output", metavar="DIR", required=True,
               help="The folder to write (made; an earlier export there is replaced).")
 @click.option("--base", type=click.Choice(("floating", "fixed")), default="floating",
@@ -94,6 +111,7 @@ def command(words, to, output, base, floor, fix_inertia, verify, quiet, package_
     from mobile_car.export.mjcf import MjcfOptions
     from mobile_car.export.run import export_robot
 
+    _refuse_options_of_other_formats(to, click.get_current_context(), floor, fix_inertia)
     if to == "usd":
         from mobile_car.extras import require
 
@@ -115,6 +133,29 @@ def command(words, to, output, base, floor, fix_inertia, verify, quiet, package_
         report = export_robot(checked.loaded, Path(output), to,
                               MjcfOptions(base, floor, fix_inertia), verify)
     _print(report, checked.loaded.label, quiet)
+
+
+# The options each format takes beyond the common ones: another is a usage error rather
+# than silently ignored (--base fixed --to urdf would otherwise write a floating robot).
+TAKES = {"mjcf": {"--base", "--floor", "--no-floor", "--fix-inertia"}, "usd": {"--base"},
+         "urdf": set(), "sdf": set()}
+
+
+def _refuse_options_of_other_formats(to: str, context, floor, fix_inertia) -> None:
+    from click.core import ParameterSource
+
+    given = []
+    if context.get_parameter_source("base") == ParameterSource.COMMANDLINE:
+        given.append("--base")
+    if floor is not None:
+        given.append("--floor" if floor else "--no-floor")
+    if fix_inertia:
+        given.append("--fix-inertia")
+    refused = [option for option in given if option not in TAKES[to]]
+    if refused:
+        takers = sorted(f for f, options in TAKES.items() if refused[0] in options)
+        raise UsageError(f"{refused[0]} applies to --to {' and '.join(takers)}, not to "
+                         f"--to {to}")
 
 
 def _print(report, label: str, quiet: bool) -> None:

@@ -151,3 +151,21 @@ def test_quick_meshes_section_sets_a_mesh_robot_beside_its_boxes(tmp_path, mcar_
     for row in rows:  # real runs: a time, a ratio to the boxes, a peak, exit 0 every time
         assert re.fullmatch(r"[\d.]+ m?s", row[1]) and re.fullmatch(r"[\d.]+x", row[2])
         assert re.fullmatch(r"\d+ MiB", row[3]) and row[4] == "0"
+
+
+def test_quick_export_section_times_each_format_next_to_check(tmp_path, mcar_bin):
+    from sim.test_sim_real_robots import FOLDER
+
+    if FOLDER is None:
+        pytest.skip("the shared real-robots folder is absent (set MCAR_REAL_ROBOTS)")
+    text = quick_section(tmp_path, "export", timeout=600)
+    assert "## `mcar export`" in text
+    rows = [line.strip("| ").split(" | ") for line in text.splitlines()
+            if line.startswith("| TurtleBot3 burger")]
+    assert rows[0][1:4] == ["(`mcar check`)", rows[0][2], "1.00"]
+    formats = [row[1] for row in rows[1:]]
+    assert "mjcf" in formats and "urdf" in formats  # usd, sdf where their engines are
+    for cells in rows[1:]:  # every run of both commands exited 0, with ratios to check
+        assert re.fullmatch(r"[\d.]+ m?s", cells[2]) and re.fullmatch(r"[\d.]+ m?s", cells[4])
+        assert re.fullmatch(r"\d+\.\d\d", cells[3]) and re.fullmatch(r"\d+\.\d\d", cells[5])
+        assert cells[7] == "0", cells

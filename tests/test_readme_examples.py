@@ -12,12 +12,14 @@ repository with the files of readme/ beside it (the `my_robot.xacro`, `my_car.ya
   `error:`, else 0.
 - Lines that only set up or measure (make, the venv, the benchmarks) are listed in
   NOT_RUN with the reason; anything else in a block is run. Examples of `--gazebo` and
-  `--format sdf` need the Gazebo helper (`make test` builds it): where it is not
-  installed they are left out, as tests/gazebo/ is skipped.
+  `--format sdf` (and `export --to sdf`) need the Gazebo helper (`make test` builds it):
+  where it is not installed they are left out, as tests/gazebo/ is skipped; `export --to
+  usd` likewise without the usd extra.
 """
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import re
 import shutil
@@ -170,12 +172,15 @@ def test_every_docs_page_with_examples_runs_them():
 
 def _without_gazebo(steps):
     return [step for step in steps
-            if "--gazebo" not in step[1] and "--format sdf" not in step[1]]
+            if "--gazebo" not in step[1] and "--format sdf" not in step[1]
+            and "--to sdf" not in step[1]]
 
 
 def _run_steps(tmp_path, steps, page: str) -> None:
     if not _gazebo_helper_installed():
         steps = _without_gazebo(steps)
+    if importlib.util.find_spec("pxr") is None:  # the usd extra: tests/export skip too
+        steps = [step for step in steps if "--to usd" not in step[1]]
     workspace = _workspace(tmp_path)
     env = {k: v for k, v in os.environ.items()
            if k not in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")}

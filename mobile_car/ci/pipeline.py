@@ -5,9 +5,10 @@ variant file in ``urdf/variants/*.yaml``, the package's top-level robot files (t
 directly in ``urdf/``) built with that variant's dimensions. Each item goes through four
 steps (build, check, sim (:mod:`.simulation`), render), five where the Gazebo helper is
 installed (gazebo, after check: what libsdformat changes in a robot that has ``<gazebo>``
-blocks); a failed build or check is recorded and the item's later steps are skipped, while
-the other items go on (a failed sim still lets the robot be drawn: the picture helps to see
-why). Nothing here prints: the command line formats the :class:`CiItem` list.
+blocks), and export where the package's mcar.yaml asks (:mod:`.exports`); a failed build
+or check is recorded and the item's later steps are skipped, while the other items go on
+(a failed sim still lets the robot be drawn: the picture helps to see why). Nothing here
+prints: the command line formats the :class:`CiItem` list.
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ from ..load.selection import Selection
 from ..names import shown
 from ..packages.discover import output_name, source_base
 
-STEPS = ("build", "check", "gazebo", "sim", "render")
+STEPS = ("build", "check", "gazebo", "sim", "render", "export")
 
 
 @dataclass
@@ -64,6 +65,8 @@ class CiItem:
     generated: tuple[Path, ...] = ()  # files written for its build (overrides): no inputs
     diff: str | None = None  # with --against: what changed since then ("3 changes")
     gazebo: bool = False  # the gazebo step is part of its plan (the helper is installed)
+    exports: tuple[str, ...] = ()  # formats its package's mcar.yaml exports it to (.exports)
+    loaded: object = None  # the LoadedRobot of a passed build, which the export step reads
 
     @property
     def source(self) -> Path:
@@ -147,7 +150,8 @@ def fail(item: CiItem, name: str, message: str, diagnostics=(), exit_code: int =
     done = {step.name for step in item.steps}
     item.steps += [Step(rest, "skipped", f"skipped: {name} failed")
                    for rest in STEPS[STEPS.index(name) + 1:]
-                   if rest not in done and (rest != "gazebo" or item.gazebo)]
+                   if rest not in done and (rest != "gazebo" or item.gazebo)
+                   and (rest != "export" or item.exports)]
 
 
 @contextlib.contextmanager
@@ -185,6 +189,7 @@ def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> 
                        item_options.mappings.get(CONFIG_ARG) if item.variant else None]
             item.generated = tuple(Path(p) for p in written if p is not None)
         item.deps = list(loaded.deps)
+        item.loaded = loaded if item.exports else None
         item.expansion_warnings = [str(w) for w in loaded.warnings]
         refuse_overwriting(item.urdf, loaded.deps)
         atomic_write(item.urdf, _built(item, loaded, item_options))

@@ -97,6 +97,26 @@ class Assets:
         self.by_uri[uri] = asset
         return asset
 
+    def add_file(self, uri: str, search, base: Path, label: str) -> str:
+        """Copy a file the robot names that is no mesh (a ``<texture>``'s image) byte for
+        byte, within the mesh size limit; its place in the folder. InputError naming it."""
+        if uri in self.by_uri:
+            return self.by_uri[uri].relative
+        try:
+            source = search.resolve_uri(uri, base)
+        except McarError as error:
+            raise InputError(f"file {uri}: {error.message}", file=label) from None
+        if not source.is_file():
+            raise InputError(f"file {uri}: no such file ({display_path(source)})", file=label)
+        asset = Asset(uri, source, self._claim(self._place_for(uri, source)))
+        try:
+            self._copy(source, asset.relative)
+        except OSError as error:
+            raise InputError(f"file {uri}: cannot be read: {error.strerror or error}",
+                             file=label) from None
+        self.by_uri[uri] = asset
+        return asset.relative
+
     def _reads_as_it_is(self, source: Path) -> bool:
         suffix = source.suffix.lower()
         if compressed_kind(source) is not None or suffix not in self.readable:

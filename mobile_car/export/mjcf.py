@@ -79,7 +79,11 @@ class Prepared:
     warnings: list[str]
 
 
-def prepare(loaded, folder: Path, readable=MUJOCO_READS) -> Prepared:
+def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = False,
+            binary_stl_only: bool = True) -> Prepared:
+    """The robot's URDF with its meshes copied into ``folder``; the simulators' extras
+    (``<gazebo>``, ``<transmission>``, ``<ros2_control>``) taken out unless ``keep_extras``
+    (an importer that does not read them must not trip on them)."""
     from ..sim.drives import actuated_joints
     from ..sim.model import gazebo_friction
     from ..sim.servos import DriveSources
@@ -88,9 +92,10 @@ def prepare(loaded, folder: Path, readable=MUJOCO_READS) -> Prepared:
     joints = {j.get("name"): j for j in root if j.tag == "joint"}
     sources = DriveSources([e for e in root if e.tag in ("gazebo", "ros2_control")],
                            actuated_joints(root), gazebo_friction(root))
-    for element in list(root.iter("gazebo", "transmission", "ros2_control")):
-        element.getparent().remove(element)
-    assets = Assets(folder, readable)
+    if not keep_extras:
+        for element in list(root.iter("gazebo", "transmission", "ros2_control")):
+            element.getparent().remove(element)
+    assets = Assets(folder, readable, binary_stl_only)
     warnings = place_meshes(root, assets, loaded)
     return Prepared(root, joints, sources, assets, warnings)
 
@@ -191,10 +196,11 @@ def place_meshes(root, assets: Assets, loaded) -> list[str]:
     """Point every ``<mesh>`` at its copy in the folder; a mesh that cannot be copied is
     left out with its visual or collision, and a warning says so."""
     warnings = []
-    for mesh in list(root.iter("mesh")):
+    # the links' own meshes only: a <gazebo> block kept for SDF holds SDF, not URDF
+    found = [(link, part, mesh) for link in root.iterchildren("link") for part in link
+             if part.tag in ("visual", "collision") for mesh in part.findall("geometry/mesh")]
+    for link, holder, mesh in found:
         uri = mesh.get("filename") or ""
-        holder = mesh.getparent().getparent()  # <visual> or <collision>
-        link = holder.getparent()
         try:
             asset = assets.add(uri, loaded.search, loaded.base, loaded.label)
         except McarError as error:

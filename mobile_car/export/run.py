@@ -54,6 +54,13 @@ def _write(loaded, staging: Path, to: str, options, verify: bool, shown: str):
 
         exported = export_usd(loaded, staging, options)
         return exported, verify_usd(staging, exported, shown) if verify else []
+    if to in ("urdf", "sdf"):
+        from . import urdf, verify_portable
+
+        exported = (urdf.export_urdf if to == "urdf" else urdf.export_sdf)(loaded, staging,
+                                                                            options)
+        check = verify_portable.verify_urdf if to == "urdf" else verify_portable.verify_sdf
+        return exported, check(staging, exported, shown) if verify else []
     raise ValueError(f"unknown export format {to!r}")  # pragma: no cover - click's choice
 
 

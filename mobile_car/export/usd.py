@@ -12,6 +12,8 @@ and inertia, collision APIs, and joints with their limits. What it lacks is adde
 * drives: each drive wheel's joint gets an angular velocity drive with the damping of the
   velocity servo ``mcar sim`` drives it with (kv, N·m·s/rad, written per degree as USD
   wants) and its effort limit (:mod:`mobile_car.sim.servos`, found on MuJoCo's model);
+* a massless frame link (the car's ``base_link``) gets no rigid body from the converter:
+  its children are re-hung on the nearest massed link fixed to it first (:mod:`.massless`);
 * ``--base floating``: the converter welds a root that has no mass of its own to the stage
   (Husky's ``root_joint``); that joint is deactivated.
 
@@ -28,6 +30,7 @@ from lxml import etree
 
 from ..errors import McarError
 from . import ExportError
+from .massless import rehang_on_bodies
 from .mjcf import Exported, moving_joints, prepare, robot_file_name, urdf_mass
 
 USD_READS = (".stl", ".obj")
@@ -40,6 +43,7 @@ def export_usd(loaded, folder: Path, options) -> Exported:
     with tempfile.TemporaryDirectory(prefix=".mcar-usd-sources-", dir=folder.parent) as scratch:
         prepared = prepare(loaded, Path(scratch), USD_READS)
         root = prepared.root
+        rehung = rehang_on_bodies(root)
         stem = robot_file_name(root, "")
         root.set("name", stem)
         source = Path(scratch) / f"{stem}.urdf"
@@ -66,7 +70,7 @@ def export_usd(loaded, folder: Path, options) -> Exported:
                      for a in prepared.assets.by_uri.values() if a.converted]
     path = Path(str(asset.path))
     stage = Usd.Stage.Open(str(path))
-    notes = _complete(stage, drive, options.base)
+    notes = rehung + _complete(stage, drive, options.base)
     stage.Save()
     return Exported(
         robot_file=path.relative_to(folder).as_posix(), urdf_mass=urdf_mass(root),

@@ -37,8 +37,10 @@ def files_inside(folder: Path, label: Path, names: list[tuple[str, str]]) -> Non
     for what, name in names:
         path = Path(name)
         real = Path(os.path.realpath(root / path))
-        if path.is_absolute() or root not in real.parents or not real.is_file():
-            why = ("an absolute path" if path.is_absolute() else
+        if "://" in name or path.is_absolute() or root not in real.parents or \
+                not real.is_file():
+            why = ("a URI, not a path in the folder" if "://" in name else
+                   "an absolute path" if path.is_absolute() else
                    "outside the folder" if root not in real.parents else "missing")
             raise ExportError(f"{what} {name}: {why}; the folder would not load elsewhere",
                               file=str(label))

@@ -9,6 +9,9 @@ mcar cannot find out from the files themselves::
     sim:
       skip:                 # robots ci does not simulate, each with the reason it prints
         "urdf/arm.urdf.xacro": "an arm on a fixed base, not a vehicle"
+    export:                 # folders ci exports (and verifies) as build artefacts
+      formats: [mjcf, urdf] # any of mjcf, usd, urdf, sdf (mcar export --to)
+      robots: ["urdf/*.urdf.xacro"]   # which robots (default: every robot ci builds)
 
 Globs are matched against the file's path relative to the package root, written with
 ``/``, by :func:`fnmatch.fnmatchcase`: ``*`` also matches across folders, so
@@ -30,7 +33,9 @@ from ..errors import InputError, UsageError
 
 FILE_NAME = "mcar.yaml"
 # Each section and the keys it takes; a list of globs or a mapping glob -> reason.
-_SCHEMA = {"robots": {"include": list, "exclude": list}, "sim": {"skip": dict}}
+_SCHEMA = {"robots": {"include": list, "exclude": list}, "sim": {"skip": dict},
+           "export": {"formats": list, "robots": list}}
+EXPORT_FORMATS = ("mjcf", "usd", "urdf", "sdf")  # as mobile_car.export.FORMATS
 
 
 @dataclass(frozen=True)
@@ -42,6 +47,8 @@ class PackageConfig:
     include: tuple[str, ...] = ()
     exclude: tuple[str, ...] = ()
     sim_skip: tuple[tuple[str, str], ...] = ()  # (glob, reason), in the file's order
+    export_formats: tuple[str, ...] = ()
+    export_robots: tuple[str, ...] = ()  # globs; none: every robot
     lines: dict = field(default_factory=dict, compare=False)  # key path -> line
 
     def relative(self, path: Path) -> str | None:
@@ -72,6 +79,16 @@ class PackageConfig:
             if fnmatch.fnmatchcase(name, glob):
                 return reason
         return None
+
+    def exports(self, path: Path) -> tuple[str, ...]:
+        """The formats ci exports ``path`` to (none when the package asks for none)."""
+        name = self.relative(path)
+        if not self.export_formats or name is None:
+            return ()
+        if self.export_robots and not any(fnmatch.fnmatchcase(name, g)
+                                          for g in self.export_robots):
+            return ()
+        return self.export_formats
 
     def _where(self, *keys: str) -> str:
         line = self.lines.get(keys)
@@ -131,10 +148,18 @@ def _parse(root: Path, path: Path) -> PackageConfig:
             found[(section, key)] = _checked(entry, kind, f"{section}.{key}",
                                              lambda m, k=(section, str(key)): fail(m, *k))
     skip = found.get(("sim", "skip"), {})
+    formats = found.get(("export", "formats"), [])
+    unknown = [f for f in formats if f not in EXPORT_FORMATS]
+    if unknown:
+        fail(f"export.formats: unknown format '{unknown[0]}' (mcar export takes "
+             f"{', '.join(EXPORT_FORMATS)})", "export", "formats")
     return PackageConfig(root=root, path=path,
                          include=tuple(found.get(("robots", "include"), ())),
                          exclude=tuple(found.get(("robots", "exclude"), ())),
-                         sim_skip=tuple(skip.items()), lines=lines)
+                         sim_skip=tuple(skip.items()),
+                         export_formats=tuple(dict.fromkeys(formats)),
+                         export_robots=tuple(found.get(("export", "robots"), ())),
+                         lines=lines)
 
 
 def _checked(entry, kind, name: str, fail):

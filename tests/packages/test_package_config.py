@@ -43,8 +43,19 @@ def test_include_exclude_and_skip_by_glob(tmp_path):
     assert config.selects(tmp_path.parent / "elsewhere.urdf") == (True, None)
 
 
+def test_export_names_formats_for_the_robots_its_globs_take(tmp_path):
+    root = package(tmp_path, "export:\n  formats: [urdf, mjcf, urdf]\n"
+                             "  robots: ['urdf/*.urdf.xacro']\n")
+    config = load_package_config(root)
+    assert config.exports(root / "urdf" / "robot.urdf.xacro") == ("urdf", "mjcf")
+    assert config.exports(root / "urdf" / "wheel.xacro") == ()
+    (tmp_path / "b").mkdir()
+    assert load_package_config(package(tmp_path / "b", "sim:\n")).exports(
+        tmp_path / "b" / "x.urdf") == ()
+
+
 @pytest.mark.parametrize("text, line, message", [
-    ("robot:\n  include: []\n", 1, "unknown key 'robot': mcar.yaml takes robots, sim"),
+    ("robot:\n  include: []\n", 1, "unknown key 'robot': mcar.yaml takes robots, sim, export"),
     ("robots:\n  includes: ['x']\n", 2,
      "unknown key 'robots.includes': robots takes include, exclude"),
     ("robots:\n  include: urdf/*.xacro\n", 2,
@@ -54,7 +65,9 @@ def test_include_exclude_and_skip_by_glob(tmp_path):
     ("sim:\n  skip:\n    a.urdf:\n", 2,
      "sim.skip: expected a mapping of glob to reason (text), got {'a.urdf': None}"),
     ("robots: [1]\n", 1, "robots: expected a mapping, got [1]"),
-    ("- 1\n", None, "expected a mapping with robots, sim, got [1]"),
+    ("export:\n  formats: [mjcf, gltf]\n", 2,
+     "export.formats: unknown format 'gltf' (mcar export takes mjcf, usd, urdf, sdf)"),
+    ("- 1\n", None, "expected a mapping with robots, sim, export, got [1]"),
     ("robots:\n  include: []\n  include: []\n", 3, None),  # duplicate key
     ("robots: {include: [\n", 2, None),  # broken YAML
 ])

@@ -131,7 +131,6 @@ DOC_PAGES = {
     "docs/check.md": 3,
     "docs/ci.md": 5,
     "docs/config.md": 5,
-    "docs/exports.md": 1,
     "docs/gazebo.md": 1,  # its transcript needs the Gazebo helper: skipped where missing
     "docs/init.md": 3,
     "docs/plausibility.md": 1,

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import difflib
 import functools
+import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -151,8 +152,46 @@ def _check_own_ranges(path: str, _mtime: int, _size: int) -> None:
     except (OSError, etree.XMLSyntaxError):
         return  # xacro has just read it; a file it cannot read is its own error
     for prop, match in _documented(root):
-        if match is not None and match["range"] is not None:
-            _range_of(prop, match, Path(path))
+        if match is not None and match["range"] is not None \
+                and not _clearly_inside(prop.get("value", ""), match):
+            _range_of(prop, match, Path(path))  # the exact verdict, and its message
+
+
+# Units ranges are written in, and what one is in the config's SI unit: enough to judge
+# most values without pint, whose import (~0.25 s) every command would otherwise pay.
+_QUICK_UNITS = {"mm": ("m", 1e-3), "cm": ("m", 1e-2), "m": ("m", 1.0), "g": ("kg", 1e-3),
+                "kg": ("kg", 1.0), "rpm": ("rad/s", math.pi / 30), "deg": ("rad", math.pi / 180)}
+_QUICK_END = re.compile(r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)([a-z]*)")
+
+
+def _clearly_inside(value_text: str, match) -> bool:
+    """True when a value is inside its range by more than any rounding of a unit's
+    conversion could move an end; False when unsure, or when something else may be wrong
+    (then :func:`_range_of` judges exactly, with pint, and says what)."""
+    if match["source"] == "derived" or match["flag"] in (">=0", "any sign"):
+        return False
+    ends = []
+    for end in match["range"].split(".."):
+        found = _QUICK_END.fullmatch(end)
+        if found is None:
+            return False
+        number, suffix = float(found[1]), found[2]
+        if suffix:
+            unit, factor = _QUICK_UNITS.get(suffix, (None, 0.0))
+            if unit != match["unit"]:
+                return False
+            number *= factor
+        elif match["unit"] == "count" and not number.is_integer():
+            return False
+        ends.append(number)
+    if len(ends) != 2 or ends[0] > ends[1]:
+        return False
+    try:
+        value = float(value_text)
+    except ValueError:
+        return True  # an expression: its range holds for what it is computed from
+    margin = 1e-9 * max(abs(ends[0]), abs(ends[1]), abs(value), 1e-300)
+    return ends[0] + margin < value < ends[1] - margin
 
 
 def _range_of(prop, match, path: Path) -> Range | None:

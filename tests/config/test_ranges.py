@@ -162,3 +162,22 @@ def test_a_derived_value_that_overflows_is_refused(run_mcar, tmp_path):
     assert own.stderr.splitlines()[-1].endswith(
         "config.xacro:21: error: config: a_cubed = a * a * a comes out as inf, not a finite "
         "number"), own.stderr
+
+
+def test_the_quick_range_check_never_passes_what_the_exact_one_refuses():
+    """The loader judges config.xacro's values without pint where it can (its import
+    costs every command ~0.25 s): wherever that quick look says "inside", the exact
+    check (pint) must agree; near an end it defers to the exact one."""
+    from mobile_car.config.spec import COMMENT_RE, _clearly_inside
+
+    spec = load_spec(CONFIG)
+    ranged = [d for d in spec.base() if d.range is not None]
+    assert {d.unit for d in ranged} >= {"m", "kg", "rad/s"}
+    for dimension in ranged:
+        match = COMMENT_RE.match(f" {dimension.unit} {dimension.range.text}; design: size ")
+        low, high = dimension.range.low, dimension.range.high
+        for value in (low, high, (low + high) / 2, low - abs(low) * 1e-6 - 1e-12,
+                      high + abs(high) * 1e-6, low + abs(low) * 1e-12):
+            if _clearly_inside(repr(value), match):
+                assert value in dimension.range, (dimension.name, value)
+        assert _clearly_inside(repr((low + high) / 2), match), dimension.name

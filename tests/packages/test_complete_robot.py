@@ -3,7 +3,7 @@
 `mcar tree` said "one INPUT at a time, got 13" and `mcar sim --record x.gif` "13 robot
 files: name one INPUT" in the bundled package, which has one complete robot
 (urdf/mobile_robot.xacro) beside its parts' test files. Now tree, view and sim --record
-take that robot, and say so on stderr; where a package has several complete robots,
+(and export) take that robot, and say so on stderr; where a package has several complete robots,
 they exit 2 listing each on its own line.
 """
 
@@ -49,8 +49,9 @@ def test_a_part_name_with_one_robot_file_needs_no_note(cli, in_package):
 
 
 @pytest.mark.parametrize("words", [["tree"], ["view", "--no-browser"],
-                                   ["sim", "--record", "run.gif"]],
-                         ids=["tree", "view", "sim --record"])
+                                   ["sim", "--record", "run.gif"],
+                                   ["export", "--to", "mjcf", "-o", "out"]],
+                         ids=["tree", "view", "sim --record", "export"])
 def test_several_complete_robots_are_listed_one_per_line(cli, two_robots, words):
     result = cli(*words)
     command = " ".join(words[:1] + (["--record"] if "--record" in words else []))
@@ -60,7 +61,7 @@ def test_several_complete_robots_are_listed_one_per_line(cli, two_robots, words)
         "name one INPUT",
         "  urdf/mobile_robot.xacro",
         "  urdf/second_robot.xacro"]
-    assert not (two_robots / "run.gif").exists()
+    assert not (two_robots / "run.gif").exists() and not (two_robots / "out").exists()
 
 
 def test_sim_record_without_input_records_the_complete_robot(cli, in_package):

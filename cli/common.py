@@ -202,6 +202,19 @@ def print_warning(where: str, message: str) -> None:
                color=use_color())
 
 
+def chosen_robot(selection, command: str):
+    """The one robot a single-robot command works on (see one_robot); when it was chosen
+    among several found (no INPUT, or a folder), one stderr line says which, so that
+    what is shown is never a guess the user cannot see."""
+    from mobile_car.load.selection import one_robot
+
+    inp = one_robot(selection, command)
+    if len(selection.inputs) > 1:
+        click.echo(f"mcar: {shown(inp.label)}, the one complete robot here "
+                   "(an INPUT names another)", err=True)
+    return inp
+
+
 def report(error: McarError) -> None:
     """Print an error as one `FILE:LINE: error: message` line, then its context lines; a
     robot that failed its check prints the check's diagnostics instead. Names in it are

@@ -36,7 +36,7 @@ words: dimensions change with --set and --config.
 \b
 Exit codes:
   0  the table was printed
-  1  config.xacro's own dimensions do not fit together
+  1  config.xacro's own values are outside their ranges or do not fit together
   2  usage or I/O error: an unknown or invalid --set/--config value, dimensions that
      do not fit together, a URDF or macro file as INPUT, unknown package
   130  interrupted (Ctrl-C); 143 terminated

@@ -7,12 +7,13 @@ from pathlib import Path
 
 import click
 
-from mobile_car.errors import EXIT_PROBLEMS, UsageError
+from mobile_car.errors import EXIT_PROBLEMS
 from mobile_car.load.inputs import display_path
 from mobile_car.names import shown
 
 from .common import (
     INPUT_HELP,
+    chosen_robot,
     handle_errors,
     load_inputs,
     print_diagnostic,
@@ -118,12 +119,8 @@ def command(words, to, output, base, floor, fix_inertia, verify, quiet, package_
         require("mcar export --to usd", "usd")
 
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
-        if len(selection.inputs) != 1:
-            names = " ".join(inp.label for inp in selection.inputs[:4])
-            more = " ..." if len(selection.inputs) > 4 else ""
-            raise UsageError(f"one robot at a time, got {len(selection.inputs)}: "
-                             f"{names}{more}; name one INPUT file")
-        checked = check_input(selection.inputs[0], options, stdin=stdin_for(selection))
+        inp = chosen_robot(selection, "mcar export")
+        checked = check_input(inp, options, stdin=stdin_for(selection))
         if checked.failure is not None:
             raise checked.failure
         if checked.errors or not checked.tree_is_drawable:

@@ -13,6 +13,7 @@ from mobile_car.names import json_safe, shown
 from . import streams
 from .common import (
     INPUT_HELP,
+    chosen_robot,
     handle_errors,
     load_inputs,
     print_diagnostic,
@@ -34,7 +35,8 @@ straight and turns as its geometry says.
   mcar sim --config urdf/variants/small.yaml the same robot with other dimensions
   mcar sim ROBOT --scenario drop,spin        some of the scenarios
   mcar sim ROBOT --format junit > sim.xml    one testcase per scenario, for CI
-  mcar sim ROBOT --record run.gif            an animation of the runs
+  mcar sim [ROBOT] --record run.gif          an animation of the runs (of the
+                                             package's complete robot, unless named)
 
 \b
 Scenarios (bounds in docs/sim.md):
@@ -135,15 +137,14 @@ def command(words, scenarios, output_format, record, left, right, kind, steering
     steering = None if steering_angle is None else math.radians(steering_angle)
     reports, codes, skipped = [], [], []
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
-        if record and len(selection.inputs) != 1:
-            raise UsageError(f"--record writes one animation, but there are "
-                             f"{len(selection.inputs)} robot files: name one INPUT")
+        # --record writes one animation: of the one robot named, or the complete robot
+        inputs = [chosen_robot(selection, "mcar sim --record")] if record else selection.inputs
         explicit = selection.kind == "files"
         stdin = stdin_for(selection)
         from mobile_car.check.checker import check_input
         from mobile_car.sim.report import simulate
 
-        for inp in selection.inputs:
+        for inp in inputs:
             checked = check_input(inp, options, stdin=stdin)
             if checked.failure is not None:
                 report(checked.failure)

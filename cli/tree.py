@@ -9,11 +9,12 @@ import click
 from mobile_car.check.checker import check_input
 from mobile_car.check.graphviz import write_graph
 from mobile_car.check.tree import graphviz_dot, rich_text
-from mobile_car.errors import EXIT_PROBLEMS, UsageError
+from mobile_car.errors import EXIT_PROBLEMS
 
 from . import streams
 from .common import (
     INPUT_HELP,
+    chosen_robot,
     handle_errors,
     load_inputs,
     print_diagnostic,
@@ -24,6 +25,7 @@ from .common import (
 HELP = f"""Print the kinematic tree of one robot (a URDF or xacro file), with its joints.
 
 \b
+  mcar tree                                    the package's complete robot
   mcar tree robot.urdf
   mcar tree robot.urdf.xacro [NAME:=VALUE]...
   mcar tree robot.urdf --graphviz tree.svg     also draw it (.dot, .gv, .svg, .png, .pdf)
@@ -32,7 +34,9 @@ Each link is shown under its parent with the joint that carries it: name, type,
 origin (xyz, rpy), axis and limits. Children are in check_urdf's order (by joint
 name). Drawing .svg, .png or .pdf needs Graphviz's `dot` (Debian package graphviz);
 a .dot file needs nothing. Only the tree is checked here; `mcar check` checks the rest.
-One robot at a time: a folder or a part name must hold exactly one robot file.
+One robot at a time: with no INPUT (or a folder) it is the package's complete robot
+(its one robot file directly in urdf/, not the parts' test files); with several, each
+is listed: name one.
 
 {INPUT_HELP}
 
@@ -56,12 +60,8 @@ Exit codes:
 @handle_errors
 def command(words, graph_output, quiet, package_paths, sets, config_files):
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
-        if len(selection.inputs) != 1:
-            shown = " ".join(inp.label for inp in selection.inputs[:4])
-            more = " ..." if len(selection.inputs) > 4 else ""
-            raise UsageError(f"one INPUT at a time, got {len(selection.inputs)}: {shown}{more}")
-        result = check_input(selection.inputs[0], options, stdin=stdin_for(selection),
-                             structure_only=True)
+        inp = chosen_robot(selection, "mcar tree")
+        result = check_input(inp, options, stdin=stdin_for(selection), structure_only=True)
     if result.failure is not None:
         raise result.failure
     for diagnostic in result.diagnostics:

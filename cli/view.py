@@ -10,7 +10,15 @@ import click
 from mobile_car.errors import McarError, UsageError
 
 from . import signals, streams
-from .common import INPUT_HELP, handle_errors, load_inputs, report, robot_options, stdin_for
+from .common import (
+    INPUT_HELP,
+    chosen_robot,
+    handle_errors,
+    load_inputs,
+    report,
+    robot_options,
+    stdin_for,
+)
 
 HELP = f"""Show a robot in the browser: turn its joints, see every edit at once.
 
@@ -74,21 +82,6 @@ def _require_viser() -> None:
     extras.require("mcar view", "view")
 
 
-def _choose(selection):
-    """The one robot to show: the named file, or a package's one top-level robot file."""
-    inputs = selection.inputs
-    if len(inputs) == 1:
-        return inputs[0]
-    if selection.kind == "files":
-        raise UsageError(f"mcar view shows one robot; {len(inputs)} files were named")
-    depth = min(len(inp.relative.parts) for inp in inputs)
-    top = [inp for inp in inputs if len(inp.relative.parts) == depth]
-    if len(top) == 1:
-        return top[0]
-    names = ", ".join(str(inp.relative) for inp in top)
-    raise UsageError(f"{len(top)} robot files here ({names}): name the one to view")
-
-
 @click.command("view", help=HELP, short_help="Show the robot in a browser, live.")
 @click.argument("words", nargs=-1, metavar="[INPUT] [NAME:=VALUE]...")
 @click.option("--host", default="127.0.0.1", show_default=True,
@@ -108,7 +101,7 @@ def command(words, host, port, no_browser, rviz, package_paths, sets, config_fil
     else:
         _require_viser()
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
-        inp = _choose(selection)
+        inp = chosen_robot(selection, "mcar view")
         if rviz:
             return _in_rviz(inp, options, sets, config_files)
         from mobile_car.view.dimensions import robot_dimensions

@@ -126,6 +126,18 @@ class Reporter:
             file, line, note = self.file, self.line_of(where), ""
         self.diagnostics.append(Diagnostic(rule, file, line, message + note))
 
+    def place(self, element) -> str:
+        """Where another element was written, for a message that points at two places (a
+        name defined twice): "line 12" in a plain URDF; in one built from xacro its source
+        file and line and the macro calls, never a line of the expansion nobody wrote."""
+        if self.locate is None:
+            return f"line {self.line_of(element)}"
+        file, line, note = self.locate(element)
+        if line is None:  # the expansion's line: the note says so
+            return f"{file}{note}"
+        calls = note.removeprefix(" (").removesuffix(")")
+        return f"{file}:{line}, {calls}" if calls else f"{file}:{line}"
+
     def value(self, text: str | None) -> float | None:
         """The number urdfdom reads from ``text``, or None (absent or unreadable); silent."""
         if not self.quick_numbers:

@@ -23,8 +23,8 @@ def check_names(robot: Robot, report: Reporter) -> None:
             elif not name.strip():
                 report.add("E107", element, f"<{kind}> with an empty name")
             elif name in first_seen:
-                report.add("E108", element, f"{kind} '{name}' is defined twice (first at line "
-                                            f"{report.line_of(first_seen[name])})")
+                report.add("E108", element, f"{kind} '{name}' is defined twice (first at "
+                                            f"{report.place(first_seen[name])})")
             else:
                 first_seen[name] = element
 
@@ -45,7 +45,7 @@ def check_tree(robot: Robot, tree: KinematicTree, report: Reporter) -> None:
     line = report.line_of
     for link, joints in tree.two_parents.items():
         joints = sorted(joints, key=lambda j: line(j.element))
-        names = ", ".join(f"'{j.name}' (line {line(j.element)})" for j in joints)
+        names = ", ".join(f"'{j.name}' ({report.place(j.element)})" for j in joints)
         report.add("E130", joints[1].element, f"link '{link}' has two parents: it is the child "
                                               f"of joints {names}")
     for path in tree.cycles:

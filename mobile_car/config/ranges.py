@@ -76,13 +76,20 @@ def outside_message(name: str, raw, value: float, unit: str, plausible: Range) -
 
 def unit_hint(raw, unit: str, plausible: Range) -> str:
     """"; did you mean 40mm?" when a bare number read in a common unit fits the range."""
+    candidate = meant_unit(raw, unit, plausible)
+    return f"; did you mean {str(raw).strip()}{candidate}?" if candidate else ""
+
+
+def meant_unit(raw, unit: str, plausible: Range) -> str | None:
+    """The first common unit (mm, g, deg...) that, read for a bare number, brings it inside
+    the range; None for a number with a unit, or when none does."""
     if not is_bare_number(raw):
-        return ""
+        return None
     number = str(raw).strip()
     for candidate in _HINT_UNITS.get(unit, ()):
         try:
             if parse_quantity(f"{number}{candidate}", unit, "hint") in plausible:
-                return f"; did you mean {number}{candidate}?"
+                return candidate
         except UsageError:
-            return ""
-    return ""
+            return None
+    return None

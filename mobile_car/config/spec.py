@@ -14,14 +14,17 @@ counts, known name); :mod:`mobile_car.config.overrides` applies them.
 from __future__ import annotations
 
 import difflib
+import functools
+import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..errors import InputError, UsageError
+from ..errors import BuildError, InputError, UsageError
+from ..load.input_limit import display_path
 from ..packages.bundled import PACKAGE_NAME
 from ..packages.search import PackageSearch
-from .ranges import KINDS, Range, outside_message, parse_range
+from .ranges import KINDS, Range, meant_unit, outside_message, parse_range
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"
 # "m 0..20mm (mesh); listing: hub boss length" -> unit, optional range, optional flag,
@@ -98,11 +101,7 @@ def load_spec(path: Path) -> ConfigSpec:
     except (OSError, etree.XMLSyntaxError) as error:
         raise InputError(f"cannot read the dimension config: {error}", file=str(path)) from None
     dimensions: dict[str, Dimension] = {}
-    for prop in root.findall(f"{{{XACRO_NS}}}property"):
-        comment = prop.getnext()
-        match = None
-        if isinstance(comment, etree._Comment) and comment.sourceline == prop.sourceline:
-            match = COMMENT_RE.match(comment.text or "")
+    for prop, match in _documented(root):
         if match is None:
             raise InputError(f"property '{prop.get('name')}' has no 'UNIT LO..HI; SOURCE: meaning' "
                              "comment on its line", file=str(path), line=prop.sourceline)
@@ -112,6 +111,87 @@ def load_spec(path: Path) -> ConfigSpec:
             baked=match["flag"] == "mesh", source=match["source"], meaning=match["meaning"],
             file=path, line=prop.sourceline, range=_range_of(prop, match, path))
     return ConfigSpec(path=path, dimensions=dimensions)
+
+
+def _documented(root):
+    """Each ``<xacro:property>`` of config.xacro's root, with the match of the comment on
+    its line (None when it has none, or one not in the documented form)."""
+    from lxml import etree
+
+    for prop in root.findall(f"{{{XACRO_NS}}}property"):
+        comment = prop.getnext()
+        match = None
+        if isinstance(comment, etree._Comment) and comment.sourceline == prop.sourceline:
+            match = COMMENT_RE.match(comment.text or "")
+        yield prop, match
+
+
+def check_own_ranges(path: Path) -> None:
+    """Refuse a config.xacro whose own values break the ranges its comments state, as
+    ``mcar config`` does: every command that loads a robot including it calls this, so a
+    value typed in the wrong unit (32.5 for 32.5 mm) stops every command, located at its
+    line (BuildError, exit 1). Only ranged properties are judged: a config.xacro not
+    written in mcar's documented form is someone else's convention, left alone here.
+    Reads one small file with lxml, no xacro (memoised while the file is unchanged)."""
+    import os
+
+    try:
+        stat = os.stat(path)
+    except OSError:
+        return  # xacro read it a moment ago; gone now: the build that follows will say
+    _check_own_ranges(str(path), stat.st_mtime_ns, stat.st_size)
+
+
+@functools.lru_cache(maxsize=16)
+def _check_own_ranges(path: str, _mtime: int, _size: int) -> None:
+    from lxml import etree
+
+    try:
+        root = etree.parse(path, etree.XMLParser(resolve_entities=False,
+                                                 no_network=True)).getroot()
+    except (OSError, etree.XMLSyntaxError):
+        return  # xacro has just read it; a file it cannot read is its own error
+    for prop, match in _documented(root):
+        if match is not None and match["range"] is not None \
+                and not _clearly_inside(prop.get("value", ""), match):
+            _range_of(prop, match, Path(path))  # the exact verdict, and its message
+
+
+# Units ranges are written in, and what one is in the config's SI unit: enough to judge
+# most values without pint, whose import (~0.25 s) every command would otherwise pay.
+_QUICK_UNITS = {"mm": ("m", 1e-3), "cm": ("m", 1e-2), "m": ("m", 1.0), "g": ("kg", 1e-3),
+                "kg": ("kg", 1.0), "rpm": ("rad/s", math.pi / 30), "deg": ("rad", math.pi / 180)}
+_QUICK_END = re.compile(r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)([a-z]*)")
+
+
+def _clearly_inside(value_text: str, match) -> bool:
+    """True when a value is inside its range by more than any rounding of a unit's
+    conversion could move an end; False when unsure, or when something else may be wrong
+    (then :func:`_range_of` judges exactly, with pint, and says what)."""
+    if match["source"] == "derived" or match["flag"] in (">=0", "any sign"):
+        return False
+    ends = []
+    for end in match["range"].split(".."):
+        found = _QUICK_END.fullmatch(end)
+        if found is None:
+            return False
+        number, suffix = float(found[1]), found[2]
+        if suffix:
+            unit, factor = _QUICK_UNITS.get(suffix, (None, 0.0))
+            if unit != match["unit"]:
+                return False
+            number *= factor
+        elif match["unit"] == "count" and not number.is_integer():
+            return False
+        ends.append(number)
+    if len(ends) != 2 or ends[0] > ends[1]:
+        return False
+    try:
+        value = float(value_text)
+    except ValueError:
+        return True  # an expression: its range holds for what it is computed from
+    margin = 1e-9 * max(abs(ends[0]), abs(ends[1]), abs(value), 1e-300)
+    return ends[0] + margin < value < ends[1] - margin
 
 
 def _range_of(prop, match, path: Path) -> Range | None:
@@ -135,9 +215,24 @@ def _range_of(prop, match, path: Path) -> Range | None:
         default = float(prop.get("value", ""))
     except ValueError:
         return plausible
-    if default not in plausible:
-        raise refuse(f"its value {default:g} is outside its own range {plausible.shown}")
+    if default not in plausible:  # a slip in the robot's own description: problems, 1
+        hint = _written_hint(prop.get("value"), match["unit"], plausible)
+        raise BuildError(f"property '{name}': its value {default:g} is outside its own range "
+                         f"{plausible.shown}{hint}", file=display_path(path), line=line)
     return plausible
+
+
+def _written_hint(raw: str, unit: str, plausible: Range) -> str:
+    """"; did you mean 32.5 mm (written 0.0325)?": config.xacro holds bare SI numbers, so
+    the hint says what to write, not a unit it cannot take."""
+    from .units import parse_quantity
+
+    candidate = meant_unit(raw, unit, plausible)
+    if candidate is None:
+        return ""
+    number = raw.strip()
+    value = parse_quantity(f"{number}{candidate}", unit, "hint")
+    return f"; did you mean {number} {candidate} (written {value:g})?"
 
 
 def check_bound(dimension: Dimension, value: float, origin: str) -> None:

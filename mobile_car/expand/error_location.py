@@ -71,6 +71,12 @@ def error_from(exc: BaseException, parsing: list, source: Path,
         return BuildError("recursion too deep: a macro or an include that calls itself?",
                           file=file, line=line, details=_stack_details(calls))
     message = " ".join(str(exc).split()) or type(exc).__name__
+    if isinstance(exc, xacro.XacroException):  # a call's mistake: said at the call
+        from .call_errors import call_error
+
+        at_call = call_error(message, calls, _stack_details(calls))
+        if at_call is not None:
+            return at_call
     if isinstance(inner, MemoryError) or isinstance(exc, MemoryError):
         message = f"out of memory {message}".strip()
     # xacro.fatal("...") is the author's own message: xacro's "when evaluating" adds noise.

@@ -141,12 +141,28 @@ def _expand(inp: RobotInput, options: LoadOptions, search: PackageSearch,
     typed = CONFIG_ARG in options.mappings and inp.base is None
     optional = frozenset() if typed else frozenset({CONFIG_ARG})
     built = build_file(inp.path, mappings, search, optional_args=optional, text=text)
+    _check_config_ranges(built.deps)
     # A file found in a folder may leave config.xacro out; one the user named may not.
     if options.overrides is not None and inp.base is None and CONFIG_ARG not in built.known_args:
         raise UsageError("--set/--config change config.xacro, which this file does not "
                          "include", file=inp.label)
     return LoadedRobot(inp, built.xml.encode("utf-8"), search, deps=built.deps,
                        warnings=built.warnings, from_xacro=True, origins=built.origins)
+
+
+def _check_config_ranges(deps: list[Path]) -> None:
+    """A config.xacro the robot read must keep its own values inside the ranges its comments
+    state (BuildError at the value's line, as ``mcar config`` says it). Its xacro.fatal
+    cross-checks already ran in the expansion; the ranges are comments xacro never reads,
+    so they are judged here, where every command loads, at the cost of parsing one small
+    file and only after an expansion (an up-to-date build/render/ci never gets here). The
+    config code is imported only for a robot that has a config.xacro."""
+    configs = [dep for dep in deps if dep.name == "config.xacro"]
+    if configs:
+        from ..config.spec import check_own_ranges
+
+        for path in configs:
+            check_own_ranges(path)
 
 
 def refuse_unused_arguments(inputs: list[RobotInput], options: LoadOptions,

@@ -193,3 +193,29 @@ def _in_parts(path: Path, root: Path, names: list[str]) -> bool:
         return path.relative_to(source_base(root)).parts[0] in names
     except ValueError:
         return False
+
+
+def one_robot(selection: Selection, command: str) -> RobotInput:
+    """The one robot a single-robot command (tree, view, sim --record) works on: the input
+    named, or, for a package or folder, its complete robot: the one robot file nearest
+    its source folder (``urdf/mobile_robot.xacro``, not the parts' test files below it).
+    A UsageError lists the choices, one per detail line, when that is not one file."""
+    inputs = selection.inputs
+    if len(inputs) == 1:
+        return inputs[0]
+    if selection.kind == "files":
+        raise UsageError(f"{command} works on one robot, and {len(inputs)} were named: "
+                         "name one INPUT")
+    top = complete_robots(inputs)
+    if len(top) == 1:
+        return top[0]
+    raise UsageError(f"{command} works on one robot, and there are {len(top)} here: name "
+                     "one INPUT", details=[inp.label for inp in top])
+
+
+def complete_robots(inputs: list[RobotInput]) -> list[RobotInput]:
+    """The robot files at the shallowest depth below where they were found: a package's
+    complete robots (urdf/*.xacro), whose parts and their test files sit in folders below
+    (urdf/wheel/test_wheel.urdf.xacro)."""
+    depth = min(len(inp.relative.parts) for inp in inputs)
+    return [inp for inp in inputs if len(inp.relative.parts) == depth]

@@ -104,7 +104,8 @@ def test_graphviz_unknown_suffix_is_a_usage_error(cli, tmp_path):
 def test_tree_takes_one_input(cli):
     result = cli("tree", EVERY_JOINT, EVERY_JOINT)
     assert result.exit_code == 2
-    assert "one INPUT at a time" in result.stderr
+    assert result.stderr == ("mcar: error: mcar tree works on one robot, and 2 were named: "
+                             "name one INPUT\n")
 
 
 def test_deep_chain_needs_no_recursion():

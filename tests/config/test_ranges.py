@@ -8,7 +8,7 @@ from conftest import REPO
 
 from mobile_car.config.ranges import KINDS, outside_message, parse_range
 from mobile_car.config.spec import load_spec, parse_set_options
-from mobile_car.errors import InputError, UsageError
+from mobile_car.errors import BuildError, InputError, UsageError
 
 CONFIG = REPO / "urdf" / "config.xacro"
 
@@ -80,8 +80,6 @@ def _config(tmp_path, *properties: str):
 
 
 @pytest.mark.parametrize("prop, message", [
-    ('<xacro:property name="a" value="0.9"/> <!-- m 5mm..0.5m; design: size -->',
-     "config.xacro:2: property 'a': its value 0.9 is outside its own range 5 mm..0.5 m"),
     ('<xacro:property name="a" value="0.1"/> <!-- m 0..1m (>=0); design: size -->',
      "config.xacro:2: property 'a': the range 0..1m already bounds it; drop (>=0)"),
     ('<xacro:property name="a" value="${1}"/> <!-- m 0..1m; derived: size -->',
@@ -95,6 +93,22 @@ def test_a_range_that_cannot_hold_is_refused_where_it_is_written(tmp_path, prop,
     with pytest.raises(InputError) as info:
         load_spec(path)
     assert str(info.value) == f"{tmp_path}/{message}"
+
+
+@pytest.mark.parametrize("value, hint", [
+    ("0.9", "; did you mean 0.9 cm (written 0.009)?"),
+    ("40", "; did you mean 40 mm (written 0.04)?"),
+    ("0.001", ""),  # no common unit brings it inside: no guess
+])
+def test_a_value_outside_its_own_range_is_a_problem_of_the_robot(tmp_path, value, hint):
+    """Exit 1 (BuildError), as any slip in the description: every command that loads a
+    robot including this config.xacro says the same (tests/config/test_own_ranges_everywhere.py)."""
+    path = _config(tmp_path, f'<xacro:property name="a" value="{value}"/> '
+                             "<!-- m 5mm..0.5m; design: size -->")
+    with pytest.raises(BuildError) as info:
+        load_spec(path)
+    assert str(info.value) == (f"{tmp_path}/config.xacro:2: property 'a': its value {value} "
+                               f"is outside its own range 5 mm..0.5 m{hint}")
 
 
 def test_a_config_without_ranges_keeps_the_old_bounds(tmp_path):
@@ -148,3 +162,22 @@ def test_a_derived_value_that_overflows_is_refused(run_mcar, tmp_path):
     assert own.stderr.splitlines()[-1].endswith(
         "config.xacro:21: error: config: a_cubed = a * a * a comes out as inf, not a finite "
         "number"), own.stderr
+
+
+def test_the_quick_range_check_never_passes_what_the_exact_one_refuses():
+    """The loader judges config.xacro's values without pint where it can (its import
+    costs every command ~0.25 s): wherever that quick look says "inside", the exact
+    check (pint) must agree; near an end it defers to the exact one."""
+    from mobile_car.config.spec import COMMENT_RE, _clearly_inside
+
+    spec = load_spec(CONFIG)
+    ranged = [d for d in spec.base() if d.range is not None]
+    assert {d.unit for d in ranged} >= {"m", "kg", "rad/s"}
+    for dimension in ranged:
+        match = COMMENT_RE.match(f" {dimension.unit} {dimension.range.text}; design: size ")
+        low, high = dimension.range.low, dimension.range.high
+        for value in (low, high, (low + high) / 2, low - abs(low) * 1e-6 - 1e-12,
+                      high + abs(high) * 1e-6, low + abs(low) * 1e-12):
+            if _clearly_inside(repr(value), match):
+                assert value in dimension.range, (dimension.name, value)
+        assert _clearly_inside(repr((low + high) / 2), match), dimension.name

@@ -135,8 +135,10 @@ def test_view_shows_one_robot(run_mcar, arm_copy):
     result = run_mcar("view", "--no-browser", "--port", "0", arm_copy.parent,
                       cwd=arm_copy.parent)
     assert result.returncode == 2
-    assert result.stderr.strip() == ("mcar: error: 2 robot files here (arm.urdf.xacro, "
-                                     "second.urdf.xacro): name the one to view")
+    assert result.stderr.splitlines() == [
+        "mcar: error: mcar view works on one robot, and there are 2 here: name one INPUT",
+        "  arm.urdf.xacro",
+        "  second.urdf.xacro"]
 
 
 def test_the_bundled_robot_is_the_package_s_top_level_robot(viewer, tmp_path):

@@ -30,8 +30,16 @@ PACKAGE_FILES = {
     "package/mcar-workflow.yml": ".github/workflows/mcar.yml",
     "package/urdf/define.xacro": "urdf/define.xacro",
     "package/urdf/config.xacro": "urdf/config.xacro",
-    "package/urdf/robot.urdf.xacro": "urdf/{name}.urdf.xacro",
 }
+# The drive kinds `mcar init --drive` makes (the first the default: the seed's car), each
+# a robot file and config.xacro's own section (templates/drive/KIND/), and the parts it
+# is built of (templates/drive/parts/PART.xacro and test_PART.urdf.xacro, in urdf/PART/).
+DRIVES = {"differential": ("wheel", "castor"),
+          "skid-steer": ("wheel",),
+          "ackermann": ("wheel", "steering")}
+# What base_link sits on, for the comments of config.xacro.
+_AXLE = {"differential": "on the axle midpoint", "skid-steer": "midway between the axles",
+         "ackermann": "midway between the axles"}
 # The bundled package's own, its name and robot file replaced by the new package's: one
 # copy, which tests/ros/ builds (catkin, ament) and launches in both.
 BUNDLED_FILES = ("CMakeLists.txt", "launch/display.launch", "rviz/urdf.rviz",
@@ -46,18 +54,29 @@ _NAME_RE = re.compile(r"[a-z][a-z0-9_]*")
 
 
 def create_package(path: Path, name: str | None = None,
-                   requirement: str | None = None) -> list[Path]:
-    """Write a new description package at ``path``; returns the files written. Nothing
-    is written unless all of it can be: see :mod:`.placing`. ``requirement``: what the
-    GitHub workflow pip-installs mcar as (default: :func:`.install_source.install_source`)."""
+                   requirement: str | None = None, drive: str = "differential") -> list[Path]:
+    """Write a new description package at ``path`` whose robot has the ``drive`` kind
+    (:data:`DRIVES`); returns the files written. Nothing is written unless all of it can
+    be: see :mod:`.placing`. ``requirement``: what the GitHub workflow pip-installs mcar
+    as (default: :func:`.install_source.install_source`)."""
     from .install_source import install_source
 
+    if drive not in DRIVES:
+        raise UsageError(f"--drive {short(drive)}: the drive kinds are {', '.join(DRIVES)}")
     name = name or path.resolve().name
     _require_name(name, "package", "--name")
-    tokens = {"NAME": name,
-              "MCAR_REQUIREMENT": requirement or install_source().requirement}
+    kind = f"drive/{drive}"
+    tokens = {"NAME": name, "DRIVE": drive, "AXLE": _AXLE[drive],
+              "MCAR_REQUIREMENT": requirement or install_source().requirement,
+              "DRIVE_PROPERTIES": _filled(f"{kind}/properties.xacro", {}),
+              "DRIVE_CHECKS": _filled(f"{kind}/checks.xacro", {})}
     files = {destination.format(name=name): _filled(template, tokens)
              for template, destination in PACKAGE_FILES.items()}
+    files[f"urdf/{name}.urdf.xacro"] = _filled(f"{kind}/robot.urdf.xacro", tokens)
+    for part in DRIVES[drive]:
+        files[f"urdf/{part}/{part}.xacro"] = _filled(f"drive/parts/{part}.xacro", tokens)
+        files[f"urdf/{part}/test_{part}.urdf.xacro"] = _filled(
+            f"drive/parts/test_{part}.urdf.xacro", tokens)
     files.update(_bundled_files(name))
     files[GITKEEP] = ""
     require_makeable(path, list(files), _length_hint(name, "package", "--name", files))

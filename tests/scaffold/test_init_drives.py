@@ -109,10 +109,10 @@ def test_a_new_part_used_twice_keeps_it_driving(made, mcar_bin):
     text = robot.read_text()
     calls = """
   <xacro:include filename="$(find my_bot_description)/urdf/bumper/bumper.xacro"/>
-  <xacro:bumper name="left" reflect="1" parent="base_link" length="0.05" width="0.04" height="0.02">
+  <xacro:bumper name="left" reflect="1" parent="base_link" length="0.05" height="0.02">
     <origin xyz="0 0 ${base_z + base_height / 2 + 0.01}"/>
   </xacro:bumper>
-  <xacro:bumper name="right" reflect="-1" parent="base_link" length="0.05" width="0.04" height="0.02">
+  <xacro:bumper name="right" reflect="-1" parent="base_link" length="0.05" height="0.02">
     <origin xyz="0 0 ${base_z + base_height / 2 + 0.01}"/>
   </xacro:bumper>
 </robot>"""

@@ -112,3 +112,17 @@ def test_slipping_wheels_are_named_with_how_much_they_slipped(sim):
     assert message.split("; distance error")[0].endswith(
         "the motors below their effort limit; the tyres' friction (mu 0.05) cannot pass "
         "the drive force to the floor")
+
+
+def test_an_ackermann_cars_effort_limit_names_its_driven_rear_wheels(run_mcar, tmp_path):
+    assert run_mcar("init", "car", "--drive", "ackermann", cwd=tmp_path).returncode == 0
+    done = run_mcar("sim", "urdf/car.urdf.xacro", "--set", "wheel_effort=0.01",
+                    cwd=tmp_path / "car", timeout=300)
+    assert done.returncode == 1
+    (line,) = [x for x in done.stderr.splitlines() if "drive failed" in x]
+    assert line.startswith(
+        "urdf/car.urdf.xacro: error: drive failed: drove short; likely cause: the motors' "
+        "effort limit (wheel_rear_left_joint 0.01 N·m, wheel_rear_right_joint 0.01 N·m): "
+        "at it for "), line
+    rolled, commanded, moved = _rolled_and_moved(line)
+    assert rolled < 0.9 * commanded and moved == pytest.approx(rolled, rel=0.01)

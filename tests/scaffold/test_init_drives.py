@@ -137,3 +137,26 @@ def test_a_wrong_drive_kind_is_a_usage_error(run_mcar, tmp_path):
     assert "Invalid value for '--drive': 'tank' is not one of 'differential', " \
            "'skid-steer', 'ackermann'" in bad.stderr
     assert not (tmp_path / "demo").exists()
+
+
+CROSS_CHECKS = {
+    "differential": ("castor_radius=1cm", "the castor ball does not reach the base: "
+                     "2 * castor_radius (0.02 m) must be at least base_clearance (0.03 m)"),
+    "skid-steer": ("wheelbase=8cm", "the front and rear wheels overlap: wheelbase (0.08 m) "
+                   "must exceed 2 * wheel_radius (0.1 m)"),
+    "ackermann": ("wheelbase=8cm", "the front and rear wheels overlap: wheelbase (0.08 m) "
+                  "must exceed 2 * wheel_radius (0.1 m)"),
+}
+
+
+def test_config_refuses_dimensions_that_do_not_fit_together(made, mcar_bin):
+    kind, package, _report, _ci = made
+    robot = "urdf/my_bot_description.urdf.xacro"
+    setting, message = CROSS_CHECKS[kind]
+    for args, why in ((("--set", setting), message),
+                      (("--set", "base_width=25cm"), "the wheels overlap the base: their "
+                       "inner faces (track_width - wheel_width = 0.23 m apart) must be further "
+                       "apart than base_width (0.25 m)")):
+        built = _mcar(mcar_bin, "build", robot, *args, "-o", "-", cwd=package)
+        assert (built.returncode, built.stdout) == (2, "")
+        assert built.stderr == f"mcar: error: the dimensions do not fit together: {why}\n"

@@ -28,6 +28,9 @@ GRAVITY = 9.81
 CASTOR_DRAG_SHARE = 0.02   # of the robot's weight
 EFFORT_TIME_SHARE = 0.1    # of the time watched
 SHORT_SHARE = 0.01         # of the distance: lag or slip below this is no cause
+# The forces on the floor's parts are sampled every this many steps (10 ms): their means
+# over seconds need no more, and reading contacts costs as much as a step.
+CONTACT_EVERY = 10
 
 
 class Watch:
@@ -47,18 +50,26 @@ class Watch:
         self.friction = dict.fromkeys(self.parts, 0.0)  # N·s
         self.normal = dict.fromkeys(self.parts, 0.0)
         self._force = np.zeros(6)
+        model = run.model
+        self._wheels = [(int(model.jnt_dofadr[w.joint_id]), w.radius / len(self.driven))
+                        for w in self.driven]
+        self._limits = [(w.actuator_id, 0.99 * float(model.actuator_forcerange[w.actuator_id][1]))
+                        for w in self.driven]
+        self._count = 0
+        self._roll = omega * sim.drive.radius * self.step  # per step at the full command
 
     def __call__(self) -> None:
-        run, data = self.run, self.run.data
-        self.seconds += self.step
-        self.commanded += self.omega * ramp(data.time) * self.sim.drive.radius * self.step
-        self.rolled += float(np.mean([abs(run.wheel_speed(w)) * w.radius
-                                      for w in self.driven])) * self.step
-        if any(run.at_effort_limit(w) for w in self.driven):
+        run, data, step = self.run, self.run.data, self.step
+        self.seconds += step
+        self.commanded += self._roll * ramp(data.time)
+        qvel, force = data.qvel, data.actuator_force
+        self.rolled += sum(abs(qvel[dof]) * share for dof, share in self._wheels) * step
+        if any(abs(force[actuator]) >= limit for actuator, limit in self._limits):
             self.clamp_steps += 1
-        if not self.parts:
+        self._count += 1
+        if not self.parts or self._count % CONTACT_EVERY:
             return
-        floor, bodies = self.sim.floor_geom, run.model.geom_bodyid
+        floor, bodies, weight = self.sim.floor_geom, run.model.geom_bodyid, CONTACT_EVERY * step
         for i in range(data.ncon):
             contact = data.contact[i]
             other = contact.geom2 if contact.geom1 == floor else \
@@ -66,8 +77,8 @@ class Watch:
             body = int(bodies[other]) if other is not None else None
             if body in self.parts:
                 run.mj.mj_contactForce(run.model, data, i, self._force)
-                self.normal[body] += float(self._force[0]) * self.step
-                self.friction[body] += math.hypot(self._force[1], self._force[2]) * self.step
+                self.normal[body] += float(self._force[0]) * weight
+                self.friction[body] += math.hypot(self._force[1], self._force[2]) * weight
 
     @property
     def clamped(self) -> float:

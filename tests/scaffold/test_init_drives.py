@@ -160,3 +160,12 @@ def test_config_refuses_dimensions_that_do_not_fit_together(made, mcar_bin):
         built = _mcar(mcar_bin, "build", robot, *args, "-o", "-", cwd=package)
         assert (built.returncode, built.stdout) == (2, "")
         assert built.stderr == f"mcar: error: the dimensions do not fit together: {why}\n"
+
+
+def test_the_cli_offers_the_drive_kinds_the_scaffold_makes_and_sim_detects():
+    from mobile_car.cli.init import DRIVES as OFFERED
+
+    from mobile_car.scaffold import DRIVES
+    from mobile_car.sim.drives import KINDS
+
+    assert tuple(OFFERED) == tuple(DRIVES) == KINDS

@@ -1,13 +1,19 @@
 """New description packages and parts, laid out the way the mobile car is (the seed's method).
 
-``create_package`` writes a package that ``mcar ci`` passes at once: package.xml,
-``urdf/define.xacro`` (colours and inertia macros), ``urdf/config.xacro``
-(dimensions, each with its "UNIT LO..HI; SOURCE: meaning" comment, overridable by ``--set``),
-the complete robot ``urdf/NAME.urdf.xacro``, ``meshes/``, a .gitignore, a GitHub workflow
+``create_package`` writes a package that ``mcar ci`` passes at once, having simulated it:
+package.xml, ``urdf/define.xacro`` (colours, inertia and friction macros),
+``urdf/config.xacro`` (dimensions, each with its "UNIT LO..HI; SOURCE: meaning" comment,
+overridable by ``--set``, and checks that they fit together), the complete robot
+``urdf/NAME.urdf.xacro``, a vehicle of the drive kind asked for (differential: two wheels
+and a castor, the seed's car; skid-steer: four driven wheels; ackermann: steered front
+wheels, driven rear ones, each kind one that ``mcar sim`` finds from its joints), its parts
+in ``urdf/PART/`` (wheel, castor, steering: a macro taking a name, and reflect where it
+has a side, with a test file that uses it), ``meshes/``, a .gitignore, a GitHub workflow
 and a pre-commit config that run mcar on the package; and, as the bundled package has them,
 CMakeLists.txt (catkin or ament) and the ROS 1 viewer (``launch/display.launch``,
 ``rviz/urdf.rviz`` and the two scripts the launch runs). ``add_part`` adds a part folder with
-a documented macro and a test file that builds it alone. Neither overwrites anything: if
+a documented macro (name and reflect, so that it can be used on both sides) and a test
+file that builds a left and a right one alone. Neither overwrites anything: if
 one file it would write exists, nothing is written.
 """
 

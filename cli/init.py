@@ -10,18 +10,24 @@ from mobile_car.load.inputs import display_path
 
 from .common import handle_errors
 
+# mobile_car.scaffold.DRIVES' keys, here so that --help does not import the scaffold.
+DRIVES = ("differential", "skid-steer", "ackermann")
+
 HELP = """Create a robot description package at PATH, ready for mcar ci.
 
 \b
-  mcar init my_robot_description
-  mcar init robots/arm --name arm_description
+  mcar init my_robot_description                       a two-wheeled car, a castor
+  mcar init my_rover_description --drive skid-steer    four wheels, all driven
+  mcar init my_car_description --drive ackermann       steered front, driven rear
 
 \b
 It follows the mobile car's layout (the seed's method):
   package.xml, CMakeLists.txt        a ROS 1 (catkin) and ROS 2 (ament_cmake) package
   urdf/define.xacro                  colours, inertia macros (box, cylinder, sphere)
   urdf/config.xacro                  the dimensions, each "UNIT LO..HI; SOURCE: meaning"
-  urdf/NAME.urdf.xacro               the complete robot
+  urdf/NAME.urdf.xacro               the complete robot, which `mcar sim` drives
+  urdf/wheel/, castor/, steering/    its parts: a macro each (wheel name="left"
+                                     reflect="1", used once per wheel) and a test file
   launch/, rviz/, scripts/           the robot in RViz (ROS 1):
                                      roslaunch NAME display.launch
   meshes/, .gitignore
@@ -43,19 +49,24 @@ Exit codes:
 
 @click.command("init", help=HELP, short_help="Create a robot description package.")
 @click.argument("path", type=click.Path(file_okay=False))
+@click.option("--drive", type=click.Choice(DRIVES), default="differential",
+              show_default=True,
+              help="The robot's drive: differential (two driven wheels and a castor, the "
+                   "mobile car's), skid-steer (four driven wheels) or ackermann (steered "
+                   "front wheels, driven rear ones).")
 @click.option("--name", metavar="NAME",
               help="The package's name (default: PATH's folder name); lowercase letters, "
                    "digits and underscores.")
 @handle_errors
-def command(path, name):
+def command(path, name, drive):
     from mobile_car.scaffold import create_package
     from mobile_car.scaffold.install_source import install_source
 
     source = install_source()
-    written = create_package(Path(path), name, source.requirement)
+    written = create_package(Path(path), name, source.requirement, drive)
     for file in written:
         click.echo(f"created {display_path(file)}", err=True)
     if source.note:
         click.echo(f"mcar: note: {source.note}", err=True)
-    click.echo(f"next: cd {display_path(Path(path))} && mcar ci   "
+    click.echo(f"next: cd {display_path(Path(path))} && mcar sim && mcar ci   "
                "(then `mcar new part NAME` to add a part)", err=True)

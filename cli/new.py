@@ -31,15 +31,17 @@ PART_HELP = f"""Add a part: a macro file and a test file that builds the part al
 
 \b
   mcar new part arm
-  -> urdf/arm/arm.xacro              macro xacro:arm (parent, *origin, size, mass),
-                                     documented, with an inertia from its box
-  -> urdf/arm/test_arm.urdf.xacro    the arm alone on a base link
+  -> urdf/arm/arm.xacro              macro xacro:arm (name, reflect, parent, *origin,
+                                     size, mass), documented, with an inertia from
+                                     its box; its link is arm_NAME_link
+  -> urdf/arm/test_arm.urdf.xacro    a left and a right arm on a base link
 
-Include the macro from the robot file and call it as <xacro:arm parent="base_link">
-with an <origin>. Nothing is overwritten, and the two files are written both or neither.
-NAME may not be one of xacro's own elements (include, macro, property, arg, if, ...) nor
-give a macro, link or joint the package already has (base would make a second
-base_link).
+Include the macro from the robot file and call it once per use, each with its own
+name: <xacro:arm name="left" reflect="1" parent="base_link"> with an <origin>, and
+name="right" reflect="-1" for its mirror image. Nothing is overwritten, and the two
+files are written both or neither. NAME may not be one of xacro's own elements
+(include, macro, property, arg, if, ...) nor give a macro, or a link or joint of its
+test file, that the package already has.
 
 {EXIT_CODES}"""
 

@@ -1,13 +1,19 @@
 """New description packages and parts, laid out the way the mobile car is (the seed's method).
 
-``create_package`` writes a package that ``mcar ci`` passes at once: package.xml,
-``urdf/define.xacro`` (colours and inertia macros), ``urdf/config.xacro``
-(dimensions, each with its "UNIT LO..HI; SOURCE: meaning" comment, overridable by ``--set``),
-the complete robot ``urdf/NAME.urdf.xacro``, ``meshes/``, a .gitignore, a GitHub workflow
+``create_package`` writes a package that ``mcar ci`` passes at once, having simulated it:
+package.xml, ``urdf/define.xacro`` (colours, inertia and friction macros),
+``urdf/config.xacro`` (dimensions, each with its "UNIT LO..HI; SOURCE: meaning" comment,
+overridable by ``--set``, and checks that they fit together), the complete robot
+``urdf/NAME.urdf.xacro``, a vehicle of the drive kind asked for (differential: two wheels
+and a castor, the seed's car; skid-steer: four driven wheels; ackermann: steered front
+wheels, driven rear ones, each kind one that ``mcar sim`` finds from its joints), its parts
+in ``urdf/PART/`` (wheel, castor, steering: a macro taking a name, and reflect where it
+has a side, with a test file that uses it), ``meshes/``, a .gitignore, a GitHub workflow
 and a pre-commit config that run mcar on the package; and, as the bundled package has them,
 CMakeLists.txt (catkin or ament) and the ROS 1 viewer (``launch/display.launch``,
 ``rviz/urdf.rviz`` and the two scripts the launch runs). ``add_part`` adds a part folder with
-a documented macro and a test file that builds it alone. Neither overwrites anything: if
+a documented macro (name and reflect, so that it can be used on both sides) and a test
+file that builds a left and a right one alone. Neither overwrites anything: if
 one file it would write exists, nothing is written.
 """
 
@@ -30,8 +36,16 @@ PACKAGE_FILES = {
     "package/mcar-workflow.yml": ".github/workflows/mcar.yml",
     "package/urdf/define.xacro": "urdf/define.xacro",
     "package/urdf/config.xacro": "urdf/config.xacro",
-    "package/urdf/robot.urdf.xacro": "urdf/{name}.urdf.xacro",
 }
+# The drive kinds `mcar init --drive` makes (the first the default: the seed's car), each
+# a robot file and config.xacro's own section (templates/drive/KIND/), and the parts it
+# is built of (templates/drive/parts/PART.xacro and test_PART.urdf.xacro, in urdf/PART/).
+DRIVES = {"differential": ("wheel", "castor"),
+          "skid-steer": ("wheel",),
+          "ackermann": ("wheel", "steering")}
+# What base_link sits on, for the comments of config.xacro.
+_AXLE = {"differential": "on the axle midpoint", "skid-steer": "midway between the axles",
+         "ackermann": "midway between the axles"}
 # The bundled package's own, its name and robot file replaced by the new package's: one
 # copy, which tests/ros/ builds (catkin, ament) and launches in both.
 BUNDLED_FILES = ("CMakeLists.txt", "launch/display.launch", "rviz/urdf.rviz",
@@ -46,18 +60,29 @@ _NAME_RE = re.compile(r"[a-z][a-z0-9_]*")
 
 
 def create_package(path: Path, name: str | None = None,
-                   requirement: str | None = None) -> list[Path]:
-    """Write a new description package at ``path``; returns the files written. Nothing
-    is written unless all of it can be: see :mod:`.placing`. ``requirement``: what the
-    GitHub workflow pip-installs mcar as (default: :func:`.install_source.install_source`)."""
+                   requirement: str | None = None, drive: str = "differential") -> list[Path]:
+    """Write a new description package at ``path`` whose robot has the ``drive`` kind
+    (:data:`DRIVES`); returns the files written. Nothing is written unless all of it can
+    be: see :mod:`.placing`. ``requirement``: what the GitHub workflow pip-installs mcar
+    as (default: :func:`.install_source.install_source`)."""
     from .install_source import install_source
 
+    if drive not in DRIVES:
+        raise UsageError(f"--drive {short(drive)}: the drive kinds are {', '.join(DRIVES)}")
     name = name or path.resolve().name
     _require_name(name, "package", "--name")
-    tokens = {"NAME": name,
-              "MCAR_REQUIREMENT": requirement or install_source().requirement}
+    kind = f"drive/{drive}"
+    tokens = {"NAME": name, "DRIVE": drive, "AXLE": _AXLE[drive],
+              "MCAR_REQUIREMENT": requirement or install_source().requirement,
+              "DRIVE_PROPERTIES": _filled(f"{kind}/properties.xacro", {}),
+              "DRIVE_CHECKS": _filled(f"{kind}/checks.xacro", {})}
     files = {destination.format(name=name): _filled(template, tokens)
              for template, destination in PACKAGE_FILES.items()}
+    files[f"urdf/{name}.urdf.xacro"] = _filled(f"{kind}/robot.urdf.xacro", tokens)
+    for part in DRIVES[drive]:
+        files[f"urdf/{part}/{part}.xacro"] = _filled(f"drive/parts/{part}.xacro", tokens)
+        files[f"urdf/{part}/test_{part}.urdf.xacro"] = _filled(
+            f"drive/parts/test_{part}.urdf.xacro", tokens)
     files.update(_bundled_files(name))
     files[GITKEEP] = ""
     require_makeable(path, list(files), _length_hint(name, "package", "--name", files))

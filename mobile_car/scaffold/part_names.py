@@ -1,5 +1,6 @@
-"""Which names a new part may take: its macro ``xacro:NAME``, its link ``NAME_link`` and
-its joint ``NAME_joint`` must mean that part and nothing else in the package.
+"""Which names a new part may take: its macro ``xacro:NAME`` and the links and joints its
+test file makes of it (``NAME_left_link``, ``NAME_right_joint``, ...: the macro takes a
+name per use) must mean that part and nothing else in the package.
 
 A part named after one of xacro's own elements (``include``, ``macro``, ...) makes a macro
 that can never be called: ``<xacro:include parent=...>`` is an include. A part whose link,
@@ -21,8 +22,8 @@ from ..names import shown
 # this list against the installed xacro).
 XACRO_KEYWORDS = frozenset({"arg", "attribute", "call", "element", "if", "include",
                             "insert_block", "macro", "property", "unless"})
-# What the part's test file (templates/part/test_part.urdf.xacro) defines besides the part.
-TEST_FILE_LINKS = ("base_link",)
+# The names the part's test file (templates/part/test_part.urdf.xacro) calls it with.
+TEST_FILE_USES = ("left", "right")
 
 _NAMED = {kind: re.compile(rf"""<{tag}\s[^>]*?\bname\s*=\s*(["'])([^"'$]*?)\1""")
           for kind, tag in (("link", "link"), ("joint", "joint"), ("macro", "xacro:macro"))}
@@ -36,13 +37,10 @@ def refuse_bad_part_name(root: Path, part: str) -> None:
         raise UsageError(f"a part cannot be called '{part}': <xacro:{part}> is xacro's own "
                          f"element, so the part's macro could never be called; choose "
                          "another name")
-    made = {"link": f"{part}_link", "joint": f"{part}_joint", "macro": part}
-    if made["link"] in TEST_FILE_LINKS:
-        raise UsageError(f"a part cannot be called '{part}': its link {made['link']} would "
-                         f"clash with the {made['link']} its test file fixes it to (a "
-                         "robot's links need distinct names); choose another name")
+    made = [("macro", part)] + [(kind, f"{part}_{use}_{kind}") for use in TEST_FILE_USES
+                                for kind in ("link", "joint")]
     for path, names in _package_names(root):
-        for kind, name in made.items():
+        for kind, name in made:
             if name in names[kind]:
                 where = shown(path.relative_to(root).as_posix())
                 if kind == "macro":

@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from .causes import Watch, why_short
 from .engine import mujoco
 from .figures import Figure, ScenarioResult
 from .model import SimModel
@@ -72,11 +73,13 @@ def run_drive(sim: SimModel, frame=None) -> ScenarioResult:
     run.step(SETTLE_TIME, control)
     start, (_, _, yaw0) = run.position, run.euler()
     off = OffFloor(run, sim.drive.wheels)
-    run.step(DRIVE_TIME - 0.5, control, off)
+    watch = Watch(run, sim, omega)
+    run.step(DRIVE_TIME - 0.5, control, lambda: (off(), watch()))
     late, clamped = [], {"steps": 0}
 
     def each_late():
         off()
+        watch()
         late.append([abs(run.wheel_speed(w)) for w in driven])
         if any(run.at_effort_limit(w) for w in driven):
             clamped["steps"] += 1
@@ -104,7 +107,11 @@ def run_drive(sim: SimModel, frame=None) -> ScenarioResult:
     result.measured = {"speed_ratio": along / ideal,
                        "speed_m_s": along / (DRIVE_TIME - RAMP_TIME / 2),
                        "lateral_drift_m": lateral, "heading_change_deg": turned}
-    if reached < 1 - WHEEL_SPEED_BOUND:
+    short = reached < 1 - WHEEL_SPEED_BOUND or not result.figures[0].ok
+    cause = why_short(watch, along) if short else None
+    if cause is not None:
+        result.problems.append(f"drove short; likely cause: {cause}")
+    elif reached < 1 - WHEEL_SPEED_BOUND:
         result.problems.append(_why_slow(driven, omega, clamped["steps"] * 2 >= len(late)))
     for wheel in driven:
         axis = axes[wheel.joint]
@@ -135,11 +142,12 @@ def run_spin(sim: SimModel, frame=None) -> ScenarioResult:
         control = wheel_control(run, sim, omega, spin=True)
         run.step(SETTLE_TIME, control)
         yaw = Yaw(run, lambda: run.centre_of(drive.driven))
-        run.step(RAMP_TIME + 0.25, control, yaw)
+        watch = Watch(run, sim, omega)
+        run.step(RAMP_TIME + 0.25, control, lambda: (yaw(), watch()))
         turned0 = yaw.turned
         steady = SPIN_TIME - RAMP_TIME - 0.25
         centre = TurningCentre(run, drive.driven)
-        run.step(steady, control, lambda: (yaw(), centre()))
+        run.step(steady, control, lambda: (yaw(), centre(), watch()))
     # Left wheels forward, right wheels back: clockwise, a negative yaw rate.
     rate = -(yaw.turned - turned0) / steady
     ideal = 2 * drive.radius * omega / drive.track
@@ -163,6 +171,12 @@ def run_spin(sim: SimModel, frame=None) -> ScenarioResult:
     if rate < 0:
         result.problems.append(f"turned the wrong way ({-rate:.4f} rad/s counter-clockwise) "
                                "with its left wheels forward and its right wheels back")
+    if not all(f.ok for f in result.figures) or rate < 0:
+        # the arc each wheel's track turned through, against what its wheels rolled
+        cause = why_short(watch, -yaw.turned * drive.track / 2, "turned them through an arc of",
+                          slip_counts=not skid)
+        if cause is not None:
+            result.problems.append(f"turned short; likely cause: {cause}")
     result.measured = {"yaw_ratio": rate / ideal, "yaw_rate_rad_s": rate,
                        "centre_moved_m": yaw.strayed}
     if skid and rate > 0:

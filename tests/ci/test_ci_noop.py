@@ -94,7 +94,8 @@ def test_a_no_op_run_replays_the_sim_step_without_the_engine(package_copy, tmp_p
     first = run_ci(package_copy, tmp_path, "first.xml")
     assert first.returncode == 1, first.stderr
     assert "sim drive failed" in first.stderr
-    assert (tmp_path / "first.xml").read_text().count('<failure message="the motors') == 3
+    assert (tmp_path / "first.xml").read_text().count(
+        '<failure message="drove short; likely cause: the motors') == 3
     again = run_ci(package_copy, tmp_path, "again.xml", trace=True)
     assert report(again, tmp_path, "again.xml") == report(first, tmp_path, "first.xml")
     modules = {line.split("|")[-1].strip() for line in again.stderr.splitlines()

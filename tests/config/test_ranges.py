@@ -159,8 +159,10 @@ def test_a_derived_value_that_overflows_is_refused(run_mcar, tmp_path):
     config.write_text(config.read_text().replace('name="a" value="1"', 'name="a" value="1e200"'))
     own = run_mcar("config", cwd=tmp_path / "demo")
     assert own.returncode == 1
+    line = config.read_text().splitlines().index(
+        '  <xacro:property name="a_cubed" value="${a * a * a}"/> <!-- m; derived: cube -->') + 1
     assert own.stderr.splitlines()[-1].endswith(
-        "config.xacro:21: error: config: a_cubed = a * a * a comes out as inf, not a finite "
+        f"config.xacro:{line}: error: config: a_cubed = a * a * a comes out as inf, not a finite "
         "number"), own.stderr
 
 

@@ -1,7 +1,8 @@
-"""The same launch in a package `mcar init` wrote, with a wheel its user added: its own
-robot in RViz, with gui:=false (the plain joint_state_publisher) and the launch's config
-and args arguments (a YAML of dimensions, a --set), built as `mcar build` builds it. The
-commands are docs/rviz.md's, run as written."""
+"""The same launch in a package `mcar init` wrote (a differential car: two wheels, a
+castor), with a spinning part its user added: its own robot in RViz, with gui:=false
+(the plain joint_state_publisher) and the launch's config and args arguments (a YAML of
+dimensions, a --set), built as `mcar build` builds it. The commands are docs/rviz.md's,
+run as written."""
 
 from __future__ import annotations
 
@@ -18,21 +19,25 @@ from ros.pictures import assert_framed, coloured, slider_bars, view_box
 from ros.urdf_facts import expected_transforms, matrix, robot_facts
 
 NAME = "my_robot_description"
-# What a user adds to the robot mcar init wrote: a wheel on a continuous joint.
-WHEEL = """
-  <link name="wheel_link">
+# What a user adds to the robot mcar init wrote: a spinning sensor on top, on a
+# continuous joint.
+SPINNER = """
+  <link name="spinner_link">
     <visual>
       <geometry><cylinder radius="0.04" length="0.03"/></geometry>
       <material name="part"/>
     </visual>
   </link>
-  <joint name="wheel_joint" type="continuous">
+  <joint name="spinner_joint" type="continuous">
     <parent link="base_link"/>
-    <child link="wheel_link"/>
-    <origin xyz="0 ${base_width / 2 + 0.02} 0" rpy="${-pi / 2} 0 0"/>
+    <child link="spinner_link"/>
+    <origin xyz="0 0 ${base_z + base_height / 2 + 0.015}"/>
     <axis xyz="0 0 1"/>
   </joint>
 </robot>"""
+LINKS = ["base_footprint", "base_link", "castor_link", "spinner_link", "wheel_left_link",
+         "wheel_right_link"]
+MOVING = ["spinner_link", "wheel_left_link", "wheel_right_link"]
 
 
 def doc_commands() -> list[str]:
@@ -52,7 +57,7 @@ def robot(tmp_path_factory):
     subprocess.run(["bash", "-c", init], cwd=folder, env=env, check=True, capture_output=True)
     package = folder / NAME
     robot_file = package / "urdf" / f"{NAME}.urdf.xacro"
-    robot_file.write_text(robot_file.read_text().replace("</robot>", WHEEL))
+    robot_file.write_text(robot_file.read_text().replace("</robot>", SPINNER))
     subprocess.run(["bash", "-c", write_yaml], cwd=package, check=True)
     built = subprocess.run([str(MCAR), "build", str(robot_file), "--config", "wide.yaml",
                             "--set", "base_length=36cm", "-o", "-"],
@@ -79,21 +84,21 @@ def test_the_commands_are_the_docs():
 
 def test_robot_description_is_what_mcar_builds_with_the_overrides(robot):
     assert robot["graph"]["description"] == robot["urdf"]
-    assert '<box size="0.36 0.26 0.05"/>' in robot["urdf"]
+    assert '<box size="0.36 0.22 0.05"/>' in robot["urdf"]
 
 
 def test_every_link_is_where_the_urdf_puts_it(robot):
     expected = expected_transforms(robot["urdf"], robot["facts"]["root"])
     got = robot["graph"]["transforms"]
-    assert sorted(got) == sorted(expected) == ["base_footprint", "base_link", "wheel_link"]
+    assert sorted(got) == sorted(expected) == LINKS
     for link, pose in got.items():
         assert pose is not None, f"no transform for {link}\n{robot['launch'].log_tail()}"
         assert np.allclose(matrix(pose), expected[link], atol=1e-6), link
 
 
-def test_the_plain_joint_state_publisher_moves_the_wheel(robot):
+def test_the_plain_joint_state_publisher_moves_the_wheels(robot):
     graph = robot["graph"]
-    assert graph["tf"] == ["wheel_link"] and graph["tf_static"] == ["base_link"]
+    assert graph["tf"] == MOVING and graph["tf_static"] == ["base_link", "castor_link"]
     assert graph["topics"]["/joint_states"] == ["/joint_state_publisher"]
     assert "process has died" not in robot["launch"].log.read_text(errors="replace")
 
@@ -102,7 +107,7 @@ def test_rviz_shows_the_robot_in_the_middle_of_its_view(robot):
     picture, colours = robot["picture"], robot["facts"]["colours"]
     box = view_box(picture)
     assert_framed(coloured(picture, colours["body"], box), box)
-    assert coloured(picture, colours["part"], box).count > 200  # the wheel
+    assert coloured(picture, colours["part"], box).count > 200  # the spinner
     assert slider_bars(picture, box[0]) == 0  # gui:=false: no slider window
 
 

@@ -25,7 +25,7 @@ def test_init_then_new_part_pass_ci_with_pictures(run_mcar, tmp_path):
     ci = run_mcar("ci", "--strict", cwd=package)
     assert ci.returncode == 0, ci.stderr
     assert ci.stderr.splitlines()[0] == f"mcar: package demo ({package})"
-    assert "mcar ci: 1 of 1 files passed" in ci.stderr
+    assert "mcar ci: 3 of 3 files passed" in ci.stderr  # the robot, wheel and castor
     assert (package / "renders" / "demo.png").is_file() and (package / "build/demo.urdf").is_file()
 
     part = run_mcar("new", "part", "arm", cwd=package / "urdf")
@@ -33,7 +33,7 @@ def test_init_then_new_part_pass_ci_with_pictures(run_mcar, tmp_path):
     assert (package / "urdf/arm/arm.xacro").is_file()
     ci = run_mcar("ci", "--strict", cwd=package / "urdf" / "arm")
     assert ci.returncode == 0, ci.stderr
-    assert "mcar ci: 2 of 2 files passed" in ci.stderr
+    assert "mcar ci: 4 of 4 files passed" in ci.stderr
     assert (package / "renders/arm/test_arm.png").is_file()
     assert (package / "build/arm/test_arm.urdf").is_file()
 

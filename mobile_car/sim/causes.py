@@ -1,0 +1,147 @@
+"""Why a robot drove short, from what was measured while it drove, not guessed from the
+outcome: a watch, called every step from the start of the ramp, keeps how far the
+commands would roll the wheels, how far the driven wheels rolled, how long a motor
+pushed at its effort limit, and the friction force the floor put on the parts other
+than the wheels (a castor) against the weight they carry. :func:`why_short` names, in
+this order:
+
+* a dragging castor: the floor holds a non-wheel part back with more than
+  CASTOR_DRAG_SHARE of the robot's weight (a free-rolling ball, mu 0.01, holds back at
+  most 1% even under the whole robot), whatever the wheels and motors then did;
+* the effort limit: a motor at its limit for EFFORT_TIME_SHARE of the time or longer,
+  and the wheels turned less than commanded;
+* wheel slip: the wheels rolled further than the robot moved;
+* else the wheels turned less than commanded below their effort limit (a servo too
+  weak for the load), or nothing measured explains it.
+
+Distances in m, forces in N, times in s."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .run import ramp
+
+GRAVITY = 9.81
+CASTOR_DRAG_SHARE = 0.02   # of the robot's weight
+EFFORT_TIME_SHARE = 0.1    # of the time watched
+SHORT_SHARE = 0.01         # of the distance: lag or slip below this is no cause
+# The forces on the floor's parts are sampled every this many steps (10 ms): their means
+# over seconds need no more, and reading contacts costs as much as a step.
+CONTACT_EVERY = 10
+
+
+class Watch:
+    """Called once per step: ``commanded``, the distance the commanded wheel speed
+    ``omega`` (along the ramp) rolls the driven wheels; ``rolled``, the distance they
+    rolled (their mean speed × radius); ``clamped``, seconds a motor was at its effort
+    limit; and per part on the floor that is no wheel, the mean friction and normal
+    force the floor put on it."""
+
+    def __init__(self, run, sim, omega: float):
+        self.run, self.sim, self.omega = run, sim, omega
+        self.driven = sim.drive.driven
+        self.step = run.model.opt.timestep
+        self.commanded = self.rolled = self.seconds = 0.0
+        self.clamp_steps = 0
+        self.parts = {body: link for link, body in sim.ground_parts.items()}
+        self.friction = dict.fromkeys(self.parts, 0.0)  # N·s
+        self.normal = dict.fromkeys(self.parts, 0.0)
+        self._force = np.zeros(6)
+        model = run.model
+        self._wheels = [(int(model.jnt_dofadr[w.joint_id]), w.radius / len(self.driven))
+                        for w in self.driven]
+        self._limits = [(w.actuator_id, 0.99 * float(model.actuator_forcerange[w.actuator_id][1]))
+                        for w in self.driven]
+        self._count = 0
+        self._roll = omega * sim.drive.radius * self.step  # per step at the full command
+
+    def __call__(self) -> None:
+        run, data, step = self.run, self.run.data, self.step
+        self.seconds += step
+        self.commanded += self._roll * ramp(data.time)
+        qvel, force = data.qvel, data.actuator_force
+        self.rolled += sum(abs(qvel[dof]) * share for dof, share in self._wheels) * step
+        if any(abs(force[actuator]) >= limit for actuator, limit in self._limits):
+            self.clamp_steps += 1
+        self._count += 1
+        if not self.parts or self._count % CONTACT_EVERY:
+            return
+        floor, bodies, weight = self.sim.floor_geom, run.model.geom_bodyid, CONTACT_EVERY * step
+        for i in range(data.ncon):
+            contact = data.contact[i]
+            other = contact.geom2 if contact.geom1 == floor else \
+                contact.geom1 if contact.geom2 == floor else None
+            body = int(bodies[other]) if other is not None else None
+            if body in self.parts:
+                run.mj.mj_contactForce(run.model, data, i, self._force)
+                self.normal[body] += float(self._force[0]) * weight
+                self.friction[body] += math.hypot(self._force[1], self._force[2]) * weight
+
+    @property
+    def clamped(self) -> float:
+        return self.clamp_steps * self.step
+
+    def drag(self) -> list[tuple[str, float, float]]:
+        """(link, mean friction force, mean normal force) of each part on the floor."""
+        if not self.seconds:
+            return []
+        return [(link, self.friction[body] / self.seconds, self.normal[body] / self.seconds)
+                for body, link in self.parts.items()]
+
+
+def why_short(watch: Watch, moved: float, moved_what: str = "moved",
+              slip_counts: bool = True) -> str | None:
+    """The likely cause, from the measurements, of a robot that moved ``moved`` m (along
+    its heading; for a spin, the arc its wheels' track turned through: ``moved_what``
+    says which) where its wheels were commanded ``watch.commanded``; ``slip_counts``:
+    False where the tyres must slide (a skid-steer spin). None when nothing measured
+    stands out."""
+    sim, commanded, rolled = watch.sim, watch.commanded, watch.rolled
+    if commanded <= 0:
+        return None
+    weight = sim.mass * GRAVITY
+    lag = 1 - rolled / commanded
+    slip = 1 - moved / rolled if rolled > 0 else 0.0
+    rolling = (f"the wheels rolled {rolled:.4f} m of the {commanded:.4f} m commanded and "
+               f"the robot {moved_what} {moved:.4f} m")
+    clamped = (f"; the motors were at their effort limit ({_efforts(watch.driven)}) for "
+               f"{watch.clamped:.2f} s of {watch.seconds:.2f} s" if watch.clamp_steps else "")
+    draggers = [(link, force, normal) for link, force, normal in watch.drag()
+                if force > CASTOR_DRAG_SHARE * weight]
+    if draggers:
+        parts = "; ".join(f"{link} back with {force:.2f} N ({force / normal:.2f} × the "
+                          f"{normal:.2f} N it carries, {100 * force / weight:.0f}% of the "
+                          "robot's weight)" if normal > 0 else f"{link} back with {force:.2f} N"
+                          for link, force, normal in draggers)
+        return (f"a dragging castor: the floor holds {parts}, where a free-rolling castor "
+                f"(mu 0.01) holds back under 1%; {rolling}{clamped}")
+    if watch.clamped >= EFFORT_TIME_SHARE * watch.seconds and lag >= SHORT_SHARE:
+        return (f"the motors' effort limit ({_efforts(watch.driven)}): at it for "
+                f"{watch.clamped:.2f} s of {watch.seconds:.2f} s; {rolling} "
+                f"({100 * lag:.1f}% short of the command)")
+    if slip >= SHORT_SHARE and slip_counts:
+        return (f"wheel slip: {rolling} ({100 * slip:.1f}% less than its wheels rolled), "
+                f"the motors below their effort limit; the tyres' friction "
+                f"({_tyre_friction(watch)}) cannot pass the drive force to the floor")
+    if lag >= SHORT_SHARE:
+        gains = ", ".join(dict.fromkeys(f"{w.gain:.4g}" for w in watch.driven))
+        return (f"wheels that lag their command below their effort limit: {rolling} "
+                f"({100 * lag:.1f}% short); something holds them back (a contact, a "
+                f"joint limit, a load too heavy for the servo gain {gains} N·m·s/rad)")
+    return None
+
+
+def _efforts(driven) -> str:
+    return ", ".join(f"{w.joint} {w.effort if w.effort is not None else 0:g} N·m"
+                     for w in driven)
+
+
+def _tyre_friction(watch: Watch) -> str:
+    model = watch.run.model
+    values = {f"{model.geom_friction[g][0]:g}" for w in watch.driven
+              for g in range(model.ngeom) if model.geom_bodyid[g] == w.body_id
+              and (model.geom_contype[g] or model.geom_conaffinity[g])}
+    return "mu " + ", ".join(sorted(values)) if values else "unknown"

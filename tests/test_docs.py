@@ -88,8 +88,8 @@ def test_every_docs_page_is_linked_from_the_readme():
 
 def test_every_mcar_variable_is_documented():
     """Each MCAR_* environment variable mcar reads is on docs/limits.md."""
-    source = "\n".join(path.read_text(encoding="utf-8")
-                       for folder in ("mobile_car", "cli") for path in (REPO / folder).rglob("*.py"))
+    source = "\n".join(path.read_text(encoding="utf-8") for folder in ("mobile_car", "cli")
+                       for path in (REPO / folder).rglob("*.py"))
     read = set(re.findall(r"[\"'](MCAR_[A-Z_]+)[\"']", source)) - {"MCAR_REQUIREMENT"}
     assert {"MCAR_MAX_INPUT_MB", "MCAR_XACRO_TIMEOUT", "MCAR_DEBUG"} <= read
     page = (DOCS / "limits.md").read_text(encoding="utf-8")

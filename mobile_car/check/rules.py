@@ -8,8 +8,8 @@ are what Gazebo's libsdformat changes in the robot, found by ``mcar check --gaze
 ``rejects`` (exit 255), ``ignores`` (logs an error or nothing, still exits 0, drops the
 element), or ``hangs`` (prints the tree forever, then crashes).
 
-The rule table of docs/rules.md is generated from :data:`RULES` (``tests/check/test_rules.py`` keeps the
-two equal).
+The rule table of docs/rules.md is generated from :data:`RULES`
+(``tests/check/test_rules.py`` keeps the two equal).
 """
 
 from __future__ import annotations

@@ -168,7 +168,8 @@ def test_device_as_input_is_refused(run_mcar, tmp_path, device, stdin):
 
 
 def test_dev_stdin_with_a_pipe_reads_like_dash(run_mcar, tmp_path):
-    """docs/commands.md, Inputs: /dev/stdin named as INPUT is read as `-` is (a pipe is the point)."""
+    """docs/commands.md, Inputs: /dev/stdin named as INPUT is read as `-` is (a pipe is
+    the point)."""
     result = _run_quickly(run_mcar, "build", "/dev/stdin", input=ROBOT, cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert '<link name="a"/>' in result.stdout

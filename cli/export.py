@@ -7,7 +7,7 @@ from pathlib import Path
 
 import click
 
-from mobile_car.errors import EXIT_PROBLEMS
+from mobile_car.errors import EXIT_PROBLEMS, UsageError
 from mobile_car.load.inputs import display_path
 from mobile_car.names import shown
 

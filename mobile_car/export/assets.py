@@ -22,7 +22,6 @@ Nothing is written outside the folder it is given; each file is created, never r
 
 from __future__ import annotations
 
-import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -31,6 +30,7 @@ from ..errors import InputError, McarError
 from ..load.bounded import open_regular
 from ..load.compressed import compressed_kind, max_mesh_bytes
 from ..load.inputs import display_path
+from ..load.mesh_facts import binary_stl_triangles
 from ..load.mesh_limits import scan_mesh
 from ..names import component_problem
 
@@ -122,7 +122,7 @@ class Assets:
         if compressed_kind(source) is not None or suffix not in self.readable:
             return False
         if suffix == ".stl" and self.binary_stl_only:
-            return binary_stl_faces(source) in range(1, STL_FACES + 1)
+            return binary_stl_triangles(source) in range(1, STL_FACES + 1)
         return True
 
     def _place_for(self, uri: str, source: Path) -> str:
@@ -182,17 +182,6 @@ class Assets:
         data = mesh.export(file_type=kind)
         self._write(relative, data.encode() if isinstance(data, str) else data)
         return Asset(uri, source, relative, converted=True, colour=mean_colour(mesh))
-
-
-def binary_stl_faces(path: Path) -> int:
-    """The triangle count of a binary STL whose size matches it, else 0."""
-    with open_regular(path, str(path)) as handle:
-        header = handle.read(84)
-        size = os.fstat(handle.fileno()).st_size
-    if len(header) < 84:
-        return 0
-    count = int.from_bytes(header[80:84], "little")
-    return count if size == 84 + 50 * count else 0
 
 
 def in_metres(mesh) -> None:

@@ -90,7 +90,7 @@ def _facts(path: Path, shown: str, info, identity: list) -> MeshFacts:
     except InputError as error:  # a file whose own counts contradict it
         return _remember(path, identity, MeshFacts(problem=error.message))
     reads = tuple(scan.reads)
-    triangles = _binary_stl_triangles(path, info.st_size)
+    triangles = binary_stl_triangles(path, info.st_size)
     if triangles:
         facts = MeshFacts(bounds=_binary_stl_bounds(path, triangles), faces=triangles,
                           vertices=3 * triangles, reads=reads)
@@ -153,12 +153,16 @@ def _finite_bounds(bounds) -> tuple | None:
     return (low, high) if all(map(math.isfinite, low + high)) else None
 
 
-def _binary_stl_triangles(path: Path, size: int) -> int:
+def binary_stl_triangles(path: Path, size: int | None = None) -> int:
     """The triangle count of a binary STL whose size matches it (however its header
-    starts), else 0: then trimesh reads it."""
-    if path.suffix.lower() != ".stl" or size < 134:
+    starts), else 0: then trimesh reads it (check, sim and export all decide by this)."""
+    if path.suffix.lower() != ".stl":
         return 0
     with open_regular(path) as handle:
+        if size is None:
+            size = os.fstat(handle.fileno()).st_size
+        if size < 134:
+            return 0
         header = handle.read(84)
     count = int.from_bytes(header[80:84], "little")
     return count if size == 84 + 50 * count else 0

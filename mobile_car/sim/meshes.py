@@ -19,6 +19,7 @@ from pathlib import Path
 
 from ..atomic import atomic_write
 from ..errors import InputError
+from ..load.mesh_facts import binary_stl_triangles
 from ..load.mesh_limits import scan_mesh
 from ..record_seal import cache_dir
 
@@ -37,7 +38,7 @@ def mujoco_mesh(path: Path) -> Path:
     suffix = path.suffix.lower()
     if suffix in AS_IT_IS:
         return path
-    if suffix == ".stl" and _binary_stl_faces(path) in range(1, MUJOCO_STL_FACES + 1):
+    if suffix == ".stl" and binary_stl_triangles(path) in range(1, MUJOCO_STL_FACES + 1):
         return path
     from ..load.mesh_reader import load_mesh
 
@@ -55,17 +56,6 @@ def mujoco_mesh(path: Path) -> Path:
     data = data.encode() if isinstance(data, str) else data
     name = f"{_digest(path)}.{kind}"
     return atomic_write(_folder() / name, data)
-
-
-def _binary_stl_faces(path: Path) -> int:
-    """The triangle count of a binary STL whose size matches it, else 0."""
-    with open(path, "rb") as handle:
-        header = handle.read(84)
-        size = os.fstat(handle.fileno()).st_size
-    if len(header) < 84:
-        return 0
-    count = int.from_bytes(header[80:84], "little")
-    return count if size == 84 + 50 * count else 0
 
 
 def _digest(path: Path) -> str:

@@ -66,12 +66,7 @@ class Assets:
         is missing, over a limit or unreadable."""
         if uri in self.by_uri:
             return self.by_uri[uri]
-        try:
-            source = search.resolve_uri(uri, base)
-        except McarError as error:
-            raise InputError(f"mesh {uri}: {error.message}", file=label) from None
-        if not source.is_file():
-            raise InputError(f"mesh {uri}: no such file ({display_path(source)})", file=label)
+        source = _resolved(f"mesh {uri}", uri, search, base, label)
         try:
             scan = scan_mesh(source, str(source))
         except InputError as error:
@@ -102,12 +97,7 @@ class Assets:
         byte, within the mesh size limit; its place in the folder. InputError naming it."""
         if uri in self.by_uri:
             return self.by_uri[uri].relative
-        try:
-            source = search.resolve_uri(uri, base)
-        except McarError as error:
-            raise InputError(f"file {uri}: {error.message}", file=label) from None
-        if not source.is_file():
-            raise InputError(f"file {uri}: no such file ({display_path(source)})", file=label)
+        source = _resolved(f"file {uri}", uri, search, base, label)
         asset = Asset(uri, source, self._claim(self._place_for(uri, source)))
         try:
             self._copy(source, asset.relative)
@@ -182,6 +172,18 @@ class Assets:
         data = mesh.export(file_type=kind)
         self._write(relative, data.encode() if isinstance(data, str) else data)
         return Asset(uri, source, relative, converted=True, colour=mean_colour(mesh))
+
+
+def _resolved(named: str, uri: str, search, base: Path, label: str) -> Path:
+    """The file ``uri`` names, found by the package search; InputError starting with
+    ``named`` (``mesh URI``, ``file URI``) when it names nothing there."""
+    try:
+        source = search.resolve_uri(uri, base)
+    except McarError as error:
+        raise InputError(f"{named}: {error.message}", file=label) from None
+    if not source.is_file():
+        raise InputError(f"{named}: no such file ({display_path(source)})", file=label)
+    return source
 
 
 def in_metres(mesh) -> None:

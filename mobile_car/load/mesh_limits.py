@@ -11,7 +11,8 @@ for minutes. Here a mesh is measured without trimesh, numpy or parsing its geome
   OBJ: ``vertex`` / ``v`` / ``f`` lines counted in a bytes scan (an OBJ polygon of n
   corners is n - 2 triangles); PLY, OFF: the header; COLLADA: the ``count`` attributes
   of its primitives, times the times each geometry is instanced (nodes may instance nodes:
-  counted through the graph, never expanded); glTF: its accessors and nodes;
+  counted through the graph, never expanded); glTF: its accessors and nodes (both in
+  :mod:`.scene_counts`);
 * the counts against ``MCAR_MAX_MESH_FACES`` (and three vertices a face).
 
 The same scan notes the files the mesh would read (an OBJ's ``mtllib``, the textures its
@@ -23,15 +24,13 @@ resolver finds them: in the mesh's folder (or below), by name, else by base name
 from __future__ import annotations
 
 import io
-import json
 import os
 import re
 import stat
-import urllib.parse
-from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
+from . import scene_counts
 from .bounded import open_regular
 from .compressed import (  # noqa: F401 (MeshOverLimit: one name for every limit)
     MAX_MESH_MB_ENV,
@@ -40,6 +39,7 @@ from .compressed import (  # noqa: F401 (MeshOverLimit: one name for every limit
     max_mesh_bytes,
     suffix_of,
 )
+from .mesh_scan import MeshBroken, MeshScan, declared_count, find_beside  # noqa: F401 (MeshBroken)
 
 MAX_MESH_FACES_ENV = "MCAR_MAX_MESH_FACES"
 # Per mesh file. Measured by scan_mesh over the 58 meshes of the released TurtleBot3,
@@ -51,22 +51,6 @@ DEFAULT_MAX_MESH_FACES = 1_000_000
 VERTICES_PER_FACE = 3  # a triangle soup (STL, unshared OBJ corners) has three a face
 _CHUNK = 4 << 20
 _HEADER_LIMIT = 64 << 10  # PLY and OFF headers are a few lines; more is not a mesh
-
-
-class MeshBroken(InputError):
-    """A mesh file whose own counts contradict it (a binary STL claiming more triangles
-    than it holds): not read, reported like a mesh trimesh cannot load."""
-
-
-@dataclass(frozen=True)
-class MeshScan:
-    """What a mesh file declares: ``faces`` and ``vertices`` (None: not known before
-    decompressing or parsing it) and the other files it reads, that exist."""
-
-    faces: int | None = None
-    vertices: int | None = None
-    reads: tuple[Path, ...] = ()
-    partial: bool = False  # counting stopped once over the limit: at least these
 
 
 def max_mesh_faces() -> int:
@@ -221,33 +205,8 @@ def _mtl_maps(mtl: Path, folder: Path) -> list[Path]:
     return found
 
 
-def find_beside(folder: Path, name: str) -> Path | None:
-    """The regular file trimesh's resolver would open for ``name`` in ``folder``: the
-    name, without a leading slash, or its base name; below the folder only."""
-    name = name.strip()
-    if not name or "\0" in name:
-        return None
-    root = Path(folder).resolve()
-    for candidate in (name, name.lstrip("/"), os.path.split(name)[-1]):
-        if not candidate:
-            continue
-        try:
-            path = (root / candidate).resolve()
-            if path.is_relative_to(root) and path.is_file():
-                return path
-        except (OSError, ValueError, RuntimeError):
-            continue
-    return None
-
-
 def _header(handle) -> list[str]:
     return handle.read(_HEADER_LIMIT).decode("latin-1").splitlines()
-
-
-def _count(word: str, shown: str) -> int:
-    if not word.isdigit() or len(word) > 19:
-        raise MeshBroken(f"its header gives the count {word[:30]!r}", file=shown)
-    return int(word)
 
 
 def _ply(handle, size: int, shown: str, folder) -> MeshScan:
@@ -257,7 +216,7 @@ def _ply(handle, size: int, shown: str, folder) -> MeshScan:
         if words[:1] == ["end_header"]:
             break
         if words[:1] == ["element"] and len(words) >= 3:
-            counts[words[1]] = counts.get(words[1], 0) + _count(words[2], shown)
+            counts[words[1]] = counts.get(words[1], 0) + declared_count(words[2], shown)
     else:
         raise MeshBroken(f"no end_header in its first {_HEADER_LIMIT // 1024} KB", file=shown)
     return MeshScan(counts.get("face", 0) + counts.get("tristrips", 0), counts.get("vertex", 0))
@@ -271,196 +230,9 @@ def _off(handle, size: int, shown: str, folder) -> MeshScan:
         if len(words) >= 4:
             break
     if len(words) >= 3 and words[0].upper().endswith("OFF"):
-        return MeshScan(_count(words[2], shown), _count(words[1], shown))
+        return MeshScan(declared_count(words[2], shown), declared_count(words[1], shown))
     return MeshScan()
 
 
-def _instanced(own: dict, children: dict, roots, shown: str) -> int:
-    """Faces drawn: each node's own faces once per path from a root to it. Counted over
-    the graph with memory (a node instanced twice by each of 30 nested nodes is 2**30
-    instances, computed in 30 steps); a cycle adds nothing."""
-    memo: dict = {}
-    visiting: set = set()
-
-    def faces(node) -> int:
-        if node in memo:
-            return memo[node]
-        if node in visiting:
-            return 0
-        visiting.add(node)
-        total = own.get(node, 0) + sum(faces(child) for child in children.get(node, ()))
-        visiting.discard(node)
-        memo[node] = total
-        return total
-
-    try:
-        return sum(faces(root) for root in roots)
-    except RecursionError:
-        raise MeshBroken("its nodes are nested too deep to count", file=shown) from None
-
-
-_DAE_PRIMITIVES = {"triangles", "polylist", "polygons", "trifans", "tristrips", "lines",
-                   "linestrips"}
-
-
-def _dae(handle, size: int, shown: str, folder) -> MeshScan:
-    """Counted in one pass of lxml's iterparse, no entities, no network; element text
-    (the numbers) dropped as it goes. A file that is not well-formed XML is counted again
-    as libxml2 recovers it: that is what the reader hands pycollada (:mod:`.collada`)."""
-    from lxml import etree
-
-    start = handle.tell()
-    try:
-        return _dae_counted(handle, shown, folder, recover=False)
-    except etree.XMLSyntaxError:
-        handle.seek(start)
-    try:
-        return _dae_counted(handle, shown, folder, recover=True)
-    except etree.LxmlError as error:
-        raise MeshBroken(f"not well-formed COLLADA: {error}", file=shown) from None
-
-
-def _dae_counted(handle, shown: str, folder, recover: bool) -> MeshScan:
-    from lxml import etree
-
-    geometry_faces: dict[str, int] = {}
-    children: dict[str, list] = {}  # "n:ID" or "#anon" node -> geometries / nodes it holds
-    own: dict[str, int] = {}
-    scenes: list[str] = []
-    vertices = 0
-    images: list[str] = []
-    stack: list[str] = []  # the node (or scene) elements around the current element
-    geometry = None
-    anonymous = 0
-    try:
-        for event, element in etree.iterparse(handle, events=("start", "end"),
-                                              resolve_entities=False, no_network=True,
-                                              load_dtd=False, huge_tree=False,
-                                              remove_comments=True, remove_pis=True,
-                                              recover=recover):
-            tag = etree.QName(element).localname if isinstance(element.tag, str) else ""
-            if event == "start":
-                if tag == "geometry":
-                    geometry = "g:" + (element.get("id") or "")
-                elif tag in _DAE_PRIMITIVES and geometry is not None:
-                    geometry_faces[geometry] = geometry_faces.get(geometry, 0) + \
-                        _count(element.get("count") or "0", shown)
-                elif tag == "float_array":
-                    vertices += _count(element.get("count") or "0", shown) // 3
-                elif tag in ("node", "visual_scene"):
-                    anonymous += 1
-                    name = "n:" + (element.get("id") or f"#{anonymous}")
-                    if tag == "visual_scene":
-                        scenes.append(name)
-                    elif stack:
-                        children.setdefault(stack[-1], []).append(name)
-                    stack.append(name)
-                elif tag in ("instance_geometry", "instance_node") and stack:
-                    url = (element.get("url") or "").lstrip("#")
-                    prefix = "g:" if tag == "instance_geometry" else "n:"
-                    children.setdefault(stack[-1], []).append(prefix + url)
-                continue
-            if tag == "geometry":
-                geometry = None
-            elif tag in ("node", "visual_scene") and stack:
-                stack.pop()
-            elif tag in ("init_from", "ref") and element.text:
-                images.append(element.text)
-            element.clear(keep_tail=False)
-            while element.getprevious() is not None:  # done with: let it go
-                del element.getparent()[0]
-    except etree.XMLSyntaxError:
-        raise
-    except etree.LxmlError as error:
-        raise MeshBroken(f"not well-formed COLLADA: {error}", file=shown) from None
-    own.update(geometry_faces)
-    faces = _instanced(own, children, scenes, shown) if scenes else sum(geometry_faces.values())
-    return MeshScan(faces, vertices, _images(images, folder))
-
-
-def _images(names, folder) -> tuple[Path, ...]:
-    if folder is None:
-        return ()
-    found = []
-    for name in dict.fromkeys(names):
-        name = name.strip()
-        if name.startswith("data:") or "://" in name and not name.startswith("file://"):
-            continue
-        for candidate in (name, urllib.parse.unquote(name.removeprefix("file://"))):
-            path = find_beside(folder, candidate)
-            if path is not None:
-                found.append(path)
-    return tuple(dict.fromkeys(found))
-
-
-def _gltf_document(handle, size: int, shown: str, binary: bool) -> dict:
-    if binary:
-        head = handle.read(20)
-        length = int.from_bytes(head[12:16], "little") if len(head) == 20 else -1
-        if head[16:20] != b"JSON" or not 0 <= length <= size:
-            raise MeshBroken("not a GLB file (no JSON chunk first)", file=shown)
-        text = handle.read(length)
-    else:
-        text = handle.read()
-    try:
-        document = json.loads(text)
-    except (ValueError, RecursionError) as error:
-        raise MeshBroken(f"its glTF JSON does not parse: {error}", file=shown) from None
-    if not isinstance(document, dict):
-        raise MeshBroken("its glTF JSON is not an object", file=shown)
-    return document
-
-
-def _gltf(handle, size: int, shown: str, folder, binary: bool = False) -> MeshScan:
-    document = _gltf_document(handle, size, shown, binary)
-
-    def listed(key):
-        value = document.get(key)
-        return value if isinstance(value, list) else []
-
-    def entry(key, index) -> dict:
-        items = listed(key)
-        ok = isinstance(index, int) and 0 <= index < len(items) and isinstance(items[index], dict)
-        return items[index] if ok else {}
-
-    def count(index) -> int:
-        value = entry("accessors", index).get("count")
-        return value if isinstance(value, int) and value >= 0 else 0
-
-    own: dict = {}
-    vertices = 0
-    for number, mesh in enumerate(listed("meshes")):
-        faces = 0
-        primitives = mesh.get("primitives") if isinstance(mesh, dict) else None
-        for primitive in primitives if isinstance(primitives, list) else []:
-            if not isinstance(primitive, dict):
-                continue
-            attributes = primitive.get("attributes")
-            position = attributes.get("POSITION") if isinstance(attributes, dict) else None
-            vertices += count(position)
-            corners = count(primitive["indices"]) if "indices" in primitive else count(position)
-            faces += corners // 3
-        own[f"m{number}"] = faces
-    children: dict = {}
-    for number, node in enumerate(listed("nodes")):
-        if isinstance(node, dict):
-            kids = [f"n{c}" for c in node.get("children") or [] if isinstance(c, int)] \
-                if isinstance(node.get("children"), list) else []
-            if isinstance(node.get("mesh"), int):
-                kids.append(f"m{node['mesh']}")
-            children[f"n{number}"] = kids
-    roots = [f"n{n}" for scene in listed("scenes") if isinstance(scene, dict)
-             for n in (scene.get("nodes") if isinstance(scene.get("nodes"), list) else [])
-             if isinstance(n, int)]
-    faces = _instanced(own, children, roots, shown) if roots else sum(own.values())
-    uris = [item.get("uri") for key in ("buffers", "images") for item in listed(key)
-            if isinstance(item, dict) and isinstance(item.get("uri"), str)]
-    return MeshScan(faces, vertices, _images(uris, folder))
-
-
-def _glb(handle, size: int, shown: str, folder) -> MeshScan:
-    return _gltf(handle, size, shown, folder, binary=True)
-
-
-_SCANNERS = {"stl": _stl, "obj": _obj, "ply": _ply, "off": _off, "dae": _dae,
-             "gltf": _gltf, "glb": _glb}
+_SCANNERS = {"stl": _stl, "obj": _obj, "ply": _ply, "off": _off, "dae": scene_counts.dae,
+             "gltf": scene_counts.gltf, "glb": scene_counts.glb}

@@ -144,16 +144,19 @@ def command(words, scenarios, output_format, record, left, right, kind, steering
         from mobile_car.check.checker import check_input
         from mobile_car.sim.report import simulate
 
+        unchecked = 0  # files whose load or check failed: reported above, not simulated
         for inp in inputs:
             checked = check_input(inp, options, stdin=stdin)
             if checked.failure is not None:
                 report(checked.failure)
                 codes.append(checked.failure.exit_code)
+                unchecked += 1
                 continue
             if checked.errors or not checked.tree_is_drawable:
                 for diagnostic in checked.diagnostics:
                     print_diagnostic(diagnostic)
                 codes.append(EXIT_PROBLEMS)
+                unchecked += 1
                 continue
             result = simulate(checked, scenarios, left, right, record=bool(record),
                               only_if_drives=not explicit, effort=effort, speed=speed,
@@ -166,7 +169,7 @@ def command(words, scenarios, output_format, record, left, right, kind, steering
     say_not_simulated(skipped)
     if record:
         _write_recording(record, reports, codes)
-    _emit(reports, output_format, combine_exit_codes(codes))
+    _emit(reports, output_format, combine_exit_codes(codes), unchecked)
     raise SystemExit(combine_exit_codes(codes))
 
 
@@ -199,7 +202,7 @@ def _write_recording(record: str, reports, codes) -> None:
         codes.append(EXIT_PROBLEMS)
 
 
-def _emit(reports, output_format: str, exit_code: int) -> None:
+def _emit(reports, output_format: str, exit_code: int, unchecked: int = 0) -> None:
     from mobile_car.sim.report import as_json, failure_lines, junit, text_table
 
     for result in reports:
@@ -228,4 +231,11 @@ def _emit(reports, output_format: str, exit_code: int) -> None:
     lint = f", {errors} lint error{'s' * (errors != 1)}" if errors else ""
     click.echo(f"mcar sim: {counts['passed']} passed, {counts['failed']} failed, "
                f"{counts['skipped']} skipped{lint} in {len(reports)} "
-               f"file{'s' * (len(reports) != 1)}", err=True)
+               f"file{'s' * (len(reports) != 1)}{_not_checked(unchecked)}", err=True)
+
+
+def _not_checked(count: int) -> str:
+    if not count:
+        return ""
+    return (f"; {count} file{'s' * (count != 1)} not simulated: "
+            f"{'its' if count == 1 else 'their'} load or check failed (above)")

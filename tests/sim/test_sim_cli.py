@@ -188,3 +188,21 @@ def test_a_root_without_mass_is_reported_at_its_line(cli, repo, monkeypatch):
     assert result.exit_code == 1
     assert re.search(r"urdf/wheel/test_wheel.urdf.xacro:\d+: error: root link \w+ and the "
                      r"links fixed to it have no mass: .* \[E305\]", result.stderr)
+
+
+def test_the_summary_counts_the_files_that_could_not_be_simulated(cli, package_copy,
+                                                                 monkeypatch):
+    """A value config.xacro refuses stops every robot of the package before sim: the
+    summary says so, rather than "0 passed ... in 0 files" alone."""
+    config = package_copy / "urdf/config.xacro"
+    old = '<xacro:property name="wheel_radius" value="0.0325"/>'
+    assert old in config.read_text()
+    config.write_text(config.read_text().replace(old, old.replace("0.0325", "32.5")))
+    monkeypatch.chdir(package_copy)
+    result = _sim(cli, "urdf/mobile_robot.xacro", "urdf/wheel/test_wheel.urdf.xacro",
+                  "--scenario", "drop")
+    assert result.exit_code == 1
+    assert "outside its own range" in result.stderr
+    assert result.stderr.endswith(
+        "mcar sim: 0 passed, 0 failed, 0 skipped in 0 files; 2 files not simulated: their "
+        "load or check failed (above)\n")

@@ -67,7 +67,9 @@ def command(words, graph_output, quiet, package_paths, sets, config_files):
     for diagnostic in result.diagnostics:
         print_diagnostic(diagnostic)
     if not result.tree_is_drawable:
-        click.echo(f"mcar tree: {result.file} has no single kinematic tree", err=True)
+        why = ("has no single kinematic tree" if result.tree is not None else
+               "was not read into a robot (the error above)")
+        click.echo(f"mcar tree: {result.file} {why}", err=True)
         sys.exit(EXIT_PROBLEMS)
     if not quiet:
         streams.write(rich_text(result.tree).encode("utf-8"))

@@ -52,6 +52,11 @@ def test_an_out_of_range_value_in_config_xacro_stops_every_command(cli, slipped,
     assert "Traceback" not in result.output
     if words[0] == "build":
         assert not list((slipped / "build").rglob("mobile_robot.urdf"))
+    if words[0] == "tree":  # not "has no single kinematic tree": the tree was never read
+        assert lines[-1] == ("mcar tree: urdf/mobile_robot.xacro was not read into a robot "
+                             "(the error above)")
+    if words[0] == "sim":
+        assert lines[-1].endswith("; 1 file not simulated: its load or check failed (above)")
 
 
 def test_ci_says_the_build_failed_because_of_it(cli, slipped):

@@ -8,24 +8,21 @@ from pathlib import Path
 
 import click
 
-from mobile_car.errors import McarError, UsageError
+from mobile_car.errors import UsageError
 from mobile_car.load.inputs import display_path
 from mobile_car.names import shown
 from mobile_car.packages.bundled import PACKAGE_NAME
 
-from . import streams
+from .ci_report import emit
 from .common import (
     INPUT_HELP,
     handle_errors,
     input_basis,
     prepared_load,
-    print_diagnostic,
     print_warning,
-    report,
     robot_options,
     say_which_package,
     select_inputs,
-    severity_label,
 )
 
 HELP = f"""Build, check (strict), simulate and render every robot file of a description
@@ -92,46 +89,6 @@ Exit codes:
      no renderer (--no-render skips drawing)
   130  interrupted (Ctrl-C); 143 terminated
 """
-
-
-def _table(items) -> list[str]:
-    header = ("FILE", "LINKS", "JOINTS", "WARN", "ERR", "SIM", "PNG", "RESULT")
-    rows = []
-    for item in items:
-        failed = [step.name for step in item.steps if step.status == "failed"]
-        png = display_path(item.png) if item.png and any(
-            s.name == "render" and s.status == "passed" for s in item.steps) else "-"
-        # the drive kind and its scenarios passed, or why it was not simulated
-        sim = next((s.summary for s in item.steps if s.name == "sim" and s.summary), "-")
-        rows.append((item.label, "-" if item.links is None else str(item.links),
-                     "-" if item.joints is None else str(item.joints), str(item.warnings),
-                     str(item.errors), sim, png, "ok" if item.ok else f"FAILED ({failed[0]})"))
-    widths = [max(len(row[i]) for row in [header, *rows]) for i in range(len(header))]
-    right = {1, 2, 3, 4}
-
-    def line(row):
-        return "  ".join(cell.rjust(widths[i]) if i in right else cell.ljust(widths[i])
-                         for i, cell in enumerate(row)).rstrip()
-
-    return [line(header), *map(line, rows)]
-
-
-def _problems(item) -> list:
-    """What to print for an item: diagnostics, and the errors of failed steps."""
-    lines = []
-    for step in item.steps:
-        if step.status != "failed":
-            # warnings of a passed step; notes (what Gazebo lumps) only in the JUnit report
-            lines += [d for d in step.diagnostics if d.is_error or d.is_warning]
-            continue
-        if step.problems:  # sim: its rules' diagnostics, then each failed scenario
-            lines += step.diagnostics
-            lines += [f"{item.label}: {severity_label('error')} {step.name} {shown(problem)}"
-                      for problem in step.problems]
-            continue
-        lines += [d for d in step.diagnostics if d.is_error or d.is_warning] or [
-            step.error or f"{item.label}: {step.name} failed: {shown(step.message)}"]
-    return lines
 
 
 @click.command("ci", help=HELP, short_help="Build, check, simulate and render a package.")
@@ -269,7 +226,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
         for file in skipped:
             click.echo(f"mcar: skipped {display_path(file.path)}: {shown(file.reason)}",
                        err=True)
-    _emit(items, output_format, quiet, time.perf_counter() - started, no_render, no_sim,
+    emit(items, output_format, quiet, time.perf_counter() - started, no_render, no_sim,
           helper is not None, 0 if verbose else len(skipped), strict)
     if revision is not None:
         changed = sum(1 for entry in compared if entry.diff is not None and entry.diff.changed
@@ -365,55 +322,3 @@ def _render(checked, items, manifest, renderer: str, basis) -> None:
             manifest.save()
         for note in session.notes:
             print_warning("mcar", note)
-
-
-def _emit(items, output_format: str, quiet: bool, seconds: float, no_render: bool,
-          no_sim: bool, gazebo: bool, skipped: int, strict: bool = True) -> None:
-    if output_format == "junit":
-        from mobile_car.ci.junit import junit_report
-
-        streams.echo(junit_report(items), nl=False)
-        return
-    if output_format == "github":
-        for item in items:
-            for step in item.steps:
-                for diagnostic in step.diagnostics:
-                    if diagnostic.is_error or diagnostic.is_warning:
-                        streams.echo(diagnostic.github())
-                failed = step.problems if step.problems else [step.message] if \
-                    step.status == "failed" and not step.diagnostics else []
-                for message in failed:
-                    from mobile_car.check.diagnostics import github_annotation
-
-                    streams.echo(github_annotation("error", str(item.source), None,
-                                                 f"mcar ci {step.name}", message))
-    else:
-        if not quiet:  # robots not simulated: why, one line per kind
-            from mobile_car.ci.simulation import skip_lines
-
-            for line in skip_lines(items):
-                click.echo(f"mcar: {shown(line)}", err=True)
-        for item in items:
-            if not quiet:  # what Gazebo simulates, the folders exported
-                for step in item.steps:
-                    if step.name in ("gazebo", "export") and step.status == "passed":
-                        click.echo(f"mcar: {item.label}: {shown(step.message)}", err=True)
-            for line in _problems(item):
-                if isinstance(line, str):
-                    click.echo(line, err=True)
-                elif isinstance(line, McarError):
-                    report(line)
-                else:
-                    print_diagnostic(line)
-    if not quiet or output_format == "github":
-        streams.echo("\n".join(_table(items)))
-    passed = sum(item.ok for item in items)
-    steps = "build, " + ("check --strict" if strict else "check") + \
-        (", gazebo" if gazebo else "") + \
-        ("" if no_sim else ", sim") + ("" if no_render else ", render") + \
-        (", export" if any(item.exports for item in items) else "")
-    if skipped:
-        files = "file that is" if skipped == 1 else "files that are"
-        click.echo(f"mcar ci: skipped {skipped} {files} not robots (-v lists them)", err=True)
-    click.echo(f"mcar ci: {passed} of {len(items)} files passed ({steps}) in {seconds:.1f} s",
-               err=True)

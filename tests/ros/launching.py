@@ -180,11 +180,14 @@ class Launch:
 
     def screenshot_when(self, shows, what: str):
         """The first screenshot for which ``shows(image)`` holds, within SECONDS."""
+        from ros.stacking import raise_windows
+
         deadline = time.monotonic() + SECONDS
         while True:
             image = self.screenshot()
             if shows(image):
                 return image
+            raise_windows(self.env["DISPLAY"], "joint_state_publisher_gui")  # stacking.py
             if time.monotonic() > deadline:
                 image.save(self.folder / "last-screenshot.png")
                 raise AssertionError(f"RViz never showed {what} in {SECONDS} s (last picture: "

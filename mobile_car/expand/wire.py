@@ -117,13 +117,18 @@ def unframe(data: bytes) -> tuple[dict, bytes]:
     header_size = _LENGTHS.unpack_from(data, len(MAGIC))[0]
     raw = data[PREFIX_SIZE:PREFIX_SIZE + header_size]
     try:
-        header = json.loads(raw.decode("ascii"), parse_constant=_refuse_constant,
-                            object_pairs_hook=_unique_keys)
+        header = strict_json(raw.decode("ascii"))
     except (UnicodeDecodeError, ValueError, RecursionError) as error:
         raise MalformedResult(f"its header is not JSON ({type(error).__name__})") from None
     if not isinstance(header, dict) or not isinstance(header.get("ok"), bool):
         raise MalformedResult("its header is not a result")
     return header, data[PREFIX_SIZE + header_size:]
+
+
+def strict_json(text: str):
+    """JSON as a boundary reads it: NaN, Infinity and a key given twice are ValueErrors
+    (the Gazebo helper's answer is read through this too)."""
+    return json.loads(text, parse_constant=_refuse_constant, object_pairs_hook=_unique_keys)
 
 
 def _refuse_constant(name: str):

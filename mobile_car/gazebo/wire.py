@@ -14,9 +14,10 @@ Units: masses in kg, lengths in m, angles in rad, inertias in kg m^2.
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
+
+from ..expand.wire import strict_json
 
 INTERFACE = 1
 MAX_STRING_CHARS = 64 * 1024
@@ -99,8 +100,7 @@ class GazeboReport:
 def read_report(data: bytes, with_sdf: bool = False) -> GazeboReport:
     """The checked report in ``data``; MalformedReport or OtherInterface."""
     try:
-        document = json.loads(data.decode("utf-8"), parse_constant=_refuse_constant,
-                              object_pairs_hook=_unique_keys)
+        document = strict_json(data.decode("utf-8"))
     except (UnicodeDecodeError, ValueError, RecursionError) as error:
         raise MalformedReport(f"not JSON: {type(error).__name__}") from None
     if not isinstance(document, dict):
@@ -127,17 +127,6 @@ def read_report(data: bytes, with_sdf: bool = False) -> GazeboReport:
             item, where, "link", "text")),
         model=None if document["model"] is None else _model(document["model"]),
         sdf=_text(document["sdf"], "sdf", limit=None) if with_sdf else None)
-
-
-def _refuse_constant(name: str):
-    raise ValueError(f"{name} is not a number")
-
-
-def _unique_keys(pairs: list) -> dict:
-    keys = [key for key, _ in pairs]
-    if len(set(keys)) != len(keys):
-        raise ValueError("a key given twice")
-    return dict(pairs)
 
 
 def _fields(obj, where: str, kinds: dict) -> dict:

@@ -11,7 +11,8 @@ import functools
 
 
 class _ClassHint(ctypes.Structure):
-    _fields_ = [("res_name", ctypes.c_char_p), ("res_class", ctypes.c_char_p)]
+    # void pointers, not c_char_p: Xlib allocated them, and they go back through XFree
+    _fields_ = [("res_name", ctypes.c_void_p), ("res_class", ctypes.c_void_p)]
 
 
 @functools.cache
@@ -60,8 +61,13 @@ def raise_windows(display: str, program: str) -> int:
             x11.XFree(children)
         for window in windows:
             hint = _ClassHint()
-            if x11.XGetClassHint(handle, window, ctypes.byref(hint)) and \
-                    program.encode() in (hint.res_name, hint.res_class):
+            if not x11.XGetClassHint(handle, window, ctypes.byref(hint)):
+                continue
+            names = [ctypes.string_at(p) for p in (hint.res_name, hint.res_class) if p]
+            for pointer in (hint.res_name, hint.res_class):
+                if pointer:
+                    x11.XFree(pointer)
+            if program.encode() in names:
                 x11.XRaiseWindow(handle, window)
                 raised += 1
         x11.XFlush(handle)

@@ -9,10 +9,9 @@ import sys
 
 import click
 
-from mobile_car.check.checker import CheckResult, as_json, check_input
-from mobile_car.check.diagnostics import github_annotation
-from mobile_car.check.plausibility import size_text
-from mobile_car.check.tree import check_urdf_batches
+from mobile_car.check import replay
+from mobile_car.check.diagnostics import github_annotation, size_text
+from mobile_car.check.replay import ReplayedResult
 from mobile_car.errors import combine_exit_codes
 from mobile_car.names import json_safe, shown
 
@@ -20,6 +19,7 @@ from . import signals, streams
 from .common import (
     INPUT_HELP,
     handle_errors,
+    input_basis,
     load_inputs,
     print_diagnostic,
     report,
@@ -68,7 +68,11 @@ Exit codes:
 FORMATS = ("text", "json", "github")
 
 
-def _emit_text(results: list[CheckResult], quiet: bool) -> None:
+# The checker (lxml, the schema) is imported only where an input is checked: a check
+# with nothing changed reads its results back without it (mobile_car.check.replay).
+
+
+def _emit_text(results: list, quiet: bool) -> None:
     many = len(results) > 1
     out = sys.stdout.buffer
     for result in results:
@@ -79,7 +83,7 @@ def _emit_text(results: list[CheckResult], quiet: bool) -> None:
                 if many:
                     out.write(f"==> {result.file} <==\n".encode())
                 # check_urdf writes names byte for byte: UTF-8 whatever the locale says.
-                write_batches(out, check_urdf_batches(result.robot.name, result.tree))
+                write_batches(out, _tree_batches(result))
         for diagnostic in result.diagnostics:
             print_diagnostic(diagnostic)
         if not quiet and result.extents is not None:
@@ -96,6 +100,43 @@ def _emit_text(results: list[CheckResult], quiet: bool) -> None:
             parts.append(f"{failed} not checked")
         click.echo(f"mcar check: {', '.join(parts)} in {len(results)} "
                    f"file{'s' * (len(results) != 1)}", err=True)
+
+
+def _tree_batches(result):
+    if isinstance(result, ReplayedResult):
+        return [[result.tree_text]]
+    from mobile_car.check.tree import check_urdf_batches
+
+    return check_urdf_batches(result.robot.name, result.tree)
+
+
+def _document(result) -> dict:
+    if isinstance(result, ReplayedResult):
+        return result.document
+    from mobile_car.check.checker import as_json
+
+    return as_json(result)
+
+
+def _checked(inputs, options, stdin, basis, keep: bool) -> list:
+    """Each input's result: read back where nothing changed since it was last checked
+    (mobile_car.check.replay), else checked and, where ``keep``, recorded."""
+    from mobile_car.freshness import Stamper
+
+    stamper = Stamper()
+    results = []
+    for inp in inputs:
+        replayed = replay.replay(inp, basis) if keep else None
+        if replayed is not None:
+            results.append(replayed)
+            continue
+        from mobile_car.check.checker import check_input
+
+        result = check_input(inp, options, stdin=stdin)
+        results.append(result)
+        if keep:
+            replay.record(inp, basis, result, stamper)
+    return results
 
 
 def write_batches(out, batches) -> None:
@@ -127,7 +168,7 @@ def _writev_all(fd: int, buffers: list) -> None:
             buffers[0] = memoryview(buffers[0])[written:]
 
 
-def _emit_github(results: list[CheckResult]) -> None:
+def _emit_github(results: list) -> None:
     for result in results:
         if result.failure is not None:
             streams.echo(github_annotation("error", result.file, result.failure.line, None,
@@ -136,8 +177,8 @@ def _emit_github(results: list[CheckResult]) -> None:
             streams.echo(diagnostic.github())
 
 
-def _emit_json(results: list[CheckResult], exit_code: int) -> None:
-    document = {"files": [as_json(r) for r in results],
+def _emit_json(results: list, exit_code: int) -> None:
+    document = {"files": [_document(r) for r in results],
                 "errors": sum(r.errors for r in results),
                 "warnings": sum(r.warnings for r in results),
                 "exit_code": exit_code}
@@ -145,7 +186,7 @@ def _emit_json(results: list[CheckResult], exit_code: int) -> None:
                   + b"\n")
 
 
-def overall_exit(results: list[CheckResult], strict: bool) -> int:
+def overall_exit(results: list, strict: bool) -> int:
     return combine_exit_codes(r.exit_code(strict) for r in results)
 
 
@@ -172,8 +213,9 @@ def command(words, output_format, strict, gazebo, quiet, package_paths, sets, co
     gc.disable()
     try:
         with load_inputs(words, package_paths, sets, config_files) as (selection, options):
-            stdin = stdin_for(selection)
-            results = [check_input(inp, options, stdin=stdin) for inp in selection.inputs]
+            basis = input_basis(options.mappings, package_paths, sets, config_files)
+            results = _checked(selection.inputs, options, stdin_for(selection), basis,
+                               keep=not gazebo)
         if gazebo:
             from mobile_car.gazebo.check import check_in_gazebo
 

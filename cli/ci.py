@@ -8,6 +8,7 @@ from pathlib import Path
 
 import click
 
+from mobile_car.check import replay
 from mobile_car.errors import UsageError
 from mobile_car.load.inputs import display_path
 from mobile_car.names import shown
@@ -185,6 +186,9 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
                 for item in todo:
                     passed = pipeline.build_and_check(item, options, strict)
                     built.note(item)
+                    if item.variant is None and item.check_result is not None:
+                        # what `mcar check` of the same file would find: its record too
+                        replay.record(item.input, pictures, item.check_result, cache.stamper)
                     if passed:
                         checked.append(item)
                         if helper is not None:

@@ -13,6 +13,7 @@ Kept free of xacro, lxml, numpy and trimesh: this is what a no-op run imports.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import os
@@ -52,9 +53,9 @@ def _hash_limit() -> int:
 
 
 def key_of(*parts) -> str:
-    """A hash of plain data (and mcar's version): two runs with equal keys were asked the
-    same thing."""
-    text = json.dumps([__version__, *parts], sort_keys=True, default=str)
+    """A hash of plain data (and mcar's version and installation): two runs with equal
+    keys were asked the same thing."""
+    text = json.dumps([__version__, installed_stamp(), *parts], sort_keys=True, default=str)
     return hashlib.sha256(text.encode()).hexdigest()
 
 
@@ -83,6 +84,23 @@ class Basis:
             return self
         absolute = Path(os.path.abspath(path))
         return Basis({**self.settings, name: str(absolute)}, (*self.files, absolute))
+
+
+@functools.lru_cache(maxsize=1)
+def installed_stamp() -> list:
+    """When this mcar was installed: the stat of its package and of the wheel's RECORD.
+    A reinstall of the same version number (a developer's, a git checkout's) can change
+    every rule, so no record made before it counts."""
+    package = Path(__file__).resolve().parent
+    stamp = []
+    for path in (package / "__init__.py",
+                 package.parent / f"mcar-{__version__}.dist-info" / "RECORD"):
+        try:
+            info = os.stat(path)
+        except OSError:
+            continue
+        stamp.append([str(path), info.st_size, info.st_mtime_ns])
+    return stamp
 
 
 class Stamper:

@@ -17,6 +17,26 @@ TESTS = REPO / "tests"
 MCAR = Path(sys.executable).parent / "mcar"
 
 
+def pytest_configure(config):
+    """The run's own cache folder (records' seal key, mesh facts, check results): the
+    tests neither read what the developer's mcar kept nor leave anything in it."""
+    if "MCAR_CACHE_DIR" not in os.environ:
+        import tempfile
+
+        os.environ["MCAR_CACHE_DIR"] = _OWN_CACHE[0] = tempfile.mkdtemp(
+            prefix="mcar-tests-cache-")
+
+
+def pytest_unconfigure(config):
+    if _OWN_CACHE[0] is not None:
+        shutil.rmtree(_OWN_CACHE[0], ignore_errors=True)
+        os.environ.pop("MCAR_CACHE_DIR", None)
+        _OWN_CACHE[0] = None
+
+
+_OWN_CACHE: list = [None]
+
+
 @pytest.fixture(scope="session")
 def repo() -> Path:
     return REPO

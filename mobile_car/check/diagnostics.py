@@ -1,4 +1,5 @@
-"""One problem found in a file, and its three spellings: text, GitHub annotation, JSON.
+"""One problem found in a file, and its three spellings: text, GitHub annotation, JSON;
+and the robot's size as check says it.
 
 The library only builds the strings and dicts; the command line prints them.
 """
@@ -89,3 +90,11 @@ def count(diagnostics: list[Diagnostic]) -> tuple[int, int]:
     """(errors, warnings); notes are neither."""
     errors = sum(1 for d in diagnostics if d.is_error)
     return errors, sum(1 for d in diagnostics if d.is_warning)
+
+
+def size_text(extents: tuple) -> str:
+    """``0.28 x 0.31 x 0.19 m``: centimetres shown down to a decimetre, then millimetres."""
+    def shown(value: float) -> str:
+        return f"{value:.2f}" if value >= 0.1 or value == 0 else f"{value:.3f}" \
+            if value >= 0.001 else f"{value:.2g}"
+    return " x ".join(map(shown, extents)) + " m"

@@ -173,14 +173,6 @@ def _local_union(shapes: list[Shape]) -> tuple:
             tuple(max(v[i] for v in highs) for i in range(3)))
 
 
-def size_text(extents: tuple) -> str:
-    """``0.28 x 0.31 x 0.19 m``: centimetres shown down to a decimetre, then millimetres."""
-    def shown(value: float) -> str:
-        return f"{value:.2f}" if value >= 0.1 or value == 0 else f"{value:.3f}" \
-            if value >= 0.001 else f"{value:.2g}"
-    return " x ".join(map(shown, extents)) + " m"
-
-
 def _sizes(values) -> str:
     return " x ".join(f"{v:.3g}" for v in values)
 

@@ -60,6 +60,7 @@ class CiItem:
     links: int | None = None
     joints: int | None = None
     checked: object = None  # the CheckResult of a passed check step, which render draws
+    check_result: object = None  # the CheckResult of its check step, passed or not
     deps: list[Path] = field(default_factory=list)  # the files its build read
     expansion_warnings: list[str] = field(default_factory=list)  # xacro's, for the record
     generated: tuple[Path, ...] = ()  # files written for its build (overrides): no inputs
@@ -199,7 +200,7 @@ def build_and_check(item: CiItem, options: LoadOptions, strict: bool = True) -> 
     item.steps.append(Step("build", message=f"wrote {display_path(item.urdf)}",
                            seconds=time.perf_counter() - started))
     started = time.perf_counter()
-    result = check_loaded(loaded)
+    result = item.check_result = check_loaded(loaded)
     if result.robot is not None:
         item.links, item.joints = len(result.robot.links), len(result.robot.joints)
     if result.errors or (strict and result.warnings):

@@ -1,5 +1,5 @@
-"""After one full `mcar ci`, build, render and ci with nothing changed are no-ops for each
-other in any order: each decides from the stamps alone (no xacro, lxml, numpy or GL
+"""After one full `mcar ci`, build, check, render and ci with nothing changed are no-ops for
+each other in any order: each decides from the stamps alone (no xacro, lxml, numpy or GL
 imported), writes no file, and render and ci keep the same contact sheet (ci's variant
 pictures included). Before, each command's run made the other's record stale: render forgot
 ci's variant pictures, so the next ci built and drew them again (3.1 s), render then redrew
@@ -37,8 +37,8 @@ def test_render_and_ci_are_no_ops_for_each_other(run_mcar, package_copy):
     assert full.returncode == 0, full.stderr
     before = files(package_copy)
     assert any(name.startswith("renders/variants/") for name in before)
-    for command in ("render", "ci", "build", "render", "render", "build", "ci", "ci", "render",
-                    "build"):
+    for command in ("render", "ci", "check", "build", "render", "render", "check", "build", "ci",
+                    "ci", "render", "check", "build"):
         code, imported, said = traced(command, cwd=package_copy)
         assert code == 0, said
         assert imported & HEAVY == set(), (command, imported & HEAVY)
@@ -47,6 +47,10 @@ def test_render_and_ci_are_no_ops_for_each_other(run_mcar, package_copy):
             assert said[-1].startswith("13 pictures in renders: 0 rendered, 13 unchanged"), said
         elif command == "build":
             assert said[-1] == "13 of 13 files built into build (13 unchanged)", said
+        elif command == "check":  # ci's check of each file is check's too
+            assert said[0].startswith("mcar: package mobile_car_description"), said
+            # every file but the tutorial skeleton (no shapes) has a size
+            assert len([line for line in said if ": size: " in line]) == 12, said
         else:
             assert said[-1].startswith("mcar ci: 15 of 15 files passed"), said
 

@@ -1,0 +1,162 @@
+"""A check with nothing changed reads its verdict back instead of expanding and checking.
+
+``mcar check`` writes no output file, so its "nothing changed" lives in the user's cache
+folder (:func:`mobile_car.record_seal.cache_dir`): one sealed record per checked input,
+holding the *key* of the run (the input as named, the working folder, xacro arguments,
+overrides, package search, the ``MCAR_*`` limits, mcar's version: see
+:mod:`mobile_car.freshness`), the stamps of every file the result depends on (the input,
+what xacro read, --config files, each mesh and the textures it pulls in), and what the
+check found: check_urdf's tree text, the diagnostics, the robot's size and the JSON
+form. A run whose key and stamps match prints that, byte for byte what the check printed,
+without xacro or a sandbox. Anything else (a record damaged, forged or not sealed by this
+user's mcar, a file changed, a mesh missing, ``--gazebo``, stdin) checks in full.
+
+Kept free of xacro, lxml and numpy: a no-op check reads its records through this.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..freshness import Basis, Stamper, key_of, read_record, stamps_current, write_record
+from .diagnostics import Diagnostic, count
+
+SECTION = "checks"
+FOLDER = "checks"
+# A tree text above this is checked again rather than kept: a 20,000-link chain's tree
+# is hundreds of megabytes of indentation, cheaper to make than to store.
+MAX_KEPT_BYTES = 4 << 20
+# A robot this large is checked in full every time: recording it (its tree text and JSON
+# form) would cost its first check more than a no-op saves; check_urdf-size benchmarks
+# are made of such robots.
+MAX_KEPT_LINKS = 2000
+
+
+@dataclass
+class ReplayedResult:
+    """What :func:`replay` reads back: the parts of a CheckResult the output is made of."""
+
+    file: str
+    sound: bool
+    tree_text: bytes | None
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    extents: tuple | None = None
+    document: dict = field(default_factory=dict)  # as_json() of the result
+    failure: None = None  # a failed load is never kept
+
+    @property
+    def errors(self) -> int:
+        return count(self.diagnostics)[0]
+
+    @property
+    def warnings(self) -> int:
+        return count(self.diagnostics)[1]
+
+    def exit_code(self, strict: bool = False) -> int:
+        return 1 if self.errors or (strict and self.warnings) else 0
+
+
+def run_key(label: str, path: Path, basis: Basis, environ=None) -> str:
+    environ = os.environ if environ is None else environ
+    limits = {name: value for name, value in environ.items()
+              if name.startswith("MCAR_") and name != "MCAR_CACHE_DIR"}
+    return key_of("check", label, os.path.abspath(path), os.getcwd(), basis.settings, limits)
+
+
+def _record_path(path: Path) -> Path:
+    from ..record_seal import cache_dir
+
+    name = hashlib.sha256(os.fsencode(os.path.abspath(path))).hexdigest()[:40]
+    return cache_dir() / FOLDER / f"{name}.json"
+
+
+def replay(inp, basis: Basis) -> ReplayedResult | None:
+    """The recorded result of checking the input ``inp`` (a RobotInput) under ``basis``,
+    if nothing it depends on changed; else None. The note a ``.urdf`` that uses xacro gets
+    (:mod:`mobile_car.load.xacro_use`) is said again, as loading it says it."""
+    label, path = inp.label, inp.path
+    if path is None:
+        return None
+    key = run_key(label, path, basis)
+    entry = read_record(_record_path(path), SECTION).get(key[:40])
+    if not entry or entry.get("key") != key:
+        return None
+    try:
+        result = _from_entry(label, entry)
+    except (ValueError, TypeError, KeyError):
+        return None  # damaged: checked again and recorded anew
+    current, _refreshed = stamps_current(entry.get("files"))
+    if not current:
+        return None
+    if not inp.named_xacro and inp.xacro_use is not None:
+        from ..load.xacro_use import note_expanded
+
+        note_expanded(label, inp.xacro_use)
+    return result
+
+
+def record(inp, basis: Basis, result, stamper: Stamper) -> None:
+    """Keep the CheckResult just made of the input ``inp`` (`mcar check` and `mcar ci`
+    both do, so that either's run spares the other's); a failed load, a robot too large
+    to keep or a file that cannot be stamped: nothing kept."""
+    label, path = inp.label, inp.path
+    if path is None or result.failure is not None or result.loaded is None or \
+            len(result.robot.links if result.robot else ()) > MAX_KEPT_LINKS:
+        return
+    tree_text = _tree_text(result)
+    if tree_text is False:
+        return
+    meshes = [m.path for m in result.mesh_files if m.path is not None]
+    reads = [r for m in result.mesh_files for r in m.reads]
+    files = stamper.stamps([*result.loaded.deps, path, *basis.files, *meshes, *reads])
+    if files is None or any(m.path is None for m in result.mesh_files):
+        return  # a file missing now may appear later: nothing to stamp it by
+    try:
+        tree = None if tree_text is None else tree_text.decode("utf-8")
+    except UnicodeDecodeError:
+        return
+    from .checker import as_json
+
+    key = run_key(label, path, basis)
+    entry = {"key": key, "files": files, "sound": bool(result.sound), "tree": tree,
+             "extents": None if result.extents is None else list(result.extents),
+             "diagnostics": [[d.rule, d.file, d.line, d.message] for d in result.diagnostics],
+             "document": as_json(result)}
+    write_record(_record_path(path), SECTION, {key[:40]: entry})
+
+
+def _tree_text(result):
+    """check_urdf's tree text of a sound result (None for an unsound one), or False when
+    it is too large to keep."""
+    from .tree import check_urdf_batches
+
+    if not result.sound:
+        return None
+    kept, size = [], 0
+    for batch in check_urdf_batches(result.robot.name, result.tree):
+        kept.extend(batch)
+        size += sum(len(buffer) for buffer in batch)
+        if size > MAX_KEPT_BYTES:
+            return False
+    return b"".join(kept)
+
+
+def _from_entry(label: str, entry: dict) -> ReplayedResult:
+    diagnostics = []
+    for rule, file, line, message in entry["diagnostics"]:
+        if not (isinstance(rule, str) and Diagnostic.knows(rule) and isinstance(file, str)
+                and (line is None or type(line) is int) and isinstance(message, str)):
+            raise ValueError("not a recorded diagnostic")
+        diagnostics.append(Diagnostic(rule, file, line, message))
+    tree, extents, document = entry["tree"], entry["extents"], entry["document"]
+    if not (tree is None or isinstance(tree, str)) or not isinstance(document, dict) \
+            or not isinstance(entry["sound"], bool):
+        raise ValueError("not a recorded check")
+    if extents is not None and not (isinstance(extents, list) and len(extents) == 3 and all(
+            isinstance(v, (int, float)) for v in extents)):
+        raise ValueError("not recorded extents")
+    return ReplayedResult(label, entry["sound"], None if tree is None else tree.encode("utf-8"),
+                          diagnostics, None if extents is None else tuple(extents), document)

@@ -1,4 +1,4 @@
-"""``mcar ci``: build, strictly check and render every robot file of a package, for CI."""
+"""``mcar ci``: build, check, simulate and render every robot file of a package, for CI."""
 
 from __future__ import annotations
 
@@ -26,8 +26,7 @@ from .common import (
     select_inputs,
 )
 
-HELP = f"""Build, check (strict), simulate and render every robot file of a description
-package.
+HELP = f"""Build, check, simulate and render every robot file of a description package.
 
 \b
   mcar ci                               the package you stand in (else the
@@ -38,7 +37,9 @@ package.
 
 Every robot file (parts, steps, complete robots: what `mcar build` finds, see
 docs/discovery.md; -v lists the files skipped as not robots, with why) is built
-into --build-dir, checked with `mcar check --strict` (a warning fails it too), simulated
+into --build-dir, checked as by `mcar check` (an error fails it; a warning too with
+--strict, or where the package's mcar.yaml says `ci: strict: true`, as the bundled
+package and those `mcar init` makes do; warnings are shown either way), simulated
 as by `mcar sim` (drop, drive, spin; --no-sim skips it) and drawn into --render-dir,
 mirroring urdf/; each variant urdf/variants/NAME.yaml is applied to
 the top-level robot files (built into build/variants/NAME/...). A failed build or check
@@ -84,8 +85,8 @@ code is the build's, check's and render's.
 \b
 Exit codes:
   0  every step of every file passed
-  1  problems found: a build error, a check error or warning, a failed sim scenario
-     or sim rule, a link Gazebo drops, a robot not drawn
+  1  problems found: a build error, a check error (a warning too when strict), a
+     failed sim scenario or sim rule, a link Gazebo drops, a robot not drawn
   2  usage, I/O or environment error: no such package, a macro file given as a robot,
      no renderer (--no-render skips drawing)
   130  interrupted (Ctrl-C); 143 terminated
@@ -108,9 +109,11 @@ Exit codes:
 @click.option("--no-gazebo", is_flag=True,
               help="Do not ask libsdformat what Gazebo makes of the robots (done by default "
                    "where the Gazebo helper is installed).")
-@click.option("--strict/--no-strict", default=True, show_default=True,
-              help="A warning fails its file too, as `mcar check --strict`; --no-strict: "
-                   "only errors do.")
+@click.option("--strict/--no-strict", default=None,
+              help="--strict: a warning fails its file too, as `mcar check --strict`; "
+                   "--no-strict: only errors do. Default: what the package's mcar.yaml says "
+                   "(ci: strict: true, as mcar init and the bundled package say), else only "
+                   "errors fail.")
 @click.option("--renderer", type=click.Choice(["auto", "gl", "raycast"]), default="auto",
               show_default=True, help="As for mcar render.")
 @click.option("--junit-xml", metavar="FILE", type=click.Path(dir_okay=False),
@@ -154,6 +157,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
 
     for item in items:  # mcar.yaml's export: folders made on every run (never replayed)
         item.exports = formats_for(item, configs)
+        item.strict = simulation.strictness(item, configs, strict)
     revision = None
     if against:  # a wrong REV is a usage error before anything is built
         from mobile_car.ci.against import resolve_revision
@@ -176,7 +180,8 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
         manifest = Manifest(render_dir)
     fresh = _picture_fresh(manifest, pictures, renderer)
     todo = [item for item in items
-            if item.exports or not cache.replay(item, basis, strict, fresh, sim=not no_sim)]
+            if item.exports or not cache.replay(item, basis, item.strict, fresh,
+                                                sim=not no_sim)]
     checked = []
     compared = []
     try:
@@ -184,7 +189,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
             with prepared_load(selection, mappings, package_paths, sets,
                                config_files) as options:
                 for item in todo:
-                    passed = pipeline.build_and_check(item, options, strict)
+                    passed = pipeline.build_and_check(item, options, item.strict)
                     built.note(item)
                     if item.variant is None and item.check_result is not None:
                         # what `mcar check` of the same file would find: its record too
@@ -192,12 +197,12 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
                     if passed:
                         checked.append(item)
                         if helper is not None:
-                            pipeline.gazebo_step(item, strict)
+                            pipeline.gazebo_step(item, item.strict)
                         if not no_sim:
                             simulation.sim_step(item, simulation.skip_reason(item, configs))
                         if item.exports:
                             export_step(item, build_dir)
-                    cache.record(item, basis, strict)
+                    cache.record(item, basis, item.strict)
                 if revision is not None:
                     from mobile_car.ci.against import diff_items
 
@@ -231,7 +236,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
             click.echo(f"mcar: skipped {display_path(file.path)}: {shown(file.reason)}",
                        err=True)
     emit(items, output_format, quiet, time.perf_counter() - started, no_render, no_sim,
-          helper is not None, 0 if verbose else len(skipped), strict)
+          helper is not None, 0 if verbose else len(skipped))
     if revision is not None:
         changed = sum(1 for entry in compared if entry.diff is not None and entry.diff.changed
                       or entry.summary.startswith("added"))

@@ -14,7 +14,7 @@ from .common import print_diagnostic, report, severity_label
 
 
 def emit(items, output_format: str, quiet: bool, seconds: float, no_render: bool,
-          no_sim: bool, gazebo: bool, skipped: int, strict: bool = True) -> None:
+          no_sim: bool, gazebo: bool, skipped: int) -> None:
     if output_format == "junit":
         from mobile_car.ci.junit import junit_report
 
@@ -54,7 +54,9 @@ def emit(items, output_format: str, quiet: bool, seconds: float, no_render: bool
     if not quiet or output_format == "github":
         streams.echo("\n".join(_table(items)))
     passed = sum(item.ok for item in items)
-    steps = "build, " + ("check --strict" if strict else "check") + \
+    strict = {item.strict for item in items}
+    steps = "build, " + ("check --strict" if strict == {True} else "check" if strict == {False}
+                         else "check, --strict where mcar.yaml says") + \
         (", gazebo" if gazebo else "") + \
         ("" if no_sim else ", sim") + ("" if no_render else ", render") + \
         (", export" if any(item.exports for item in items) else "")

@@ -85,7 +85,8 @@ def package_copy(tmp_path) -> Path:
     copy = tmp_path / "mobile_car_description"
     for name in ("urdf", "meshes"):
         shutil.copytree(REPO / name, copy / name)
-    shutil.copy(REPO / "package.xml", copy / "package.xml")
+    for name in ("package.xml", "mcar.yaml"):
+        shutil.copy(REPO / name, copy / name)
     return copy
 
 

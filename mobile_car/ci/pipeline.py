@@ -61,6 +61,7 @@ class CiItem:
     joints: int | None = None
     checked: object = None  # the CheckResult of a passed check step, which render draws
     check_result: object = None  # the CheckResult of its check step, passed or not
+    strict: bool = False  # a warning fails it (ci --strict, or its package's mcar.yaml)
     deps: list[Path] = field(default_factory=list)  # the files its build read
     expansion_warnings: list[str] = field(default_factory=list)  # xacro's, for the record
     generated: tuple[Path, ...] = ()  # files written for its build (overrides): no inputs

@@ -38,6 +38,17 @@ def package_configs(items: list[CiItem], root: Path | None) -> dict[Path, Packag
     return configs
 
 
+def strictness(item: CiItem, configs: dict[Path, PackageConfig], flag: bool | None) -> bool:
+    """Whether a warning fails the item: --strict/--no-strict when given, else its
+    package's ``ci: strict``, else not (a package that has not said so is held to errors:
+    another team's released robot, whose warnings ci shows without failing it)."""
+    if flag is not None:
+        return flag
+    home = _package_root(item.source, None)
+    config = configs.get(home) if home is not None else None
+    return bool(config is not None and config.strict)
+
+
 def skip_reason(item: CiItem, configs: dict[Path, PackageConfig]) -> str | None:
     """The reason the item's package gives for not simulating it, or None."""
     for home, config in configs.items():

@@ -12,6 +12,8 @@ mcar cannot find out from the files themselves::
     export:                 # folders ci exports (and verifies) as build artefacts
       formats: [mjcf, urdf] # any of mjcf, usd, urdf, sdf (mcar export --to)
       robots: ["urdf/*.urdf.xacro"]   # which robots (default: every robot ci builds)
+    ci:
+      strict: true          # a check warning fails ci too (default: only errors do)
 
 Globs are matched against the file's path relative to the package root, written with
 ``/``, by :func:`fnmatch.fnmatchcase`: ``*`` also matches across folders, so
@@ -34,7 +36,7 @@ from ..errors import InputError, UsageError
 FILE_NAME = "mcar.yaml"
 # Each section and the keys it takes; a list of globs or a mapping glob -> reason.
 _SCHEMA = {"robots": {"include": list, "exclude": list}, "sim": {"skip": dict},
-           "export": {"formats": list, "robots": list}}
+           "export": {"formats": list, "robots": list}, "ci": {"strict": bool}}
 EXPORT_FORMATS = ("mjcf", "usd", "urdf", "sdf")  # as mobile_car.export.FORMATS
 
 
@@ -49,6 +51,7 @@ class PackageConfig:
     sim_skip: tuple[tuple[str, str], ...] = ()  # (glob, reason), in the file's order
     export_formats: tuple[str, ...] = ()
     export_robots: tuple[str, ...] = ()  # globs; none: every robot
+    strict: bool | None = None  # ci.strict; None: not said
     lines: dict = field(default_factory=dict, compare=False)  # key path -> line
 
     def relative(self, path: Path) -> str | None:
@@ -159,12 +162,16 @@ def _parse(root: Path, path: Path) -> PackageConfig:
                          sim_skip=tuple(skip.items()),
                          export_formats=tuple(dict.fromkeys(formats)),
                          export_robots=tuple(found.get(("export", "robots"), ())),
-                         lines=lines)
+                         strict=found.get(("ci", "strict")), lines=lines)
 
 
 def _checked(entry, kind, name: str, fail):
     from ..config.bounded_yaml import short_repr
 
+    if kind is bool:
+        if not isinstance(entry, bool):
+            fail(f"{name}: expected true or false, got {short_repr(entry)}")
+        return entry
     if entry is None:
         return kind()
     if kind is list:

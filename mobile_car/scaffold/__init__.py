@@ -34,6 +34,7 @@ PACKAGE_FILES = {
     "package/gitignore": ".gitignore",
     "package/pre-commit-config.yaml": ".pre-commit-config.yaml",
     "package/mcar-workflow.yml": ".github/workflows/mcar.yml",
+    "package/mcar.yaml": "mcar.yaml",
     "package/urdf/define.xacro": "urdf/define.xacro",
     "package/urdf/config.xacro": "urdf/config.xacro",
 }

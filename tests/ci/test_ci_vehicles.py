@@ -35,7 +35,8 @@ def cases(path) -> dict[tuple[str, str], ET.Element]:
 
 def ci(run_mcar, package, tmp_path, name="report"):
     report = tmp_path / f"{name}.xml"
-    result = run_mcar("ci", package, "--no-render", "--build-dir", tmp_path / f"{name}-build",
+    result = run_mcar("ci", package, "--strict", "--no-render", "--build-dir",
+                      tmp_path / f"{name}-build",
                       "--junit-xml", report, cwd=tmp_path, timeout=300)
     return result, cases(report)
 

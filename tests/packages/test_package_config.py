@@ -43,6 +43,22 @@ def test_include_exclude_and_skip_by_glob(tmp_path):
     assert config.selects(tmp_path.parent / "elsewhere.urdf") == (True, None)
 
 
+@pytest.mark.parametrize("text, strict", [(None, None), ("ci:\n  strict: true\n", True),
+                                          ("ci:\n  strict: false\n", False), ("ci:\n", None)])
+def test_ci_strict_is_what_the_file_says(tmp_path, text, strict):
+    assert load_package_config(package(tmp_path, text)).strict is strict
+
+
+def test_the_bundled_package_and_new_packages_ask_for_a_strict_ci(tmp_path):
+    from conftest import REPO
+
+    from mobile_car.scaffold import TEMPLATES
+
+    assert load_package_config(REPO).strict is True
+    (tmp_path / "mcar.yaml").write_text((TEMPLATES / "package" / "mcar.yaml").read_text())
+    assert load_package_config(tmp_path).strict is True
+
+
 def test_export_names_formats_for_the_robots_its_globs_take(tmp_path):
     root = package(tmp_path, "export:\n  formats: [urdf, mjcf, urdf]\n"
                              "  robots: ['urdf/*.urdf.xacro']\n")
@@ -55,7 +71,7 @@ def test_export_names_formats_for_the_robots_its_globs_take(tmp_path):
 
 
 @pytest.mark.parametrize("text, line, message", [
-    ("robot:\n  include: []\n", 1, "unknown key 'robot': mcar.yaml takes robots, sim, export"),
+    ("robot:\n  include: []\n", 1, "unknown key 'robot': mcar.yaml takes robots, sim, export, ci"),
     ("robots:\n  includes: ['x']\n", 2,
      "unknown key 'robots.includes': robots takes include, exclude"),
     ("robots:\n  include: urdf/*.xacro\n", 2,
@@ -67,7 +83,9 @@ def test_export_names_formats_for_the_robots_its_globs_take(tmp_path):
     ("robots: [1]\n", 1, "robots: expected a mapping, got [1]"),
     ("export:\n  formats: [mjcf, gltf]\n", 2,
      "export.formats: unknown format 'gltf' (mcar export takes mjcf, usd, urdf, sdf)"),
-    ("- 1\n", None, "expected a mapping with robots, sim, export, got [1]"),
+    ("- 1\n", None, "expected a mapping with robots, sim, export, ci, got [1]"),
+    ("ci:\n  strict: yes please\n", 2, "ci.strict: expected true or false, got 'yes please'"),
+    ("ci:\n  strict: 1\n", 2, "ci.strict: expected true or false, got 1"),
     ("robots:\n  include: []\n  include: []\n", 3, None),  # duplicate key
     ("robots: {include: [\n", 2, None),  # broken YAML
 ])

@@ -31,7 +31,7 @@ def test_ci_passes_each_real_package_showing_its_warnings(package, run_mcar, tmp
                     r"\(build, check(, gazebo)?, sim, render\) in ", lines[-1]), lines[-1]
     rows = {row.split()[0]: row.split() for row in result.stdout.splitlines()[1:]}
     assert set(rows) == {name.removeprefix("urdf/") for name in robots}
-    for name, row in rows.items():
+    for row in rows.values():
         assert row[-1] == "ok" and row[-2].endswith(".png"), row
         assert (tmp_path / "renders" / row[-2].rsplit("/", 1)[-1]).stat().st_size > 1000
         assert any(kind in row for kind in ("differential", "skid-steer")), row

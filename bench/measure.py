@@ -120,10 +120,14 @@ def run_watched(cmd: list[str], env=None, cwd=None) -> tuple[float | None, int |
 
 
 def measure(cmd: list[str], runs: int, env=None, cwd=None, budget_s: float = 60) -> Result:
-    """One watched run, then ``runs`` timed runs (fewer if they exceed ``budget_s``)."""
+    """One watched run, then ``runs`` timed runs (fewer if they exceed ``budget_s``);
+    with ``runs`` 0 (a --quick smoke test) the watched run is the one timed."""
     result = Result()
+    started = time.perf_counter()
     result.peak_mib, code, result.digest = run_watched(cmd, env=env, cwd=cwd)
     result.codes.append(code)
+    if runs == 0:
+        result.walls.append(time.perf_counter() - started)
     for _ in range(runs):
         wall, code = run_timed(cmd, env=env, cwd=cwd)
         result.walls.append(wall)
@@ -139,8 +143,11 @@ def measure_rounds(commands: dict, runs: int, cwd=None) -> dict:
     machine falls on every command alike, not on whichever ran while it lasted."""
     results = {key: Result() for key in commands}
     for key, cmd in commands.items():
+        started = time.perf_counter()
         results[key].peak_mib, code, results[key].digest = run_watched(cmd, cwd=cwd)
         results[key].codes.append(code)
+        if runs == 0:  # --quick: the watched run is the one timed
+            results[key].walls.append(time.perf_counter() - started)
     for _ in range(runs):
         for key, cmd in commands.items():
             wall, code = run_timed(cmd, cwd=cwd)

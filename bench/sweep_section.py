@@ -32,7 +32,7 @@ def section_sweep(rows: list[str], work: Path, quick: bool) -> None:
     import sweep_bench
 
     robot = str(REPO / "urdf" / "mobile_robot.xacro")
-    runs = 1 if quick else 5
+    runs = 0 if quick else 5  # --quick: the one watched run is timed (measure.py)
     load_before = os.getloadavg()[0]
     plan = sweep_bench.sweeps(quick)
     workers = {"jobs 1": 1, "jobs 2": 2, "dask": 2, "loop": 1}

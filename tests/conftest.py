@@ -37,6 +37,46 @@ def pytest_unconfigure(config):
 _OWN_CACHE: list = [None]
 
 
+def pytest_collection_modifyitems(config, items):
+    """The order and grouping `make test`'s parallel workers (pytest-xdist, --dist
+    loadgroup) take the tests in: a module whose tests share a module-scoped fixture (a
+    sweep, a simulated robot) goes whole to one worker, which makes the fixture once; and
+    the slowest tests and groups start first (tests/durations.txt), so that no worker is
+    left alone at the end with one long test begun last."""
+    seconds = _durations()
+    weight: dict[str, float] = {}
+    for item in items:
+        group = item.module.__name__ if _shares_module_fixture(item) else None
+        if group is not None:
+            item.add_marker(pytest.mark.xdist_group(group))
+        key = group or item.nodeid
+        weight[key] = weight.get(key, 0.0) + seconds.get(item.nodeid, 0.0)
+    order = {item.nodeid: i for i, item in enumerate(items)}
+
+    def key(item):
+        group = item.module.__name__ if _shares_module_fixture(item) else item.nodeid
+        return (-weight[group], group if group != item.nodeid else "", order[item.nodeid])
+
+    items.sort(key=key)
+
+
+def _shares_module_fixture(item) -> bool:
+    info = getattr(item, "_fixtureinfo", None)
+    if info is None:
+        return False
+    return any(definition.scope == "module" for definitions in info.name2fixturedefs.values()
+               for definition in definitions)
+
+
+def _durations() -> dict[str, float]:
+    found = {}
+    for line in (TESTS / "durations.txt").read_text().splitlines():
+        if line.strip() and not line.startswith("#"):
+            number, nodeid = line.split(" ", 1)
+            found[nodeid] = float(number)
+    return found
+
+
 @pytest.fixture(scope="session")
 def repo() -> Path:
     return REPO

@@ -8,8 +8,10 @@ overrides, package search, the ``MCAR_*`` limits, mcar's version: see
 what xacro read, --config files, each mesh and the textures it pulls in), and what the
 check found: check_urdf's tree text, the diagnostics, the robot's size and the JSON
 form. A run whose key and stamps match prints that, byte for byte what the check printed,
-without xacro or a sandbox. Anything else (a record damaged, forged or not sealed by this
-user's mcar, a file changed, a mesh missing, ``--gazebo``, stdin) checks in full.
+without xacro or a sandbox. Only what xacro expands is kept: a plain URDF checks in less
+time than its record would take to read, so it is checked in full every time, as is
+anything else (a record damaged, forged or not sealed by this user's mcar, a file
+changed, a mesh missing, ``--gazebo``, stdin).
 
 Kept free of xacro, lxml and numpy: a no-op check reads its records through this.
 """
@@ -78,7 +80,7 @@ def replay(inp, basis: Basis) -> ReplayedResult | None:
     if nothing it depends on changed; else None. The note a ``.urdf`` that uses xacro gets
     (:mod:`mobile_car.load.xacro_use`) is said again, as loading it says it."""
     label, path = inp.label, inp.path
-    if path is None:
+    if path is None or not (inp.named_xacro or _small(path) and inp.xacro_use is not None):
         return None
     key = run_key(label, path, basis)
     entry = read_record(_record_path(path), SECTION).get(key[:40])
@@ -98,12 +100,22 @@ def replay(inp, basis: Basis) -> ReplayedResult | None:
     return result
 
 
+def _small(path: Path) -> bool:
+    """A file not named .xacro is asked whether it uses xacro only when that is cheap: a
+    large plain URDF is read once, by its check."""
+    try:
+        return os.stat(path).st_size <= MAX_KEPT_BYTES
+    except OSError:
+        return False
+
+
 def record(inp, basis: Basis, result, stamper: Stamper) -> None:
     """Keep the CheckResult just made of the input ``inp`` (`mcar check` and `mcar ci`
     both do, so that either's run spares the other's); a failed load, a robot too large
     to keep or a file that cannot be stamped: nothing kept."""
     label, path = inp.label, inp.path
     if path is None or result.failure is not None or result.loaded is None or \
+            not result.loaded.from_xacro or \
             len(result.robot.links if result.robot else ()) > MAX_KEPT_LINKS:
         return
     tree_text = _tree_text(result)

@@ -151,6 +151,25 @@ def check_scheduler_address(address: str) -> None:
         raise UsageError(f"--scheduler {address}: port {port} is not 1 to 65535")
 
 
+def _refused_at_once(address: str) -> None:
+    """ClusterError now when nothing listens at a tcp:// address: Dask's Client retries a
+    refused connection for its whole 10 s timeout before saying so."""
+    from distributed.comm.addressing import get_address_host_port, parse_address
+
+    if parse_address(address, strict=False)[0] != "tcp":
+        return
+    import socket
+
+    host, port = get_address_host_port(address)
+    try:
+        socket.create_connection((host, port), timeout=3).close()
+    except ConnectionRefusedError:
+        raise ClusterError(f"cannot reach the Dask scheduler at {address}: connection "
+                           "refused (nothing listens there)") from None
+    except OSError:
+        return  # unreachable in another way: the Client tries and says how
+
+
 def _require_distributed() -> None:
     try:
         import distributed  # noqa: F401
@@ -166,6 +185,7 @@ def run_dask(job: SweepJob, points: list[Point], address: str,
     another one; after the scheduler's ``allowed-failures`` it gives up on that point
     (KilledWorker): a ``crashed`` row."""
     check_scheduler_address(address)
+    _refused_at_once(address)
     from distributed import Client, KilledWorker, as_completed
 
     try:

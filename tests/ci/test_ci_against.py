@@ -12,7 +12,8 @@ from markdown_it import MarkdownIt
 
 
 def _ci(run_mcar, folder, *args):
-    return run_mcar("ci", "--no-render", "--junit-xml", "junit.xml", *args, cwd=folder)
+    return run_mcar("ci", "--no-render", "--no-sim", "--no-gazebo", "--junit-xml", "junit.xml",
+                    *args, cwd=folder)
 
 
 def _properties(folder) -> dict[str, set[str]]:

@@ -25,7 +25,7 @@ COMMANDS = [
     (["render", "urdf/mobile_robot.xacro", "--renderer", "raycast", "--size", "80x60"], 1),
     (["tree", "urdf/mobile_robot.xacro"], 1),
     (["sim", "urdf/mobile_robot.xacro"], 1),
-    (["ci", "--no-render"], 1),
+    (["ci", "--no-render", "--no-sim", "--no-gazebo"], 1),
     (["view", "--no-browser", "urdf/mobile_robot.xacro"], 1),
     (["sweep", "--vary", "wheel_mass=60g,70g", "-o", "points.csv"], 1),
     (["diff", "urdf/wheel/test_wheel.urdf.xacro", "urdf/mobile_robot.xacro"], 2),
@@ -60,7 +60,7 @@ def test_an_out_of_range_value_in_config_xacro_stops_every_command(cli, slipped,
 
 
 def test_ci_says_the_build_failed_because_of_it(cli, slipped):
-    result = cli("ci", "--no-render", "urdf/mobile_robot.xacro")
+    result = cli("ci", "--no-render", "--no-sim", "--no-gazebo", "urdf/mobile_robot.xacro")
     assert result.exit_code == 1, result.output
     assert "FAILED (build)" in result.output
 

@@ -17,7 +17,8 @@ CASES = sorted([*(TESTS / "check_corpus" / "broken").glob("*.urdf"),
                 *(TESTS / "build_errors").glob("*.xacro"),
                 *(TESTS / "load" / "bad").glob("*.urdf")])
 COMMANDS = {"build": ["-o", "out.urdf"], "check": [], "tree": [],
-            "render": ["--renderer", "raycast", "--size", "160x120"], "ci": ["--no-render"],
+            "render": ["--renderer", "raycast", "--size", "160x120"],
+            "ci": ["--no-render", "--no-sim", "--no-gazebo"],
             "config": []}
 
 

@@ -55,7 +55,8 @@ def test_two_inputs_written_to_one_output_are_refused(command, tree, run_mcar):
     robots.mkdir()
     for name in ("a.xacro", "a.urdf.xacro"):
         (robots / name).write_text(f'<robot name="a" {XACRO}><link name="base"/></robot>\n')
-    extra = {"render": ["--renderer", "raycast"], "ci": ["--no-render"]}.get(command, [])
+    extra = {"render": ["--renderer", "raycast"],
+             "ci": ["--no-render", "--no-sim", "--no-gazebo"]}.get(command, [])
     result = run_mcar(command, "robots", *extra, cwd=tree)
     assert result.returncode == 2, result.stderr
     assert ("robots/a.urdf.xacro and robots/a.xacro would both be written to this file"

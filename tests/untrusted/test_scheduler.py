@@ -10,7 +10,9 @@ only network address used here is a closed port on the loopback interface.
 
 from __future__ import annotations
 
+import contextlib
 import socket
+import threading
 import time
 
 import pytest
@@ -81,9 +83,37 @@ def test_a_malformed_scheduler_never_makes_a_dask_client(cli, monkeypatch):
         result = cli("sweep", ROBOT, *VARY, "--scheduler", scheduler, "-o", "-")
         assert result.exit_code == 2, result.output
         assert made == []
-    # The recorder is in place: a well-formed address does reach it.
-    result = cli("sweep", ROBOT, *VARY, "--scheduler", "tcp://127.0.0.1:1", "-o", "-")
-    assert result.exit_code == 2 and made == [("tcp://127.0.0.1:1",)]
+    # The recorder is in place: a well-formed address where something listens reaches it.
+    with _hanging_up() as address:
+        result = cli("sweep", ROBOT, *VARY, "--scheduler", address, "-o", "-")
+    assert result.exit_code == 2 and made == [(address,)]
+
+
+@contextlib.contextmanager
+def _hanging_up():
+    """tcp://127.0.0.1:PORT where a thread accepts each connection and closes it."""
+    listener = socket.socket()
+    listener.bind(("127.0.0.1", 0))
+    listener.listen()
+    listener.settimeout(0.2)
+    stop = threading.Event()
+
+    def serve():
+        while not stop.is_set():
+            try:
+                connection, _ = listener.accept()
+            except OSError:
+                continue
+            connection.close()
+
+    thread = threading.Thread(target=serve, daemon=True)
+    thread.start()
+    try:
+        yield f"tcp://127.0.0.1:{listener.getsockname()[1]}"
+    finally:
+        stop.set()
+        thread.join()
+        listener.close()
 
 
 def _closed_loopback_port() -> int:
@@ -94,14 +124,24 @@ def _closed_loopback_port() -> int:
     return 1
 
 
-def test_an_unreachable_scheduler_is_one_line_and_nothing_after(run_mcar, tmp_path):
+def test_a_refused_scheduler_is_one_line_at_once(run_mcar, tmp_path):
     port = _closed_loopback_port()
     address = f"tcp://127.0.0.1:{port}"
-    # Dask tries for its 10 s connect timeout; then the Client is closed by Dask itself,
-    # and mcar exits: the traceback used to come 20 s after the error line.
     result, seconds = _sweep(run_mcar, tmp_path, address, timeout=40)
     assert result.returncode == 2, result.stderr
     assert result.stderr.splitlines() == [
-        f"mcar: error: cannot reach the Dask scheduler at {address}: Timed out trying to "
-        f"connect to {address} after 10 s"]
+        f"mcar: error: cannot reach the Dask scheduler at {address}: connection refused "
+        "(nothing listens there)"]
+    assert seconds < 5  # not Dask's 10 s of retries
+
+
+def test_a_scheduler_that_hangs_up_is_one_line_and_nothing_after(run_mcar, tmp_path):
+    """Something listens but hangs up on every connection: Dask's Client fails (its
+    error, whatever Dask words it), Dask closes the Client itself, and mcar exits with
+    the one line (the Client's traceback used to come 20 s after it)."""
+    with _hanging_up() as address:
+        result, seconds = _sweep(run_mcar, tmp_path, address, timeout=40)
+    assert result.returncode == 2, result.stderr
+    [line] = result.stderr.splitlines()
+    assert line.startswith(f"mcar: error: cannot reach the Dask scheduler at {address}: ")
     assert seconds < 25

@@ -63,9 +63,16 @@ demo: install system-deps gazebo-helper
 	$(BIN)/mcar check --strict build/mobile_robot.urdf
 	$(BIN)/mcar render
 
+# Parallel workers (pytest-xdist): many tests wait on processes, so more than the cores;
+# --dist loadgroup keeps a module that shares a module fixture on one worker, and
+# tests/conftest.py starts the slowest first (tests/durations.txt).
+# Twice the cores, at most 8.
+TEST_WORKERS ?= $(shell n=$$(nproc 2>/dev/null || echo 2); n=$$((2 * n)); \
+	[ $$n -lt 4 ] && n=4; [ $$n -gt 8 ] && n=8; echo $$n)
+
 test: APT_PACKAGES += chromium $(ROS_APT_PACKAGES) xvfb catkin ament-cmake
 test: install system-deps gazebo-helper
-	$(BIN)/pytest
+	$(BIN)/pytest -n $(TEST_WORKERS) --dist loadgroup
 
 ci: install system-deps gazebo-helper
 	$(BIN)/mcar ci

@@ -37,6 +37,13 @@ def pytest_unconfigure(config):
 _OWN_CACHE: list = [None]
 
 
+def pytest_itemcollected(item):
+    """A test sharing a module-scoped fixture is marked with its module's xdist_group as
+    it is collected (before xdist reads the marks)."""
+    if _shares_module_fixture(item):
+        item.add_marker(pytest.mark.xdist_group(item.module.__name__))
+
+
 def pytest_collection_modifyitems(config, items):
     """The order and grouping `make test`'s parallel workers (pytest-xdist, --dist
     loadgroup) take the tests in: a module whose tests share a module-scoped fixture (a
@@ -47,10 +54,8 @@ def pytest_collection_modifyitems(config, items):
     weight: dict[str, float] = {}
     for item in items:
         group = item.module.__name__ if _shares_module_fixture(item) else None
-        if group is not None:
-            item.add_marker(pytest.mark.xdist_group(group))
         key = group or item.nodeid
-        weight[key] = weight.get(key, 0.0) + seconds.get(item.nodeid, 0.0)
+        weight[key] = weight.get(key, 0.0) + seconds.get(_plain_id(item), 0.0)
     order = {item.nodeid: i for i, item in enumerate(items)}
 
     def key(item):
@@ -58,6 +63,12 @@ def pytest_collection_modifyitems(config, items):
         return (-weight[group], group if group != item.nodeid else "", order[item.nodeid])
 
     items.sort(key=key)
+
+
+def _plain_id(item) -> str:
+    """The test's id without the "@group" xdist's loadgroup may have added."""
+    head, at, group = item.nodeid.rpartition("@")
+    return head if at and "]" not in group and "::" not in group else item.nodeid
 
 
 def _shares_module_fixture(item) -> bool:

@@ -81,7 +81,7 @@ def test_build_failure_skips_the_later_steps_and_others_go_on(run_mcar, package_
     motor = package_copy / "urdf" / "motor" / "test_motor.urdf.xacro"
     motor.write_text(motor.read_text().replace("</robot>", "<link name='${nope}'/></robot>"))
     result = run_mcar("ci", package_copy, "--format", "junit", "--build-dir", tmp_path / "b",
-                      "--render-dir", tmp_path / "r", "--renderer", "raycast", cwd=tmp_path,
+                      "--render-dir", tmp_path / "r", cwd=tmp_path,
                       timeout=300)
     assert result.returncode == 1
     cases = {(c.get("classname"), c.get("name")): c

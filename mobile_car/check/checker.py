@@ -19,7 +19,7 @@ from ..packages.discover import package_macros
 from ..packages.search import PackageSearch
 from . import document
 from .context import Reporter
-from .diagnostics import Diagnostic, count
+from .diagnostics import Counted, Diagnostic
 from .joints import check_joints
 from .link_bodies import check_link_bodies
 from .links import material_colours
@@ -37,7 +37,7 @@ LARGE_ROBOT = 2000  # links: the rest pose is worked out with numpy (rest_pose_a
 
 
 @dataclass
-class CheckResult:
+class CheckResult(Counted):
     file: str
     robot: Robot | None = None
     tree: KinematicTree | None = None
@@ -50,14 +50,6 @@ class CheckResult:
     # The box around every visual and collision shape in the rest pose, (x, y, z) in metres;
     # None when the tree is not sound or no shape's size is known.
     extents: tuple | None = None
-
-    @property
-    def errors(self) -> int:
-        return count(self.diagnostics)[0]
-
-    @property
-    def warnings(self) -> int:
-        return count(self.diagnostics)[1]
 
     @property
     def tree_is_drawable(self) -> bool:

@@ -62,6 +62,21 @@ class Diagnostic:
                 "line": self.line, "message": self.message}
 
 
+class Counted:
+    """``errors`` and ``warnings`` of an object's ``diagnostics`` (a check's result, or
+    one read back from its record)."""
+
+    diagnostics: list
+
+    @property
+    def errors(self) -> int:
+        return count(self.diagnostics)[0]
+
+    @property
+    def warnings(self) -> int:
+        return count(self.diagnostics)[1]
+
+
 def github_annotation(severity: str, file: str, line: int | None, title: str | None,
                       message: str) -> str:
     """``::error file=F,line=L,title=T::message``, escaped as GitHub's toolkit does, after

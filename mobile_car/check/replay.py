@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..freshness import Basis, Stamper, key_of, read_record, stamps_current, write_record
-from .diagnostics import Diagnostic, count
+from .diagnostics import Counted, Diagnostic
 
 SECTION = "checks"
 FOLDER = "checks"
@@ -38,7 +38,7 @@ MAX_KEPT_LINKS = 2000
 
 
 @dataclass
-class ReplayedResult:
+class ReplayedResult(Counted):
     """What :func:`replay` reads back: the parts of a CheckResult the output is made of."""
 
     file: str
@@ -48,14 +48,6 @@ class ReplayedResult:
     extents: tuple | None = None
     document: dict = field(default_factory=dict)  # as_json() of the result
     failure: None = None  # a failed load is never kept
-
-    @property
-    def errors(self) -> int:
-        return count(self.diagnostics)[0]
-
-    @property
-    def warnings(self) -> int:
-        return count(self.diagnostics)[1]
 
     def exit_code(self, strict: bool = False) -> int:
         return 1 if self.errors or (strict and self.warnings) else 0

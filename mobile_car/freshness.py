@@ -6,7 +6,9 @@ An output (a built URDF, a picture) records the files it was made from as *stamp
 mcar's version). A later run that finds the same key and every stamped file with the same
 size and mtime knows the output is current after a few ``stat()`` calls; only a file whose
 stat differs is hashed, and only a changed hash means rebuilding. A file that would newly
-be included cannot appear without a stamped file (the one including it) changing.
+be included cannot appear without a stamped file (the one including it) changing. The
+environment variables a stamped file reads through xacro's ``$(env)`` and ``$(optenv)``
+are stamped beside it, with their values.
 
 Kept free of xacro, lxml, numpy and trimesh: this is what a no-op run imports.
 """
@@ -17,6 +19,7 @@ import functools
 import hashlib
 import json
 import os
+import re
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -127,7 +130,37 @@ class Stamper:
                 result.append([path, -1, -1, ""])  # never matches: rebuilt next time
             else:
                 result.append([path, info.st_size, info.st_mtime_ns, digest])
-        return result
+        return result + environment_stamps(stamp[0] for stamp in result)
+
+
+# A stamp of an environment variable a stamped file reads through xacro's $(env NAME) or
+# $(optenv NAME ...) (Husky's and Jackal's accessories): [ENV_STAMP, NAME, value or None,
+# ""]. The files are stamped, so the names they read cannot change unseen; the values can.
+ENV_STAMP = "$(env)"
+_ENV_USE = re.compile(rb"\$\(\s*(?:env|optenv)\s+([A-Za-z_][A-Za-z0-9_]*)")
+_ENV_SCAN_BYTES = 4 << 20  # larger files are meshes, not xacro
+
+
+def environment_stamps(paths) -> list[list]:
+    """Stamps of the environment variables the files at ``paths`` name in xacro's
+    ``$(env)`` and ``$(optenv)``, as they are now."""
+    from .errors import InputError
+    from .load.bounded import open_regular
+
+    names: set[str] = set()
+    for path in paths:
+        try:
+            if os.stat(path).st_size > _ENV_SCAN_BYTES:
+                continue
+            with open_regular(path) as handle:
+                names.update(n.decode("ascii") for n in _ENV_USE.findall(handle.read()))
+        except (OSError, InputError):
+            continue
+    return [[ENV_STAMP, name, os.environ.get(name), ""] for name in sorted(names)]
+
+
+def is_environment_stamp(stamp) -> bool:
+    return isinstance(stamp, list) and len(stamp) == 4 and stamp[0] == ENV_STAMP
 
 
 def output_stamp(path: str | os.PathLike, digest: str) -> list | None:
@@ -154,7 +187,10 @@ def stamps_current(stamps) -> tuple[bool, bool]:
 
 
 def stamp_current(stamp) -> tuple[bool, bool]:
-    """One ``[path, size, mtime_ns, sha256]`` stamp: (current, refreshed in place)."""
+    """One ``[path, size, mtime_ns, sha256]`` stamp: (current, refreshed in place); or an
+    environment variable's (:data:`ENV_STAMP`)."""
+    if is_environment_stamp(stamp):
+        return isinstance(stamp[1], str) and os.environ.get(stamp[1]) == stamp[2], False
     try:
         path, size, mtime_ns, digest = stamp
         info = os.stat(path)

@@ -29,6 +29,7 @@ from pathlib import Path
 from ..freshness import (
     Basis,
     diagnostics_from,
+    is_environment_stamp,
     key_of,
     output_current,
     output_stamp,
@@ -163,8 +164,9 @@ class Manifest:
                 continue
             files = entry.get("files")
             if not isinstance(files, list) or not files or not all(
-                    isinstance(stamp, list) and stamp and isinstance(stamp[0], str)
-                    and os.path.exists(stamp[0]) for stamp in files):
+                    is_environment_stamp(stamp) or isinstance(stamp, list) and stamp
+                    and isinstance(stamp[0], str) and os.path.exists(stamp[0])
+                    for stamp in files):
                 found.add(key)
         return found
 

@@ -47,6 +47,11 @@ Errors (E1xx) fail the check; warnings (W2xx) fail it only with --strict. For a
 .xacro input, FILE:LINE point into the xacro sources where the element's name can
 be found there, else at the input with the line of the expanded URDF.
 
+A .xacro input checked before, with nothing it reads changed since (its files and
+includes, meshes, --config files, arguments, the environment variables it names), is
+not expanded again: its results are read back from the user's cache folder, the same
+output and exit code (docs/check.md).
+
 --gazebo gives each sound robot to libsdformat, which Gazebo loads URDF with, and
 reports what it changes: links lumped into their parent by fixed joints (notes,
 N401), links dropped for want of mass with everything that moves below them (E150),

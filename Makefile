@@ -27,7 +27,7 @@ APT_PACKAGES += g++ pkg-config libsdformat-dev
 GAZEBO_HELPER ?= $(BIN)/mcar-sdformat
 SDFORMAT_PC ?= sdformat12
 
-.PHONY: demo test install system-deps build bench ci rviz clean gazebo-helper
+.PHONY: demo test test-quick install system-deps build bench ci rviz clean gazebo-helper
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -73,6 +73,11 @@ TEST_WORKERS ?= $(shell n=$$(nproc 2>/dev/null || echo 2); n=$$((2 * n)); \
 test: APT_PACKAGES += chromium $(ROS_APT_PACKAGES) xvfb catkin ament-cmake
 test: install system-deps gazebo-helper
 	$(BIN)/pytest -n $(TEST_WORKERS) --dist loadgroup
+
+# The inner loop: every test but those of over ~5 s (tests/durations.txt, the slow mark);
+# `make test` still runs them all. Installs nothing: run `make test` once first.
+test-quick:
+	$(BIN)/pytest -n $(TEST_WORKERS) --dist loadgroup -m "not slow"
 
 ci: install system-deps gazebo-helper
 	$(BIN)/mcar ci

@@ -55,7 +55,10 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         group = item.module.__name__ if _shares_module_fixture(item) else None
         key = group or item.nodeid
-        weight[key] = weight.get(key, 0.0) + seconds.get(_plain_id(item), 0.0)
+        took = seconds.get(_plain_id(item), 0.0)
+        weight[key] = weight.get(key, 0.0) + took
+        if took >= SLOW_SECONDS:  # `make test-quick` (-m "not slow") leaves it out
+            item.add_marker(pytest.mark.slow)
     order = {item.nodeid: i for i, item in enumerate(items)}
 
     def key(item):
@@ -63,6 +66,9 @@ def pytest_collection_modifyitems(config, items):
         return (-weight[group], group if group != item.nodeid else "", order[item.nodeid])
 
     items.sort(key=key)
+
+
+SLOW_SECONDS = 5.0  # alone, in tests/durations.txt
 
 
 def _plain_id(item) -> str:

@@ -115,22 +115,20 @@ class Stamper:
     def stamps(self, paths, skip=()) -> list[list] | None:
         """Stamps of the files (each once, ``skip`` left out); None if one is missing."""
         skipped = {os.path.abspath(p) for p in skip if p is not None}
-        result = []
+        result, names = [], set()
         for path in dict.fromkeys(os.path.abspath(p) for p in paths):
             if path in skipped:
                 continue
             try:
                 info = os.stat(path)
-                # Over the mesh cap (a mesh not read, drawn as a marker): stamped by size
-                # and time only; hashing gigabytes would cost more than the redraw.
-                digest = file_sha256(path) if info.st_size <= _hash_limit() else ""
+                digest = _digest_and_names(path, info.st_size, names)
             except OSError:
                 return None
             if info.st_mtime_ns >= self.started_ns - RACY_MARGIN_NS:
                 result.append([path, -1, -1, ""])  # never matches: rebuilt next time
             else:
                 result.append([path, info.st_size, info.st_mtime_ns, digest])
-        return result + environment_stamps(stamp[0] for stamp in result)
+        return result + [[ENV_STAMP, name, os.environ.get(name), ""] for name in sorted(names)]
 
 
 # A stamp of an environment variable a stamped file reads through xacro's $(env NAME) or
@@ -141,22 +139,24 @@ _ENV_USE = re.compile(rb"\$\(\s*(?:env|optenv)\s+([A-Za-z_][A-Za-z0-9_]*)")
 _ENV_SCAN_BYTES = 4 << 20  # larger files are meshes, not xacro
 
 
-def environment_stamps(paths) -> list[list]:
-    """Stamps of the environment variables the files at ``paths`` name in xacro's
-    ``$(env)`` and ``$(optenv)``, as they are now."""
+def _digest_and_names(path: str, size: int, names: set[str]) -> str:
+    """The file's SHA-256 ("" over the mesh cap: a mesh not read, drawn as a marker, is
+    stamped by size and time only, hashing gigabytes would cost more than the redraw),
+    adding to ``names`` the variables it names in xacro's ``$(env)`` and ``$(optenv)``;
+    a file small enough to be xacro is read once for both."""
+    if size > _ENV_SCAN_BYTES:
+        return file_sha256(path) if size <= _hash_limit() else ""
     from .errors import InputError
     from .load.bounded import open_regular
 
-    names: set[str] = set()
-    for path in paths:
-        try:
-            if os.stat(path).st_size > _ENV_SCAN_BYTES:
-                continue
-            with open_regular(path) as handle:
-                names.update(n.decode("ascii") for n in _ENV_USE.findall(handle.read()))
-        except (OSError, InputError):
-            continue
-    return [[ENV_STAMP, name, os.environ.get(name), ""] for name in sorted(names)]
+    try:
+        handle = open_regular(path)
+    except InputError:  # never opened for reading: a FIFO would block
+        return "not a regular file"  # as file_sha256 says: never counts as unchanged
+    with handle:
+        data = handle.read()
+    names.update(name.decode("ascii") for name in _ENV_USE.findall(data))
+    return hashlib.sha256(data).hexdigest() if size <= _hash_limit() else ""
 
 
 def is_environment_stamp(stamp) -> bool:

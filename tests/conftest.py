@@ -53,8 +53,7 @@ def pytest_collection_modifyitems(config, items):
     seconds = _durations()
     weight: dict[str, float] = {}
     for item in items:
-        group = item.module.__name__ if _shares_module_fixture(item) else None
-        key = group or item.nodeid
+        key = _group(item)
         took = seconds.get(_plain_id(item), 0.0)
         weight[key] = weight.get(key, 0.0) + took
         if took >= SLOW_SECONDS:  # `make test-quick` (-m "not slow") leaves it out
@@ -62,13 +61,19 @@ def pytest_collection_modifyitems(config, items):
     order = {item.nodeid: i for i, item in enumerate(items)}
 
     def key(item):
-        group = item.module.__name__ if _shares_module_fixture(item) else item.nodeid
+        group = _group(item)
         return (-weight[group], group if group != item.nodeid else "", order[item.nodeid])
 
     items.sort(key=key)
 
 
 SLOW_SECONDS = 5.0  # alone, in tests/durations.txt
+
+
+def _group(item) -> str:
+    """The xdist group pytest_itemcollected gave the test, else its own id."""
+    mark = item.get_closest_marker("xdist_group")
+    return mark.args[0] if mark is not None else item.nodeid
 
 
 def _plain_id(item) -> str:

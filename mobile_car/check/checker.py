@@ -12,7 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..errors import EXIT_OK, EXIT_PROBLEMS, BuildError, McarError
+from ..errors import BuildError, McarError
 from ..load.inputs import RobotInput
 from ..load.robot import LoadedRobot, LoadOptions, load_robot
 from ..packages.discover import package_macros
@@ -60,13 +60,6 @@ class CheckResult(Counted):
     def sound(self) -> bool:
         """No error at all: what check_urdf's "Successfully Parsed" may be printed for."""
         return self.failure is None and self.errors == 0 and self.tree_is_drawable
-
-    def exit_code(self, strict: bool = False) -> int:
-        if self.failure is not None:
-            return self.failure.exit_code
-        if self.errors or (strict and self.warnings):
-            return EXIT_PROBLEMS
-        return EXIT_OK
 
 
 def check_urdf_data(data: bytes, file: str, *, base: Path, search: PackageSearch,

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..errors import EXIT_OK, EXIT_PROBLEMS
 from ..names import shown, shown_lines
 from .rules import ERROR, NOTE, RULES, WARNING
 
@@ -63,10 +64,18 @@ class Diagnostic:
 
 
 class Counted:
-    """``errors`` and ``warnings`` of an object's ``diagnostics`` (a check's result, or
-    one read back from its record)."""
+    """``errors``, ``warnings`` and the exit code of an object's ``diagnostics`` and
+    ``failure`` (a check's result, or one read back from its record)."""
 
     diagnostics: list
+    failure: object
+
+    def exit_code(self, strict: bool = False) -> int:
+        if self.failure is not None:
+            return self.failure.exit_code
+        if self.errors or (strict and self.warnings):
+            return EXIT_PROBLEMS
+        return EXIT_OK
 
     @property
     def errors(self) -> int:

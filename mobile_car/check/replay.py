@@ -49,13 +49,9 @@ class ReplayedResult(Counted):
     document: dict = field(default_factory=dict)  # as_json() of the result
     failure: None = None  # a failed load is never kept
 
-    def exit_code(self, strict: bool = False) -> int:
-        return 1 if self.errors or (strict and self.warnings) else 0
 
-
-def run_key(label: str, path: Path, basis: Basis, environ=None) -> str:
-    environ = os.environ if environ is None else environ
-    limits = {name: value for name, value in environ.items()
+def run_key(label: str, path: Path, basis: Basis) -> str:
+    limits = {name: value for name, value in os.environ.items()
               if name.startswith("MCAR_") and name != "MCAR_CACHE_DIR"}
     return key_of("check", label, os.path.abspath(path), os.getcwd(), basis.settings, limits)
 
@@ -72,7 +68,10 @@ def replay(inp, basis: Basis) -> ReplayedResult | None:
     if nothing it depends on changed; else None. The note a ``.urdf`` that uses xacro gets
     (:mod:`mobile_car.load.xacro_use`) is said again, as loading it says it."""
     label, path = inp.label, inp.path
-    if path is None or not (inp.named_xacro or _small(path) and inp.xacro_use is not None):
+    if path is None:
+        return None
+    use = None if inp.named_xacro else inp.xacro_use if _small(path) else None
+    if not inp.named_xacro and use is None:
         return None
     key = run_key(label, path, basis)
     entry = read_record(_record_path(path), SECTION).get(key[:40])
@@ -85,10 +84,10 @@ def replay(inp, basis: Basis) -> ReplayedResult | None:
     current, _refreshed = stamps_current(entry.get("files"))
     if not current:
         return None
-    if not inp.named_xacro and inp.xacro_use is not None:
+    if use is not None:
         from ..load.xacro_use import note_expanded
 
-        note_expanded(label, inp.xacro_use)
+        note_expanded(label, use)
     return result
 
 
@@ -108,15 +107,16 @@ def record(inp, basis: Basis, result, stamper: Stamper) -> None:
     label, path = inp.label, inp.path
     if path is None or result.failure is not None or result.loaded is None or \
             not result.loaded.from_xacro or \
-            len(result.robot.links if result.robot else ()) > MAX_KEPT_LINKS:
-        return
+            len(result.robot.links if result.robot else ()) > MAX_KEPT_LINKS or \
+            any(m.path is None for m in result.mesh_files):
+        return  # (a mesh whose package is unknown may appear later: nothing to stamp)
     tree_text = _tree_text(result)
     if tree_text is False:
         return
-    meshes = [m.path for m in result.mesh_files if m.path is not None]
     reads = [r for m in result.mesh_files for r in m.reads]
-    files = stamper.stamps([*result.loaded.deps, path, *basis.files, *meshes, *reads])
-    if files is None or any(m.path is None for m in result.mesh_files):
+    files = stamper.stamps([*result.loaded.deps, path, *basis.files,
+                            *(m.path for m in result.mesh_files), *reads])
+    if files is None:
         return  # a file missing now may appear later: nothing to stamp it by
     try:
         tree = None if tree_text is None else tree_text.decode("utf-8")

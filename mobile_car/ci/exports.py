@@ -16,14 +16,13 @@ from pathlib import Path
 from ..errors import McarError
 from ..load.inputs import display_path
 from .pipeline import CiItem, Step
+from .simulation import config_for
 
 
 def formats_for(item: CiItem, configs: dict) -> tuple[str, ...]:
     """The formats the item's package asks for it (none without an ``export`` section)."""
-    for home, config in configs.items():
-        if item.source.resolve().is_relative_to(Path(home).resolve()):
-            return config.exports(item.source)
-    return ()
+    config = config_for(item, configs)
+    return config.exports(item.source) if config is not None else ()
 
 
 def export_folder(item: CiItem, build_dir: Path, to: str) -> Path:

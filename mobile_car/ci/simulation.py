@@ -44,9 +44,17 @@ def strictness(item: CiItem, configs: dict[Path, PackageConfig], flag: bool | No
     another team's released robot, whose warnings ci shows without failing it)."""
     if flag is not None:
         return flag
-    home = _package_root(item.source, None)
-    config = configs.get(home) if home is not None else None
+    config = config_for(item, configs)
     return bool(config is not None and config.strict)
+
+
+def config_for(item: CiItem, configs: dict[Path, PackageConfig]) -> PackageConfig | None:
+    """The settings of the package (or folder) the item lies in, of those ``configs``
+    package_configs read."""
+    for home, config in configs.items():
+        if item.source.resolve().is_relative_to(Path(home).resolve()):
+            return config
+    return None
 
 
 def skip_reason(item: CiItem, configs: dict[Path, PackageConfig]) -> str | None:

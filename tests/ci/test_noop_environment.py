@@ -7,9 +7,8 @@ from __future__ import annotations
 
 import json
 
-PACKAGE_XML = ("<package format='3'><name>lamp_description</name><version>0.0.1</version>"
-               "<description>t</description><maintainer email='t@example.com'>t</maintainer>"
-               "<license>BSD</license></package>")
+from ci.test_ci_vehicles import make_package
+
 ROBOT = """<robot name="lamp" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <link name="base_link">
     <visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>
@@ -29,11 +28,8 @@ ROBOT = """<robot name="lamp" xmlns:xacro="http://www.ros.org/wiki/xacro">
 
 
 def package(tmp_path):
-    root = tmp_path / "lamp_description"
-    (root / "urdf").mkdir(parents=True)
-    (root / "package.xml").write_text(PACKAGE_XML)
-    (root / "urdf" / "lamp.urdf.xacro").write_text(ROBOT)
-    return root
+    return make_package(tmp_path / "lamp_description", "lamp_description",
+                        {"lamp.urdf.xacro": ROBOT})
 
 
 def extents(run_mcar, root, env, cache):

@@ -7,9 +7,11 @@ process, one GL call (or one Embree call) ran for over 9 minutes and no signal e
 short of SIGKILL. Here the mesh is a binary STL of 300,000 such faces: one draw call of
 ~20 s (ray casting ~12 s) on an idle machine, long past the moment the signal comes, and
 five times cheaper to prepare (smoothing 1.5 million faces took the parent ~7 s of CPU
-before the draw began, in each of the four tests). Each test waits until mcar is really drawing (mcar asleep while a process
-it started computes: see ``_wait_until_drawing``), signals, and then asserts what comes
-out: the exit code, the one-line announcement, no traceback, the drawing process gone, the
+before the draw began, in each of the four tests).
+
+Each test waits until mcar is really drawing (mcar asleep while a process it started
+computes: see ``_wait_until_drawing``), signals, and then asserts what comes out: the exit
+code, the one-line announcement, no traceback, the drawing process gone, the
 earlier pictures in the output folder byte-identical and nothing added to it.
 """
 

@@ -182,6 +182,15 @@ def command(words, output, view, size, collision, background, grid, axes, render
         sys.exit(EXIT_OK)
     with prepared_load(selection, mappings, package_paths, sets, config_files) as load:
         load = dataclasses.replace(load, size_limited=True)
+        if len(jobs) == 1 and not sheet:
+            from mobile_car.render.jobs import check_first
+
+            failed = check_first(jobs[0], load, collision, stdin_for(selection))
+            if failed is not None:  # nothing to draw: no drawing process, no trimesh
+                outcome = _run([failed], [], jobs, quiet)
+                if not quiet:
+                    _summary(None, outcome, 1, outdir, sheet, time.perf_counter() - started)
+                sys.exit(outcome.exit_code)
         # Start the drawing process now (OpenGL, or the ray caster), while numpy, trimesh
         # and xacro load here.
         from mobile_car.held_signals import hold_signals, release_signals
@@ -205,7 +214,7 @@ def command(words, output, view, size, collision, background, grid, axes, render
                            stdin=stdin_for(selection)) as session:
             # (closing the session stops the drawing process's probe if it was not needed)
             manifest = Manifest(outdir) if outdir is not None else None
-            outcome = _run(session, jobs, manifest, quiet)
+            outcome = _run(session.run(jobs, manifest), session.notes, jobs, quiet)
             if output == "-" and outcome.last_png is not None:
                 streams.write(outcome.last_png)
             if sheet:
@@ -315,21 +324,22 @@ class _Outcome:
     last_png: bytes | None = None
 
 
-def _run(session, jobs, manifest, quiet: bool) -> _Outcome:
-    """Render every job, printing errors and warnings as they come."""
+def _run(results, notes: list, jobs, quiet: bool) -> _Outcome:
+    """Print each job's result as it comes (errors, warnings, and the renderer's notes,
+    which ``notes`` gathers meanwhile); the counts and exit code."""
     outcome = _Outcome()
     bar = _progress(jobs, quiet)
     if bar is not None:
         bar.__enter__()
     try:
-        for result in session.run(jobs, manifest):
+        for result in results:
             signals.raise_if_received()  # swallowed by a library's import guard: stop here
             outcome.counts[result.status] += 1
             if bar is not None:
                 bar.update(1, shown(result.job.caption))
-            for note in session.notes:
+            for note in notes:
                 print_warning("mcar", note)
-            session.notes.clear()
+            notes.clear()
             for warning in result.warnings:
                 if isinstance(warning, str):
                     print_warning(result.job.input.label, warning)

@@ -14,13 +14,13 @@ import time
 from collections import deque
 from collections.abc import Iterator
 from concurrent.futures import Future, ThreadPoolExecutor
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 from PIL import Image
 
 from ..atomic import atomic_write
-from ..check.checker import CheckResult, check_input
+from ..check.checker import check_input
 from ..errors import CheckFailed, McarError, RenderError, RendererUnavailableError
 from ..freshness import Stamper, diagnostics_data, diagnostics_from
 from ..load.outputs import refuse_overwriting
@@ -28,7 +28,15 @@ from ..load.robot import LoadedRobot, LoadOptions
 from .backend import GLProbe, open_renderer, start_probe
 from .compose import png_bytes
 from .drawing import DrawingFailed
-from .jobs import RenderJob, file_job, picture_name, picture_path, selection_jobs  # noqa: F401
+from .jobs import (  # noqa: F401
+    JobResult,
+    RenderJob,
+    blocking_diagnostics,
+    file_job,
+    picture_name,
+    picture_path,
+    selection_jobs,
+)
 from .manifest import CONTACT_SHEET, Manifest, input_fingerprint, picture_key
 from .options import RenderOptions
 from .picture import DrawnView, draw_views, finish_picture
@@ -40,18 +48,6 @@ from .sheet import THUMBNAIL_WIDTH, contact_sheet
 SHOWN_WARNINGS = ("W207", "W210", "W220")
 # Pictures finished (overlays, PNG, write) in parallel with drawing the next ones.
 FINISH_THREADS = 1
-
-
-@dataclass
-class JobResult:
-    """What happened to one job: ``status`` is rendered, unchanged or failed."""
-
-    job: RenderJob
-    status: str
-    error: McarError | None = None
-    warnings: list = field(default_factory=list)  # the check's Diagnostics worth showing
-    png: bytes | None = None
-    seconds: float = 0.0
 
 
 @dataclass
@@ -97,17 +93,6 @@ def model_source(loaded: LoadedRobot) -> ModelSource:
     """The URDF a loaded robot became, for the scene: a plain URDF's lines are its file's."""
     path = loaded.input.path if loaded.input.path is not None else Path.cwd() / "<stdin>"
     return ModelSource(loaded.urdf, path, lines_match=not loaded.from_xacro)
-
-
-def blocking_diagnostics(result: CheckResult, collision: bool) -> list:
-    """What stops a robot from being drawn: any check error; all the check's diagnostics
-    then, else none. A mesh that is missing or broken (W207) does not: it is drawn as a
-    marker, as one over a limit is, and the warning shown with the picture."""
-    if result.failure is not None:
-        raise result.failure
-    if result.errors or not result.tree_is_drawable:
-        return result.diagnostics
-    return []
 
 
 class RenderSession:

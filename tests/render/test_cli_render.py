@@ -182,6 +182,31 @@ def test_a_failed_render_keeps_the_earlier_picture(cli, pkg_copy, tmp_path, monk
         ".mcar-render.json", "wheel.png"]
 
 
+@pytest.mark.parametrize("text, said", [
+    ("", "broken.urdf:1: error: not well-formed XML: Document is empty [E100]"),
+    ('<robot name="r"><link name="a"/><joint name="j" type="fixed"><parent link="a"/>'
+     '<child link="b"/></joint></robot>', "broken.urdf:1: error: joint 'j': child link 'b' "
+     "is not defined; add <link name=\"b\"/> or fix the name [E122]")])
+def test_one_broken_robot_is_answered_before_anything_is_imported_to_draw_it(
+        tmp_path, text, said):
+    """No drawing process started, no numpy, trimesh, PIL or GL: the check's error and the
+    summary, as when the robot failed among others."""
+    from render.test_noop_render import imported_modules, run_traced
+
+    (tmp_path / "broken.urdf").write_text(text)
+    result = run_traced("render", "broken.urdf", "-o", "out/broken.png", cwd=tmp_path)
+    assert result.returncode == 1
+    shown = [line for line in result.stderr.splitlines() if not line.startswith("import time")]
+    assert shown[0] == said
+    assert re.fullmatch(r"1 picture in out: 0 rendered, 1 failed \(\d+\.\d\d s\)", shown[1])
+    assert len(shown) == 2
+    loaded = imported_modules(result.stderr)
+    assert not loaded & {"numpy", "trimesh", "moderngl", "yourdfpy", "PIL.Image",
+                         "mobile_car.render.drawing", "mobile_car.render.session"}
+    assert "mobile_car.render.jobs" in loaded  # (the trace sees mcar's modules)
+    assert not (tmp_path / "out").exists() or list((tmp_path / "out").iterdir()) == []
+
+
 def test_a_failing_file_does_not_stop_the_others(cli, pkg_copy, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     motor = pkg_copy / "urdf/motor/test_motor.urdf.xacro"

@@ -6,6 +6,10 @@ Anything else (``1/25``, ``4 0mm``, ``0x10``, ``1_000``) is refused by name rath
 handed to pint, whose parser evaluates expressions (``4 0mm`` is 4 * 0 mm to it). The unit
 is converted with pint, imported only then (it is slow to import), and must have the
 dimension the config entry expects: a length for ``m``, a mass for ``kg``, and so on.
+The few units config.xacro's ranges and most overrides are written in (mm, cm, deg, ...)
+are converted without pint, to the very float pint gives (tests/config/test_units.py
+compares the two): importing pint and making its registry cost ~0.6 s of CPU, which every
+`mcar config`, `--set` and `mcar sweep` paid before doing anything.
 """
 
 from __future__ import annotations
@@ -33,6 +37,14 @@ _EXAMPLES = "(e.g. 0.065, 65mm, 6.5 cm)"
 # The config's unit spellings, as pint understands them.
 _PINT_UNITS = {"m": "m", "kg": "kg", "kg/m^3": "kg/m**3", "rad/s": "rad/s", "N*m": "N*m",
                "Hz": "Hz", "1": "dimensionless", "count": "dimensionless", "rad": "rad"}
+
+
+# Unit words read without pint: (the config unit they convert to, the factor pint uses).
+# Any other word, or one of these where the config expects another unit, goes to pint.
+FAST_UNITS = {"m": ("m", 1.0), "cm": ("m", 1e-2), "mm": ("m", 1e-3), "km": ("m", 1e3),
+              "kg": ("kg", 1.0), "g": ("kg", 1e-3), "rad": ("rad", 1.0),
+              "deg": ("rad", math.pi / 180), "rpm": ("rad/s", math.pi / 30),
+              "Hz": ("Hz", 1.0)}
 
 
 def _shown(text) -> str:
@@ -78,8 +90,6 @@ def parse_quantity(text: str | float | int, unit: str, name: str) -> float:
 
 
 def _convert(raw: str, unit: str, name: str) -> float:
-    import pint
-
     if _NOT_FINITE.match(raw):
         raise UsageError(f"{name}: {raw!r} is not a finite number")
     match = _QUANTITY.fullmatch(raw)
@@ -89,6 +99,11 @@ def _convert(raw: str, unit: str, name: str) -> float:
                              f"optional unit {_EXAMPLES}")
         raise UsageError(f"{name}: {raw!r} is neither a number nor a number with a unit "
                          f"{_EXAMPLES}")
+    fast = FAST_UNITS.get(match["unit"])
+    if fast is not None and fast[0] == unit:
+        return float(match["number"]) * fast[1]
+    import pint
+
     registry = _registry()
     try:
         units = registry.parse_units(match["unit"])

@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from mobile_car.config.units import parse_quantity
+from mobile_car.config.units import FAST_UNITS, parse_quantity
 from mobile_car.errors import UsageError
 
 
@@ -62,3 +62,39 @@ def test_one_number_with_one_unit_and_nothing_else(text, message):
 ])
 def test_units_pint_knows_are_converted(text, unit, expected):
     assert parse_quantity(text, unit, "x") == pytest.approx(expected, rel=1e-6)
+
+
+def _with_pint(number: float, word: str, unit: str) -> float:
+    from mobile_car.config.units import _PINT_UNITS, _registry
+
+    registry = _registry()
+    quantity = registry.Quantity(number, registry.parse_units(word))
+    return float(quantity.to(_PINT_UNITS.get(unit, unit)).magnitude)
+
+
+@pytest.mark.parametrize("word", sorted(FAST_UNITS))
+def test_units_read_without_pint_give_pints_very_float(word):
+    """The same float to the last bit, for the numbers people and ranges write and many
+    others: a sweep's points and a range's ends do not move by the change of path."""
+    import random
+
+    unit = FAST_UNITS[word][0]
+    chance = random.Random(word)
+    numbers = [0, 1, 2.5, 6.5, 25, 33, 45, 65, 90, 99.9, 280, 1e-3, 1.5e-7, 3e5,
+               *(chance.uniform(0, 1000) for _ in range(500)),
+               *(round(chance.uniform(0, 200), 1) for _ in range(500))]
+    for number in numbers:
+        for text in (f"{number!r}{word}", f"{number!r} {word}"):
+            assert parse_quantity(text, unit, "x") == _with_pint(number, word, unit), text
+
+
+def test_common_units_are_read_without_importing_pint():
+    code = ("import sys; from mobile_car.config.units import parse_quantity as p; "
+            "print(p('25mm', 'm', 'x'), p('90 deg', 'rad', 'x'), p('40g', 'kg', 'x'), "
+            "'pint' in sys.modules); p('1in', 'm', 'x'); print('pint' in sys.modules)")
+    import subprocess
+    import sys
+
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=True)
+    assert done.stdout.split() == ["0.025", repr(math.pi / 2), "0.04", "False", "True"]

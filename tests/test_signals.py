@@ -149,8 +149,8 @@ def _swallowed_by_python(err: str) -> str | None:
 
 
 def _args(render: bool, out):
-    return (["render", str(REPO / "urdf"), "--renderer", "raycast", "--size", "160x120",
-             "-o", str(out / "renders")] if render
+    return (["render", str(REPO / "urdf"), "--size", "160x120", "-o", str(out / "renders")]
+            if render
             else ["build", str(REPO / "urdf"), "-o", str(out / "build")])
 
 

@@ -22,7 +22,7 @@ TABLE = HERE / "every_command.txt"
 MCAR = Path(sys.executable).parent / "mcar"
 COMMANDS = ("build", "check", "tree", "render", "ci", "config")
 # Options that keep the run fast and its outputs inside the folder; not the subject here.
-EXTRA = {"render": ["--renderer", "raycast", "--size", "160x120"],
+EXTRA = {"render": ["--size", "160x120"],
          "ci": ["--no-render", "--no-sim", "--no-gazebo"]}
 DIAGNOSTIC = re.compile(r"^.+: (error|warning): .+ \[[EW]\d{3}\]$")
 

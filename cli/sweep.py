@@ -43,9 +43,9 @@ validate_s, build_s, check_s, sim_s, total_s, attempts and worker.
 The points run on --jobs local processes (default: every core), or on the workers of
 the Dask scheduler --scheduler names (each worker needs this mcar, with the sweep
 extra, and the package at the same path; docs/sweep.md says how to start them). The
-results file is saved every few seconds: Ctrl-C keeps the finished rows, and --resume
-runs only the points it lacks. A point whose worker dies is retried once, alone, then
-reported as "crashed".
+results file is saved with the first point, then every few seconds: Ctrl-C keeps the
+finished rows, and --resume runs only the points it lacks. A point whose worker dies is
+retried once, alone, then reported as "crashed".
 
 A sweep varies one robot: the file named, or the one robot file directly in the
 package's urdf/ folder.

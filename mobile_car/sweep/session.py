@@ -1,6 +1,6 @@
 """One ``mcar sweep`` run as the command line drives it: the robot it sweeps, the rows as
-they come (saved every few seconds, so an interrupted or killed sweep keeps them), the
-summary of the outcome."""
+they come (saved with the first and then every few seconds, so an interrupted or killed
+sweep keeps them), the summary of the outcome."""
 
 from __future__ import annotations
 
@@ -64,7 +64,10 @@ class Session:
     def add(self, row: dict) -> None:
         self.rows.append(row)
         self._dirty = True
-        if self.output and time.perf_counter() - self._saved >= SAVE_EVERY:
+        # The first row at once: the file shows the sweep under way, and a sweep killed
+        # (SIGKILL, a crash) in its first seconds keeps it.
+        first = len(self.rows) == self.resumed + 1
+        if self.output and (first or time.perf_counter() - self._saved >= SAVE_EVERY):
             self.save()
 
     def table(self):

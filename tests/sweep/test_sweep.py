@@ -25,6 +25,9 @@ TRACKS = [0.15, 0.155, 0.16, 0.165, 0.17]
 # Columns that say when and where a row was made, not what it found.
 RUN_COLUMNS = ["worker", "validate_s", "build_s", "check_s", "sim_s", "total_s"]
 KILL_WORKER = Path(__file__).parent / "kill_worker"
+# Points of the sweeps a signal interrupts: the results file appears with the first row,
+# and the signal follows it, so a dozen leaves the sweep well under way.
+SIGNALLED = 12
 
 
 def sweep(*args, cwd, env=None, timeout=300):
@@ -159,15 +162,24 @@ def test_the_plot_shows_the_sixty_points_over_the_two_dimensions(grid_run, tmp_p
     assert figure.axes[1].get_ylabel() == "speed (m/s)"
 
 
-def test_a_dask_local_cluster_gives_the_same_rows(grid_run, tmp_path):
+@pytest.fixture(scope="module")
+def dask_cluster():
+    """A real Dask cluster on 127.0.0.1, two worker processes, shared by the module's
+    sweeps that need nothing special of their workers (its start and the workers' first
+    imports are paid once)."""
     distributed = pytest.importorskip("distributed", reason="the sweep extra installs Dask")
-    _, local, _ = grid_run
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   host="127.0.0.1", dashboard_address=None) as cluster:
-        assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
-        done = sweep(ROBOT, *GRID, "--scheduler", cluster.scheduler_address,
-                     "-o", "dask.parquet", cwd=tmp_path)
-        worker_pids = {w.pid for w in cluster.workers.values() if hasattr(w, "pid")}
+        yield cluster
+
+
+def test_a_dask_local_cluster_gives_the_same_rows(grid_run, dask_cluster, tmp_path):
+    _, local, _ = grid_run
+    cluster = dask_cluster
+    assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
+    done = sweep(ROBOT, *GRID, "--scheduler", cluster.scheduler_address,
+                 "-o", "dask.parquet", cwd=tmp_path)
+    worker_pids = {w.pid for w in cluster.workers.values() if hasattr(w, "pid")}
     assert done.returncode == 0, done.stderr
     assert f"(Dask scheduler {cluster.scheduler_address}): 24 ok, 36 rejected" in done.stderr
     remote = pd.read_parquet(tmp_path / "dask.parquet")
@@ -216,26 +228,27 @@ def test_resume_keeps_finished_rows_and_runs_only_the_missing_points(tmp_path):
 @pytest.mark.parametrize("signum, code, said", [(signal.SIGINT, 130, "mcar: interrupted"),
                                                (signal.SIGTERM, 143, "mcar: terminated")])
 def test_a_signal_keeps_the_finished_rows_and_resume_finishes(tmp_path, signum, code, said):
-    words = [ROBOT, "--vary", "wheel_radius=25mm..45mm:30", "--vary", "track_width=0.16",
+    words = [ROBOT, "--vary", f"wheel_radius=25mm..45mm:{SIGNALLED}", "--vary", "track_width=0.16",
              "--jobs", "1", "-o", "r.parquet"]
     process = subprocess.Popen([str(MCAR), "sweep", *words], cwd=tmp_path,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 120
     while not (tmp_path / "r.parquet").exists() and time.monotonic() < deadline:
-        time.sleep(0.2)  # the file is first saved after some rows are done
+        time.sleep(0.2)  # the file is saved with the first row done
     process.send_signal(signum)
     _, stderr = process.communicate(timeout=60)
     assert process.returncode == code, stderr
     kept = pd.read_parquet(tmp_path / "r.parquet")
-    assert 0 < len(kept) < 30
+    assert 0 < len(kept) < SIGNALLED
     assert stderr.splitlines()[-2:] == [
-        f"mcar sweep: {len(kept)} of 30 points kept in r.parquet; --resume runs the rest",
+        f"mcar sweep: {len(kept)} of {SIGNALLED} points kept in r.parquet; --resume runs the "
+        "rest",
         said]
     assert set(kept["status"]) == {"ok"} and kept["speed_ratio"].notna().all()
     done = sweep(*words, "--resume", cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     frame = pd.read_parquet(tmp_path / "r.parquet")
-    assert list(frame["point"]) == list(range(30)) and set(frame["status"]) == {"ok"}
+    assert list(frame["point"]) == list(range(SIGNALLED)) and set(frame["status"]) == {"ok"}
     pd.testing.assert_frame_equal(frame.iloc[:len(kept)].reset_index(drop=True), kept)
 
 
@@ -303,27 +316,25 @@ def test_on_dask_a_point_that_kills_its_workers_is_reported(tmp_path, monkeypatc
             "and gave up (allowed-failures)") in done.stderr.splitlines()
 
 
-def test_on_dask_ctrl_c_keeps_the_finished_rows_and_resume_finishes(tmp_path):
-    distributed = pytest.importorskip("distributed", reason="the sweep extra installs Dask")
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  host="127.0.0.1", dashboard_address=None) as cluster:
-        words = [ROBOT, "--vary", "wheel_radius=25mm..45mm:60", "--vary", "track_width=0.16",
-                 "--scheduler", cluster.scheduler_address, "-o", "r.parquet"]
-        process = subprocess.Popen([str(MCAR), "sweep", *words], cwd=tmp_path,
-                                   stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        deadline = time.monotonic() + 120
-        while not (tmp_path / "r.parquet").exists() and time.monotonic() < deadline:
-            time.sleep(0.2)
-        process.send_signal(signal.SIGINT)
-        _, stderr = process.communicate(timeout=60)
-        assert process.returncode == 130, stderr
-        kept = pd.read_parquet(tmp_path / "r.parquet")
-        assert 0 < len(kept) < 60 and set(kept["status"]) == {"ok"}
-        done = sweep(*words, "--resume", cwd=tmp_path)
+def test_on_dask_ctrl_c_keeps_the_finished_rows_and_resume_finishes(dask_cluster, tmp_path):
+    words = [ROBOT, "--vary", f"wheel_radius=25mm..45mm:{SIGNALLED}", "--vary",
+             "track_width=0.16", "--scheduler", dask_cluster.scheduler_address, "-o",
+             "r.parquet"]
+    process = subprocess.Popen([str(MCAR), "sweep", *words], cwd=tmp_path,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not (tmp_path / "r.parquet").exists() and time.monotonic() < deadline:
+        time.sleep(0.2)
+    process.send_signal(signal.SIGINT)
+    _, stderr = process.communicate(timeout=60)
+    assert process.returncode == 130, stderr
+    kept = pd.read_parquet(tmp_path / "r.parquet")
+    assert 0 < len(kept) < SIGNALLED and set(kept["status"]) == {"ok"}
+    done = sweep(*words, "--resume", cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     assert f"{len(kept)} from the earlier run" in done.stderr
     frame = pd.read_parquet(tmp_path / "r.parquet")
-    assert list(frame["point"]) == list(range(60)) and set(frame["status"]) == {"ok"}
+    assert list(frame["point"]) == list(range(SIGNALLED)) and set(frame["status"]) == {"ok"}
 
 
 def test_a_terminal_sees_a_progress_bar_and_a_log_does_not(tmp_path):

@@ -111,17 +111,37 @@ def mcar_bin() -> Path:
     return MCAR
 
 
+@pytest.fixture(scope="session", autouse=True)
+def _launcher():
+    """The process mcar runs are forked from (tests/zygote.py), ended with the session."""
+    import zygote
+
+    yield
+    zygote.close_shared()
+
+
+def mcar_process(*args, cwd=None, input=None, env=None, timeout=120, text=True):
+    """`mcar ARGS` as its own process, as a user runs it, started through tests/zygote.py;
+    what subprocess.run(..., capture_output=True) returns. ``env`` replaces the whole
+    environment; ROS's package variables are never passed on."""
+    from zygote import run_mcar_process
+
+    full_env = dict(os.environ if env is None else env)
+    full_env.pop("ROS_PACKAGE_PATH", None)
+    full_env.pop("AMENT_PREFIX_PATH", None)
+    return run_mcar_process(MCAR, args, cwd=cwd, input=input, env=full_env, timeout=timeout,
+                            text=text)
+
+
 @pytest.fixture
 def run_mcar(mcar_bin):
-    """Run the installed `mcar` as a subprocess: run_mcar("build", "x.xacro", cwd=...)."""
+    """Run the installed `mcar` as its own process: run_mcar("build", "x.xacro", cwd=...),
+    ``env`` adding to the environment; what subprocess.run(..., capture_output=True,
+    text=True) returns."""
 
     def run(*args, cwd=None, input=None, env=None, timeout=120):
-        full_env = dict(os.environ)
-        full_env.pop("ROS_PACKAGE_PATH", None)
-        full_env.pop("AMENT_PREFIX_PATH", None)
-        full_env.update(env or {})
-        return subprocess.run([str(mcar_bin), *map(str, args)], cwd=cwd, input=input,
-                              capture_output=True, text=True, env=full_env, timeout=timeout)
+        return mcar_process(*args, cwd=cwd, input=input, env={**os.environ, **(env or {})},
+                            timeout=timeout)
 
     return run
 

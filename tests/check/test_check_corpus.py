@@ -22,6 +22,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
+from conftest import mcar_process
 
 CORPUS = Path(__file__).resolve().parents[1] / "check_corpus"
 VALID = sorted((CORPUS / "valid").glob("*.urdf")) + \
@@ -45,7 +46,7 @@ def _robot_file(case: Path, tmp_path: Path) -> Path:
 def test_valid_robot_prints_what_check_urdf_prints(case, tmp_path, check_urdf, mcar_bin):
     path = _robot_file(case, tmp_path)
     theirs = subprocess.run([check_urdf, str(path)], capture_output=True, timeout=60)
-    ours = subprocess.run([str(mcar_bin), "check", str(path)], capture_output=True, timeout=60)
+    ours = mcar_process("check", path, timeout=60, text=False)
     assert theirs.returncode == 0, theirs.stderr.decode(errors="replace")
     assert re.fullmatch(r"(size: [0-9.]+ x [0-9.]+ x [0-9.]+ m\n)?", ours.stderr.decode())
     assert ours.returncode == 0

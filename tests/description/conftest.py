@@ -9,8 +9,6 @@ per file.
 
 from __future__ import annotations
 
-import os
-import subprocess
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -47,10 +45,9 @@ def pytest_generate_tests(metafunc):
 def built_dir(mcar_bin, tmp_path_factory) -> Path:
     """Every robot file of the checkout, built by one `mcar build REPO -o DIR` run."""
     out = tmp_path_factory.mktemp("built")
-    env = {k: v for k, v in os.environ.items()
-           if k not in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")}
-    done = subprocess.run([str(mcar_bin), "build", str(REPO), "-o", str(out), "--quiet"],
-                          capture_output=True, text=True, env=env, timeout=120)
+    from conftest import mcar_process  # (tests/conftest.py)
+
+    done = mcar_process("build", REPO, "-o", out, "--quiet", timeout=120)
     assert done.returncode == 0, f"mcar build failed:\n{done.stderr}"
     assert done.stderr == "", f"mcar build warned:\n{done.stderr}"
     return out

@@ -4,11 +4,9 @@ both wheels and the castor touch z = 0 within 1 mm, nothing else is lower, plate
 
 from __future__ import annotations
 
-import subprocess
-
 import numpy as np
 import pytest
-from conftest import REPO, run_check_urdf
+from conftest import REPO, mcar_process, run_check_urdf
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
@@ -39,14 +37,12 @@ def test_there_are_a_smaller_and_a_larger_variant():
 def test_variant_builds_checks_and_stands(variant, mcar_bin, tmp_path, check_urdf, load_urdf,
                                           posed):
     out = tmp_path / "build"
-    done = subprocess.run([str(mcar_bin), "build", REPO, "--config", variant, "-o", out, "-q"],
-                          capture_output=True, text=True, timeout=120)
+    done = mcar_process("build", REPO, "--config", variant, "-o", out, "-q", timeout=120)
     assert done.returncode == 0, done.stderr
     robot = out / "mobile_robot.urdf"
-    strict = subprocess.run([str(mcar_bin), "check", "--strict", "-q", "--config", variant,
-                             *sorted(REPO.glob("urdf/**/*.urdf.xacro")),
-                             REPO / "urdf" / "mobile_robot.xacro"],
-                            capture_output=True, text=True, timeout=120)
+    strict = mcar_process("check", "--strict", "-q", "--config", variant,
+                          *sorted(REPO.glob("urdf/**/*.urdf.xacro")),
+                          REPO / "urdf" / "mobile_robot.xacro", timeout=120)
     assert (strict.returncode, strict.stderr) == (0, "")
     checked = run_check_urdf(check_urdf, robot)
     assert checked.returncode == 0, checked.stderr
@@ -54,8 +50,9 @@ def test_variant_builds_checks_and_stands(variant, mcar_bin, tmp_path, check_urd
     urdf = load_urdf(robot)
     assert_stands_level(urdf, posed)
     wheel = urdf.link_map["wheel_left_link"].collisions[0].geometry.cylinder
-    config = subprocess.run([str(mcar_bin), "config", "--format", "json", "--config", variant],
-                            capture_output=True, text=True, check=True).stdout
+    done = mcar_process("config", "--format", "json", "--config", variant)
+    assert done.returncode == 0, done.stderr
+    config = done.stdout
     import json
 
     assert wheel.radius == json.loads(config)["dimensions"]["wheel_radius"]["value"]

@@ -1,7 +1,8 @@
 """Every command over every input kind: the same inputs, the same refusals, the same words.
 
 The table is tests/load/every_command.txt (its header says how to read it). Each command
-runs as a user runs it, as its own process in an empty folder.
+runs as a user runs it, as its own process in an empty folder (started through
+tests/zygote.py).
 """
 
 from __future__ import annotations
@@ -10,16 +11,14 @@ import os
 import re
 import shlex
 import subprocess
-import sys
 from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-from conftest import REPO
+from conftest import REPO, mcar_process
 
 HERE = Path(__file__).resolve().parent
 TABLE = HERE / "every_command.txt"
-MCAR = Path(sys.executable).parent / "mcar"
 COMMANDS = ("build", "check", "tree", "render", "ci", "config")
 # Options that keep the run fast and its outputs inside the folder; not the subject here.
 EXTRA = {"render": ["--size", "160x120"],
@@ -59,11 +58,10 @@ ROWS = _rows()
 
 
 def run(command: str, row: Row, cwd: Path) -> subprocess.CompletedProcess:
-    env = {k: v for k, v in os.environ.items()
-           if k not in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH", "NO_COLOR")}
+    env = {k: v for k, v in os.environ.items() if k != "NO_COLOR"}
     data = row.stdin.read_bytes() if row.stdin else None
-    return subprocess.run([str(MCAR), command, *row.words, *EXTRA.get(command, [])], cwd=cwd,
-                          input=data, capture_output=True, env=env, timeout=180)
+    return mcar_process(command, *row.words, *EXTRA.get(command, []), cwd=cwd, input=data,
+                        env=env, timeout=180, text=False)
 
 
 @pytest.mark.parametrize("row", ROWS, ids=[f"{r.line}-{r.kind}" for r in ROWS])

@@ -7,11 +7,10 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import re
-import subprocess
 
 import pytest
+from conftest import mcar_process
 
 KINDS = ("differential", "skid-steer", "ackermann")
 # config.xacro's defaults: wheel_radius 0.05 m, wheel_speed 10 rad/s (sim commands half),
@@ -26,10 +25,7 @@ DRIVEN = {"differential": ["wheel_left_joint", "wheel_right_joint"],
 
 
 def _mcar(mcar_bin, *args, cwd):
-    env = {k: v for k, v in os.environ.items()
-           if k not in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")}
-    return subprocess.run([str(mcar_bin), *map(str, args)], cwd=cwd, capture_output=True,
-                          text=True, env=env, timeout=300)
+    return mcar_process(*args, cwd=cwd, timeout=300)
 
 
 @pytest.fixture(scope="module", params=KINDS)

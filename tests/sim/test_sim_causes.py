@@ -7,11 +7,10 @@ reports."""
 from __future__ import annotations
 
 import json
-import os
 import re
-import subprocess
 
 import pytest
+from conftest import mcar_process
 
 ROBOT = "urdf/bot_description.urdf.xacro"
 NUMBER = r"([\d.]+)"
@@ -20,8 +19,7 @@ NUMBER = r"([\d.]+)"
 @pytest.fixture(scope="module")
 def package(mcar_bin, tmp_path_factory):
     folder = tmp_path_factory.mktemp("causes")
-    made = subprocess.run([str(mcar_bin), "init", "bot_description"], cwd=folder,
-                          capture_output=True, text=True)
+    made = mcar_process("init", "bot_description", cwd=folder)
     assert made.returncode == 0, made.stderr
     return folder / "bot_description"
 
@@ -31,11 +29,8 @@ def sim(mcar_bin, package):
     """`mcar sim ROBOT --set NAME=VALUE --format json`: (exit code, {scenario: message})."""
 
     def run(*settings):
-        env = {k: v for k, v in os.environ.items() if k != "ROS_PACKAGE_PATH"}
         args = [a for s in settings for a in ("--set", s)]
-        done = subprocess.run([str(mcar_bin), "sim", ROBOT, *args, "--format", "json"],
-                              cwd=package, capture_output=True, text=True, env=env,
-                              timeout=300)
+        done = mcar_process("sim", ROBOT, *args, "--format", "json", cwd=package, timeout=300)
         (robot,) = json.loads(done.stdout)["files"]
         return done.returncode, {s["name"]: s["message"] for s in robot["scenarios"]}
 

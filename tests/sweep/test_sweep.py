@@ -13,7 +13,7 @@ import time
 from pathlib import Path
 
 import pytest
-from conftest import MCAR, REPO
+from conftest import MCAR, REPO, mcar_process
 
 pd = pytest.importorskip("pandas", reason="the sweep extra (pip install 'mcar[sweep]')")
 
@@ -31,11 +31,8 @@ SIGNALLED = 12
 
 
 def sweep(*args, cwd, env=None, timeout=300):
-    full_env = {k: v for k, v in os.environ.items()
-                if k not in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")}
-    full_env.update(env or {})
-    return subprocess.run([str(MCAR), "sweep", *map(str, args)], cwd=cwd, env=full_env,
-                          capture_output=True, text=True, timeout=timeout)
+    return mcar_process("sweep", *args, cwd=cwd, env={**os.environ, **(env or {})},
+                        timeout=timeout)
 
 
 def findings(frame):

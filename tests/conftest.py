@@ -120,17 +120,21 @@ def _launcher():
     zygote.close_shared()
 
 
+def clean_environ() -> dict:
+    """This environment without ROS's package variables (a test gives them when it wants)."""
+    return {name: value for name, value in os.environ.items()
+            if name not in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")}
+
+
 def mcar_process(*args, cwd=None, input=None, env=None, timeout=120, text=True):
     """`mcar ARGS` as its own process, as a user runs it, started through tests/zygote.py;
-    what subprocess.run(..., capture_output=True) returns. ``env`` replaces the whole
-    environment; ROS's package variables are never passed on."""
+    what subprocess.run(..., capture_output=True) returns. ``env``: the whole environment
+    (default: clean_environ())."""
     from zygote import run_mcar_process
 
-    full_env = dict(os.environ if env is None else env)
-    full_env.pop("ROS_PACKAGE_PATH", None)
-    full_env.pop("AMENT_PREFIX_PATH", None)
-    return run_mcar_process(MCAR, args, cwd=cwd, input=input, env=full_env, timeout=timeout,
-                            text=text)
+    return run_mcar_process(MCAR, args, cwd=cwd, input=input,
+                            env=clean_environ() if env is None else dict(env),
+                            timeout=timeout, text=text)
 
 
 @pytest.fixture
@@ -140,7 +144,7 @@ def run_mcar(mcar_bin):
     text=True) returns."""
 
     def run(*args, cwd=None, input=None, env=None, timeout=120):
-        return mcar_process(*args, cwd=cwd, input=input, env={**os.environ, **(env or {})},
+        return mcar_process(*args, cwd=cwd, input=input, env={**clean_environ(), **(env or {})},
                             timeout=timeout)
 
     return run

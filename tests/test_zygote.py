@@ -8,7 +8,7 @@ import re
 import subprocess
 
 import pytest
-from conftest import MCAR, REPO, mcar_process
+from conftest import MCAR, REPO, clean_environ, mcar_process
 
 CAR = REPO / "urdf" / "mobile_robot.xacro"
 BROKEN = '<robot name="r"><link name="a"/><joint name="j" type="fixed"><parent link="a"/>' \
@@ -46,7 +46,7 @@ def _untimed(text: str) -> str:
 
 
 def test_a_run_has_its_own_environment_and_leaves_the_launchers_alone(tmp_path):
-    env = {**os.environ, "MCAR_MAX_INPUT_MB": "-1"}
+    env = {**clean_environ(), "MCAR_MAX_INPUT_MB": "-1"}
     refused = mcar_process("check", CAR, cwd=tmp_path, env=env)
     assert refused.returncode == 2
     assert "MCAR_MAX_INPUT_MB=-1: must be between" in refused.stderr
@@ -56,7 +56,7 @@ def test_a_run_has_its_own_environment_and_leaves_the_launchers_alone(tmp_path):
 
 def test_a_run_past_its_timeout_is_killed_and_the_next_one_runs(tmp_path):
     (tmp_path / "slow.xacro").write_text(RUNAWAY)
-    env = {**os.environ, "MCAR_XACRO_TIMEOUT": "600"}
+    env = {**clean_environ(), "MCAR_XACRO_TIMEOUT": "600"}
     with pytest.raises(subprocess.TimeoutExpired):
         mcar_process("build", "slow.xacro", "-o", "out.urdf", cwd=tmp_path, env=env, timeout=2)
     assert mcar_process("check", "-q", CAR, cwd=tmp_path).returncode == 0
@@ -67,7 +67,7 @@ def test_variables_read_as_python_starts_get_a_new_interpreter(tmp_path):
     sitecustomize.py found there."""
     (tmp_path / "sitecustomize.py").write_text(
         f"open({str(tmp_path / 'started')!r}, 'w').close()\n")
-    env = {**os.environ, "PYTHONPATH": str(tmp_path)}
+    env = {**clean_environ(), "PYTHONPATH": str(tmp_path)}
     done = mcar_process("check", "-q", CAR, cwd=tmp_path, env=env)
     assert done.returncode == 0, done.stderr
     assert (tmp_path / "started").exists()

@@ -7,7 +7,6 @@ tests/zygote.py).
 
 from __future__ import annotations
 
-import os
 import re
 import shlex
 import subprocess
@@ -15,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-from conftest import REPO, mcar_process
+from conftest import REPO, clean_environ, mcar_process
 
 HERE = Path(__file__).resolve().parent
 TABLE = HERE / "every_command.txt"
@@ -58,7 +57,7 @@ ROWS = _rows()
 
 
 def run(command: str, row: Row, cwd: Path) -> subprocess.CompletedProcess:
-    env = {k: v for k, v in os.environ.items() if k != "NO_COLOR"}
+    env = {k: v for k, v in clean_environ().items() if k != "NO_COLOR"}
     data = row.stdin.read_bytes() if row.stdin else None
     return mcar_process(command, *row.words, *EXTRA.get(command, []), cwd=cwd, input=data,
                         env=env, timeout=180, text=False)

@@ -13,7 +13,7 @@ import time
 from pathlib import Path
 
 import pytest
-from conftest import MCAR, REPO, mcar_process
+from conftest import MCAR, REPO, clean_environ, mcar_process
 
 pd = pytest.importorskip("pandas", reason="the sweep extra (pip install 'mcar[sweep]')")
 
@@ -31,7 +31,7 @@ SIGNALLED = 12
 
 
 def sweep(*args, cwd, env=None, timeout=300):
-    return mcar_process("sweep", *args, cwd=cwd, env={**os.environ, **(env or {})},
+    return mcar_process("sweep", *args, cwd=cwd, env={**clean_environ(), **(env or {})},
                         timeout=timeout)
 
 

@@ -95,8 +95,9 @@ while True:
     for fd in fds:
         os.close(fd)
     link.send(json.dumps({"pid": pid}).encode())
-    _, status = os.waitpid(pid, 0)
-    link.send(json.dumps({"code": os.waitstatus_to_exitcode(status)}).encode())
+    _, status, usage = os.wait4(pid, 0)
+    link.send(json.dumps({"code": os.waitstatus_to_exitcode(status),
+                          "cpu": usage.ru_utime + usage.ru_stime}).encode())
 """
 
 
@@ -181,7 +182,9 @@ class Zygote:
                     else:
                         selector.unregister(key.fd)
                         os.close(key.fd)
-        code = json.loads(self.link.recv(1 << 16))["code"]
+        ended = json.loads(self.link.recv(1 << 16))
+        code = ended["code"]
+        cpu_seconds[0] += ended["cpu"]
         stdout, stderr = (b"".join(output[fd]) for fd in (out_r, err_r))
         if text:
             stdout, stderr = _text(stdout, encoding), _text(stderr, encoding)
@@ -194,6 +197,7 @@ def _text(data: bytes, encoding: str) -> str:
 
 
 _shared: list = []  # this test process's launcher, started on first use
+cpu_seconds = [0.0]  # CPU time of the runs it started (not counted as this process's child)
 
 
 def run_mcar_process(mcar, args, cwd=None, input=None, env=None, timeout=120, text=True):

@@ -163,6 +163,21 @@ def cli():
     return invoke
 
 
+@pytest.fixture(scope="session")
+def gl_reason() -> str | None:
+    """Why OpenGL cannot run here, or None (the same probe mcar render uses)."""
+    from mobile_car.render.backend import GLProbe
+
+    return GLProbe().wait()
+
+
+@pytest.fixture
+def quiet_renderer(gl_reason) -> tuple[str, ...]:
+    """Arguments that pick a renderer without a fallback warning: the default where OpenGL
+    works, else the ray caster by name (for tests about output, not about renderers)."""
+    return () if gl_reason is None else ("--renderer", "raycast")
+
+
 @pytest.fixture
 def package_copy(tmp_path) -> Path:
     """A scratch copy of mobile_car_description that a test may edit."""

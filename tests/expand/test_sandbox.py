@@ -163,7 +163,8 @@ def test_the_xacro_child_dies_with_mcar(mcar_bin, tmp_path, how):
     assert not (tmp_path / "out.urdf").exists()
 
 
-def test_render_of_several_files_bounds_every_expansion(run_mcar, tmp_path, repo):
+def test_render_of_several_files_bounds_every_expansion(run_mcar, tmp_path, repo,
+                                                        quiet_renderer):
     """render finishes pictures on a worker thread; the expansions after the first must
     still run in the confined, time-limited child."""
     good = repo / "urdf" / "tutorial" / "04_xacro.xacro"
@@ -174,7 +175,7 @@ def test_render_of_several_files_bounds_every_expansion(run_mcar, tmp_path, repo
         '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
         '<link name="${9**9**9}"/></robot>\n')
     result = run_mcar("render", "a.xacro", "b.xacro", "c.xacro", "d.xacro",
-                      "--renderer", "raycast", "-o", "pictures", cwd=tmp_path,
+                      *quiet_renderer, "-o", "pictures", cwd=tmp_path,
                       env={"MCAR_XACRO_TIMEOUT": "3"}, timeout=120)
     assert result.returncode == 1, result.stderr
     assert "c.xacro:5: error: the xacro sandbox forbids running programs" in result.stderr

@@ -215,7 +215,7 @@ def test_attack_is_refused_within_bounds(case, tmp_path):
         assert lines == [], stderr
 
 
-def test_compressed_meshes_within_the_cap_still_load(run_mcar, tmp_path):
+def test_compressed_meshes_within_the_cap_still_load(run_mcar, tmp_path, quiet_renderer):
     """What the cap must not break: a gzip'd and a zipped STL are checked and drawn."""
     trimesh = pytest.importorskip("trimesh")
     stl = trimesh.creation.box(extents=(0.1, 0.2, 0.3)).export(file_type="stl")
@@ -223,6 +223,6 @@ def test_compressed_meshes_within_the_cap_still_load(run_mcar, tmp_path):
         robot = _robot_with(tmp_path, name, data)
         result = run_mcar("check", "--strict", robot, cwd=tmp_path)
         assert result.returncode == 0, result.stderr
-        result = run_mcar("render", robot, "-o", "out.png", "--renderer", "raycast",
-                          "--size", "64x64", "-q", cwd=tmp_path)
+        result = run_mcar("render", robot, "-o", "out.png", *quiet_renderer, "--size", "64x64",
+                          "-q", cwd=tmp_path)
         assert result.returncode == 0, result.stderr

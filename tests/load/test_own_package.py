@@ -30,7 +30,7 @@ def package(tmp_path):
 
 
 @pytest.mark.parametrize("where", [".", "urdf/arm"])
-def test_commands_work_on_the_package_you_stand_in(run_mcar, package, where):
+def test_commands_work_on_the_package_you_stand_in(run_mcar, package, where, quiet_renderer):
     cwd = package / where
     said = f"mcar: package my_robot ({package})"
     built = run_mcar("build", cwd=cwd)
@@ -38,11 +38,11 @@ def test_commands_work_on_the_package_you_stand_in(run_mcar, package, where):
     assert built.stderr.splitlines()[0] == said
     assert "1 of 1 files built" in built.stderr  # its one robot, not the mobile car's
     assert (package / "build" / "my_robot.urdf").is_file()
-    ci = run_mcar("ci", "--renderer", "raycast", cwd=cwd)
+    ci = run_mcar("ci", *quiet_renderer, cwd=cwd)
     assert ci.returncode == 0, ci.stderr
     assert ci.stderr.splitlines()[0] == said
     assert "mcar ci: 1 of 1 files passed" in ci.stderr
-    render = run_mcar("render", "--renderer", "raycast", "--force", cwd=cwd)
+    render = run_mcar("render", *quiet_renderer, "--force", cwd=cwd)
     assert render.returncode == 0, render.stderr
     assert render.stderr.splitlines()[0] == said
     assert (package / "renders" / "my_robot.png").is_file()

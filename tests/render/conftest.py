@@ -128,24 +128,9 @@ def px() -> type[PixelTools]:
     return PixelTools
 
 
-@pytest.fixture(scope="session")
-def gl_reason() -> str | None:
-    """Why OpenGL cannot run here, or None (the same probe mcar render uses)."""
-    from mobile_car.render.backend import GLProbe
-
-    return GLProbe().wait()
-
-
 @pytest.fixture
 def needs_gl(gl_reason):
     """Skip a test that is about the OpenGL renderer where there is none."""
     if gl_reason is not None:
         pytest.skip(f"OpenGL (EGL) is not available: {gl_reason} (Debian packages libegl1 "
                     "libegl-mesa0 libgl1-mesa-dri libgl1; `make test` installs them)")
-
-
-@pytest.fixture
-def quiet_renderer(gl_reason) -> tuple[str, ...]:
-    """Arguments that pick a renderer without a fallback warning: the default where OpenGL
-    works, else the ray caster by name (for tests about output, not about renderers)."""
-    return () if gl_reason is None else ("--renderer", "raycast")

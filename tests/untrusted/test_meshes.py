@@ -148,12 +148,12 @@ OVER_LIMIT = [
 @pytest.mark.parametrize(("make", "name", "reason"), OVER_LIMIT,
                          ids=[case[1] for case in OVER_LIMIT])
 def test_a_mesh_over_a_limit_is_a_located_warning_and_a_magenta_box(tmp_path, make, name,
-                                                                    reason):
+                                                                    reason, quiet_renderer):
     make(tmp_path)
     robot = _robot(tmp_path, name)
     before = _digests(tmp_path)
-    result, seconds, peak_mb = _run("render", robot, "-o", "out.png", "--renderer",
-                                    "raycast", "--size", "320x240", cwd=tmp_path)
+    result, seconds, peak_mb = _run("render", robot, "-o", "out.png", *quiet_renderer,
+                                    "--size", "320x240", cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     warning, summary = result.stderr.splitlines()
     assert warning.startswith(f"robot.urdf:{MESH_LINE}: warning: mesh '{name}' not read: ")
@@ -166,13 +166,13 @@ def test_a_mesh_over_a_limit_is_a_located_warning_and_a_magenta_box(tmp_path, ma
     assert {name: after.get(name) for name in before} == before
 
 
-def test_without_the_marker_the_picture_has_no_magenta(tmp_path):
+def test_without_the_marker_the_picture_has_no_magenta(tmp_path, quiet_renderer):
     """The pixel test above can fail: a robot without the over-limit mesh shows none."""
     robot = _robot(tmp_path, "none.stl")
     robot.write_text(robot.read_text().replace(
         '<mesh filename="none.stl"/>', '<box size="0.2 0.2 0.2"/>'))
-    result, _, _ = _run("render", robot, "-o", "out.png", "--renderer", "raycast",
-                        "--size", "320x240", cwd=tmp_path)
+    result, _, _ = _run("render", robot, "-o", "out.png", *quiet_renderer, "--size", "320x240",
+                        cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert _magenta(tmp_path / "out.png") == 0
 
@@ -206,12 +206,11 @@ def test_the_limits_can_be_raised(tmp_path):
                                      "and 1e+10 faces")
 
 
-def test_a_binary_stl_whose_header_lies_is_a_broken_mesh(tmp_path):
+def test_a_binary_stl_whose_header_lies_is_a_broken_mesh(tmp_path, quiet_renderer):
     _lying_stl(tmp_path)
     robot = _robot(tmp_path, "lies.stl")
     before = _digests(tmp_path)
-    result, seconds, _ = _run("render", robot, "-o", "out.png", "--renderer", "raycast",
-                              cwd=tmp_path)
+    result, seconds, _ = _run("render", robot, "-o", "out.png", *quiet_renderer, cwd=tmp_path)
     assert result.returncode == 0  # drawn, the mesh as a marker: a warning, as in check
     assert result.stderr.splitlines()[0] == (
         f"robot.urdf:{MESH_LINE}: warning: mesh 'lies.stl' cannot be loaded: its binary STL "
@@ -240,7 +239,7 @@ def test_collada_nodes_instancing_nodes_are_counted_not_expanded(tmp_path):
     assert seconds < SECONDS
 
 
-def test_collada_entities_are_never_expanded(tmp_path):
+def test_collada_entities_are_never_expanded(tmp_path, quiet_renderer):
     """A billion laughs in a COLLADA: mcar parses it without entities and hands pycollada
     (whose parser allows huge trees) its root element only, the references unexpanded: a
     broken mesh at once, in bounded memory, the rest of the robot drawn."""
@@ -251,8 +250,8 @@ def test_collada_entities_are_never_expanded(tmp_path):
         "<COLLADA ", f"<!DOCTYPE COLLADA [{entities}]>\n<COLLADA ", 1).replace(
         "<asset>", "<asset><contributor><author>&e9;</author></contributor>", 1))
     robot = _robot(tmp_path, "laughs.dae")
-    result, seconds, peak_mb = _run("render", robot, "-o", "out.png", "--renderer",
-                                    "raycast", cwd=tmp_path)
+    result, seconds, peak_mb = _run("render", robot, "-o", "out.png", *quiet_renderer,
+                                    cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert result.stderr.startswith(f"robot.urdf:{MESH_LINE}: warning: mesh 'laughs.dae' "
                                     "cannot be loaded: ")

@@ -67,9 +67,10 @@ def test_a_picture_may_not_overwrite_the_texture_it_reads(run_mcar, tmp_path, ro
     assert _sha(texture) == before
 
 
-def test_editing_the_texture_or_the_material_redraws_the_picture(run_mcar, tmp_path):
+def test_editing_the_texture_or_the_material_redraws_the_picture(run_mcar, tmp_path,
+                                                                  quiet_renderer):
     _package(tmp_path)
-    args = ("render", "robot.urdf", "-o", "out/", "--renderer", "raycast", "--size", "64x64")
+    args = ("render", "robot.urdf", "-o", "out/", *quiet_renderer, "--size", "64x64")
     first = run_mcar(*args, cwd=tmp_path)
     assert first.returncode == 0, first.stderr
     picture = tmp_path / "out" / "robot.png"

@@ -10,6 +10,8 @@ repository with the files of readme/ beside it (the `my_robot.xacro`, `my_car.ya
 - A transcript (```` ``` ```` lines starting `$ `): the command's stdout and stderr must be
   the lines shown, up to a `...` line; its exit code is 1 if one of them reports an
   `error:`, else 0.
+- A line that is one `mcar` command of plain words runs as the one process bash would
+  start for it, through tests/zygote.py; any other line runs in bash.
 - Lines that only set up or measure (make, the venv, the benchmarks) are listed in
   NOT_RUN with the reason; anything else in a block is run. Examples of `--gazebo` and
   `--format sdf` (and `export --to sdf`) need the Gazebo helper (`make test` builds it):
@@ -28,7 +30,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from conftest import REPO
+from conftest import REPO, mcar_process
 
 README = REPO / "README.md"
 FIXTURES = Path(__file__).parent / "readme"
@@ -187,9 +189,7 @@ def _run_steps(tmp_path, steps, page: str) -> None:
     env["NO_COLOR"] = "1"
     failures = []
     for number, command, code, shown, folder in steps:
-        result = subprocess.run(["bash", "-o", "pipefail", "-c", command], cwd=workspace / folder,
-                                env=env, capture_output=True, text=True, timeout=300,
-                                stdin=subprocess.DEVNULL)
+        result = _run_line(command, workspace / folder, env)
         problem = None
         if result.returncode != code:
             problem = f"exit {result.returncode}, {page} says {code}"
@@ -203,6 +203,21 @@ def _run_steps(tmp_path, steps, page: str) -> None:
             failures.append(f"{page}:{number}: {command}\n  {problem}\n  stderr: "
                             f"{result.stderr.strip()[-400:]}")
     assert not failures, "\n".join(failures)
+
+
+# What makes a line more than one command with its words: the shell runs it.
+_SHELL = re.compile(r"""[|&;<>()$`*?~{}\[\]'"\\]""")
+
+
+def _run_line(command: str, cwd: Path, env: dict) -> subprocess.CompletedProcess:
+    """One example line, as bash runs it: a plain `mcar WORDS` line as the one process
+    bash would start (through tests/zygote.py), anything else by bash itself."""
+    words = command.split()
+    if words[0] == "mcar" and not _SHELL.search(command):
+        return mcar_process(*words[1:], cwd=cwd, env=env, timeout=300)
+    return subprocess.run(["bash", "-o", "pipefail", "-c", command], cwd=cwd, env=env,
+                          capture_output=True, text=True, timeout=300,
+                          stdin=subprocess.DEVNULL)
 
 
 # A pull request's base branch, as actions/checkout with fetch-depth: 0 leaves it.

@@ -71,3 +71,16 @@ def test_variables_read_as_python_starts_get_a_new_interpreter(tmp_path):
     done = mcar_process("check", "-q", CAR, cwd=tmp_path, env=env)
     assert done.returncode == 0, done.stderr
     assert (tmp_path / "started").exists()
+
+
+def test_a_library_set_up_by_a_variable_is_preloaded_as_mcar_would_set_it(tmp_path):
+    """MuJoCo reads MUJOCO_GL as it is imported: the launcher imports it as mcar does (EGL,
+    so that `sim --record` renders), and a run asking for another backend gets a new
+    interpreter."""
+    import zygote
+
+    mcar_process("--version", cwd=tmp_path)
+    launcher = zygote._shared[0]
+    assert launcher.usable({**clean_environ(), "MUJOCO_GL": "egl"})
+    assert not launcher.usable({**clean_environ(), "MUJOCO_GL": "osmesa"})
+    assert not launcher.usable({**clean_environ(), "LC_ALL": "C.UTF-8x"})

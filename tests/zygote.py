@@ -25,12 +25,13 @@ import sys
 import time
 
 # Imported once in the launcher: what mcar's commands import on their way.
+# (MuJoCo too, imported as mcar imports it: mobile_car.sim.engine sets MUJOCO_GL first.)
 PRELOAD = ("mobile_car.cli.main", "lxml.etree", "xacro", "yaml", "numpy", "PIL.Image",
-           "trimesh", "yourdfpy", "mujoco", "mobile_car.render.session",
-           "mobile_car.check.checker")
-# Variables read as the interpreter starts (stream encodings, paths, flags): a run given
-# other values than the launcher's is started as a real process instead.
-STARTUP_PREFIXES = ("PYTHON", "LC_", "LANG")
+           "trimesh", "yourdfpy", "mobile_car.render.session", "mobile_car.check.checker")
+# Variables read as the interpreter starts (stream encodings, paths, flags), or as a
+# preloaded library is imported: a run given other values than the launcher's is started
+# as a real process instead.
+STARTUP_PREFIXES = ("PYTHON", "LC_", "LANG", "MUJOCO_GL", "OMP_", "OPENBLAS_")
 
 _SERVER = r"""
 import atexit, importlib, json, os, socket, sys, threading, traceback
@@ -43,6 +44,12 @@ for name in json.loads(sys.argv[2]):
         importlib.import_module(name)
     except Exception:
         pass
+try:
+    from mobile_car.sim.engine import mujoco
+    mujoco()
+except Exception:
+    pass
+os.environ.pop("MUJOCO_GL", None)  # (each run has its own environment)
 
 
 def child(request, fds):
@@ -107,6 +114,8 @@ class Zygote:
 
     def __init__(self, mcar_path):
         self.mcar = str(mcar_path)
+        self.started_with = {name: value for name, value in os.environ.items()
+                             if name.startswith(STARTUP_PREFIXES)}
         self.link, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
         self.process = subprocess.Popen(
             [sys.executable, "-c", _SERVER, str(theirs.fileno()), json.dumps(PRELOAD), self.mcar],
@@ -117,8 +126,11 @@ class Zygote:
     def usable(self, env: dict) -> bool:
         if self.process.poll() is not None:
             return False
-        return all(env.get(name) == os.environ.get(name)
-                   for name in {*env, *os.environ} if name.startswith(STARTUP_PREFIXES))
+        if env.get("MUJOCO_GL", "egl") != "egl":  # (what mcar sets when none is given)
+            return False
+        return all(env.get(name) == self.started_with.get(name)
+                   for name in {*env, *self.started_with}
+                   if name.startswith(STARTUP_PREFIXES) and name != "MUJOCO_GL")
 
     def close(self) -> None:
         self.link.close()  # the launcher's loop ends

@@ -113,9 +113,11 @@ def mcar_bin() -> Path:
 
 @pytest.fixture(scope="session", autouse=True)
 def _launcher():
-    """The process mcar runs are forked from (tests/zygote.py), ended with the session."""
+    """The process mcar runs are forked from (tests/zygote.py): started before the first
+    test can change the environment, ended with the session."""
     import zygote
 
+    zygote.start_shared(MCAR)
     yield
     zygote.close_shared()
 

@@ -112,14 +112,14 @@ class Zygote:
     """One launcher process; `run` is `subprocess.run([mcar, *args], capture_output=True,
     text=True, ...)` for one run at a time."""
 
-    def __init__(self, mcar_path):
+    def __init__(self, mcar_path, environ: dict):
         self.mcar = str(mcar_path)
-        self.started_with = {name: value for name, value in os.environ.items()
+        self.started_with = {name: value for name, value in environ.items()
                              if name.startswith(STARTUP_PREFIXES)}
         self.link, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
         self.process = subprocess.Popen(
             [sys.executable, "-c", _SERVER, str(theirs.fileno()), json.dumps(PRELOAD), self.mcar],
-            cwd="/", pass_fds=[theirs.fileno()], stdin=subprocess.DEVNULL,
+            cwd="/", env=environ, pass_fds=[theirs.fileno()], stdin=subprocess.DEVNULL,
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         theirs.close()
 
@@ -208,7 +208,10 @@ def _text(data: bytes, encoding: str) -> str:
     return data.decode(encoding).replace("\r\n", "\n").replace("\r", "\n")
 
 
-_shared: list = []  # this test process's launcher, started on first use
+_shared: list = []  # this test process's launcher
+# The environment the launcher starts in: the test process's before any test changed it
+# (a launcher started inside a test that set PYTHONPATH would have imported from there).
+_environ: dict = {}
 cpu_seconds = [0.0]  # CPU time of the runs it started (not counted as this process's child)
 
 
@@ -217,12 +220,18 @@ def run_mcar_process(mcar, args, cwd=None, input=None, env=None, timeout=120, te
     it may stand in for a new interpreter (``env``: the whole environment)."""
     env = dict(os.environ) if env is None else env
     if not _shared or _shared[0].process.poll() is not None:
-        _shared[:] = [Zygote(mcar)]
+        _shared[:] = [Zygote(mcar, _environ or dict(os.environ))]
     if _shared[0].usable(env):
         return _shared[0].run([str(a) for a in args], cwd=cwd, input=input, env=env,
                               timeout=timeout, text=text)
     return subprocess.run([str(mcar), *map(str, args)], cwd=cwd, input=input,
                           capture_output=True, text=text, env=env, timeout=timeout)
+
+
+def start_shared(mcar) -> None:
+    """Start the launcher now, in this environment (at the session's start)."""
+    _environ.update(os.environ)
+    _shared[:] = [Zygote(mcar, _environ)]
 
 
 def close_shared() -> None:

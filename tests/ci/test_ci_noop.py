@@ -4,11 +4,12 @@ built again."""
 
 from __future__ import annotations
 
-import os
 import re
 import subprocess
 import sys
 from pathlib import Path
+
+from conftest import clean_environ, mcar_process
 
 HEAVY = ("xacro", "lxml", "numpy", "trimesh", "moderngl", "yourdfpy", "PIL", "mujoco")
 MAIN = "import sys; from mobile_car.cli.main import main; sys.argv[0] = 'mcar'; main()"
@@ -18,12 +19,14 @@ USES_MOTOR = {"motor/test_motor.urdf", "mobile_robot.urdf", "variants/large/mobi
 
 
 def run_ci(package: Path, work: Path, junit: str, trace: bool = False):
-    env = {k: v for k, v in os.environ.items()
-           if k not in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")}
-    python = [sys.executable, "-X", "importtime"] if trace else [sys.executable]
-    return subprocess.run([*python, "-c", MAIN, "ci", str(package), "--build-dir", "out",
-                           "--render-dir", "pictures", "--junit-xml", junit],
-                          cwd=work, env=env, capture_output=True, text=True, timeout=300)
+    """`mcar ci` of ``package``; ``trace``: in a new interpreter that reports each module it
+    imports (`python -X importtime`), else started as run_mcar starts runs."""
+    args = ["ci", str(package), "--build-dir", "out", "--render-dir", "pictures",
+            "--junit-xml", junit]
+    if not trace:
+        return mcar_process(*args, cwd=work, timeout=300)
+    return subprocess.run([sys.executable, "-X", "importtime", "-c", MAIN, *args], cwd=work,
+                          env=clean_environ(), capture_output=True, text=True, timeout=300)
 
 
 def report(done, work: Path, junit: str):

@@ -88,11 +88,20 @@ def run_local(job: SweepJob, points: list[Point], jobs: int,
         pool = _pool(min(jobs, len(todo)))
         running: dict = {}
         hit: list[Point] = []  # running when a worker died: any of them may be the cause
+        broken = False  # a worker died while rows were being written: submit refused
         try:
-            while (todo or running) and not hit:
+            while (todo or running) and not hit and not broken:
                 while todo and len(running) < jobs:  # never more queued than running:
                     point = todo.popleft()           # a dying worker takes only these
-                    running[pool.submit(evaluate_point, job, point.index, point.values)] = point
+                    try:
+                        future = pool.submit(evaluate_point, job, point.index, point.values)
+                    except BrokenProcessPool:
+                        todo.appendleft(point)  # never started: it runs in the next pool
+                        broken = True
+                        break
+                    running[future] = point
+                if broken:
+                    break
                 done, _ = wait(running, return_when=FIRST_COMPLETED)
                 for future in done:
                     point = running.pop(future)
@@ -100,7 +109,7 @@ def run_local(job: SweepJob, points: list[Point], jobs: int,
                         on_row(future.result())
                     except BrokenProcessPool:
                         hit.append(point)
-            if hit:
+            if hit or broken:
                 wait(running)  # the others fail with the pool, or finished just before
                 for future, point in running.items():
                     try:

@@ -84,3 +84,16 @@ def test_a_library_set_up_by_a_variable_is_preloaded_as_mcar_would_set_it(tmp_pa
     assert launcher.usable({**clean_environ(), "MUJOCO_GL": "egl"})
     assert not launcher.usable({**clean_environ(), "MUJOCO_GL": "osmesa"})
     assert not launcher.usable({**clean_environ(), "LC_ALL": "C.UTF-8x"})
+
+
+def test_what_a_dask_cluster_sets_in_its_maker_keeps_runs_launched(tmp_path):
+    """A LocalCluster sets PYTHONHASHSEED and the OMP/OpenBLAS thread counts in the test
+    process that makes it; mcar's runs after it still come from the launcher."""
+    import zygote
+
+    distributed = pytest.importorskip("distributed", reason="the sweep extra installs Dask")
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
+                                  host="127.0.0.1", dashboard_address=None):
+        drifted = clean_environ()
+    mcar_process("--version", cwd=tmp_path)
+    assert zygote._shared[0].usable(drifted)

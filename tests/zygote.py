@@ -29,9 +29,13 @@ import time
 PRELOAD = ("mobile_car.cli.main", "lxml.etree", "xacro", "yaml", "numpy", "PIL.Image",
            "trimesh", "yourdfpy", "mobile_car.render.session", "mobile_car.check.checker")
 # Variables read as the interpreter starts (stream encodings, paths, flags), or as a
-# preloaded library is imported: a run given other values than the launcher's is started
-# as a real process instead.
-STARTUP_PREFIXES = ("PYTHON", "LC_", "LANG", "MUJOCO_GL", "OMP_", "OPENBLAS_")
+# preloaded library is imported and that change what a run does: a run given other values
+# than the launcher's is started as a real process instead. Not PYTHONHASHSEED, nor the
+# thread counts of OMP_* and OPENBLAS_*: they change no result, and a Dask LocalCluster
+# sets them in the process that makes it, so a test worker that had made one would have
+# started every later run as a new interpreter.
+STARTUP_PREFIXES = ("PYTHON", "LC_", "LANG", "MUJOCO_GL")
+NO_MATTER = {"PYTHONHASHSEED"}
 
 _SERVER = r"""
 import atexit, importlib, json, os, socket, sys, threading, traceback
@@ -130,7 +134,8 @@ class Zygote:
             return False
         return all(env.get(name) == self.started_with.get(name)
                    for name in {*env, *self.started_with}
-                   if name.startswith(STARTUP_PREFIXES) and name != "MUJOCO_GL")
+                   if name.startswith(STARTUP_PREFIXES) and name != "MUJOCO_GL"
+                   and name not in NO_MATTER)
 
     def close(self) -> None:
         self.link.close()  # the launcher's loop ends

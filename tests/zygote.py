@@ -1,7 +1,7 @@
-"""`run_mcar`'s launcher: each run is a new process forked from one that has imported mcar
-and the libraries its commands load (numpy, trimesh, MuJoCo, ...), instead of a new
-interpreter importing them again: ~0.1 s of CPU saved on every run, ~1 s on every render,
-sim and ci. The suite runs ~750 of them.
+"""The tests' launcher of mcar runs (`run_mcar`, `mcar_process`): each run is a new process
+forked from one that has imported mcar and the libraries its commands load (numpy,
+trimesh, MuJoCo, ...), instead of a new interpreter importing them again: ~0.1 s of CPU
+saved on every run, ~1 s on every render, sim and ci, of the suite's ~1,300 runs.
 
 What the run sees is what `mcar ARGS` sees: its own process, `sys.argv`, working folder,
 environment, stdin, stdout and stderr pipes, exit code (or -N for a signal), and mcar's
@@ -9,7 +9,8 @@ start-up code (the console script's `main()`, its signal handlers). What it does
 exercise is the interpreter starting and importing: the tests that are about that (the
 imports a command makes, Ctrl-C during start-up, the installed script) start real
 processes of their own, and so does `run_mcar` whenever the environment it is given
-changes how Python starts (PYTHON*, locale variables).
+changes how Python starts or a preloaded library is set up (PYTHON*, locale variables,
+MUJOCO_GL).
 """
 
 from __future__ import annotations

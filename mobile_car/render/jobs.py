@@ -93,21 +93,30 @@ def blocking_diagnostics(result, collision: bool) -> list:
     return []
 
 
-def check_first(job: RenderJob, load, collision: bool, stdin=None) -> JobResult | None:
-    """Load and check the job's robot now, as its drawing would (``load``: LoadOptions):
-    the failed result when nothing may be drawn, else None, with the check kept on the job
-    for the drawing. A run of one robot calls this before it starts a drawing process and
-    imports numpy and trimesh (~1 s of CPU): a broken file is answered in a tenth of it."""
-    from ..check.checker import check_input
+def drawable_check(inp: RobotInput, load, collision: bool, stdin=None, checked=None):
+    """``inp`` loaded (``load``: LoadOptions) and checked, or ``checked``, a CheckResult
+    already made of it: the result, when the robot may be drawn; McarError when not
+    (CheckFailed carrying check's diagnostics)."""
+    if checked is None:
+        from ..check.checker import check_input
 
+        checked = check_input(inp, load, stdin=stdin)
+    blocking = blocking_diagnostics(checked, collision)
+    if blocking:
+        raise CheckFailed(inp.label, blocking)
+    return checked
+
+
+def check_first(job: RenderJob, load, collision: bool, stdin=None) -> JobResult | None:
+    """Load and check the job's robot now, as its drawing would: the failed result when
+    nothing may be drawn, else None, with the check kept on the job for the drawing. A run
+    of one robot calls this before it starts a drawing process and imports numpy and
+    trimesh (~1 s of CPU): a broken file is answered in a tenth of it."""
     started = time.perf_counter()
     try:
-        result = check_input(job.input, load, stdin=stdin)
-        blocking = blocking_diagnostics(result, collision)
+        job.checked = drawable_check(job.input, load, collision, stdin)
     except McarError as error:
         return JobResult(job, "failed", error=error, seconds=time.perf_counter() - started)
-    if blocking:
-        return JobResult(job, "failed", error=CheckFailed(job.input.label, blocking),
-                         seconds=time.perf_counter() - started)
-    job.checked = result
+    except Exception:  # unforeseen: the drawing meets it again and reports it, as before
+        return None
     return None

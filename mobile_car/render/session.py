@@ -20,8 +20,7 @@ from pathlib import Path
 from PIL import Image
 
 from ..atomic import atomic_write
-from ..check.checker import check_input
-from ..errors import CheckFailed, McarError, RenderError, RendererUnavailableError
+from ..errors import McarError, RenderError, RendererUnavailableError
 from ..freshness import Stamper, diagnostics_data, diagnostics_from
 from ..load.outputs import refuse_overwriting
 from ..load.robot import LoadedRobot, LoadOptions
@@ -31,7 +30,7 @@ from .drawing import DrawingFailed
 from .jobs import (  # noqa: F401
     JobResult,
     RenderJob,
-    blocking_diagnostics,
+    drawable_check,
     file_job,
     picture_name,
     picture_path,
@@ -162,10 +161,8 @@ class RenderSession:
                 return JobResult(job, "unchanged", seconds=time.perf_counter() - started,
                                  warnings=diagnostics_from(entry.get("warnings") or []))
         try:
-            result = job.checked or check_input(job.input, self.load, stdin=self.stdin)
-            blocking = blocking_diagnostics(result, self.options.collision)
-            if blocking:
-                raise CheckFailed(job.input.label, blocking)
+            result = drawable_check(job.input, self.load, self.options.collision, self.stdin,
+                                    job.checked)
             warnings = [d for d in result.diagnostics if d.rule in SHOWN_WARNINGS]
             kind = "collision" if self.options.collision else "visual"
             drawn = [mesh for mesh in result.mesh_files if mesh.kind == kind and mesh.path]

@@ -19,12 +19,12 @@ from pathlib import Path
 
 import yourdfpy
 
-from ..check.checker import check_input
-from ..errors import CheckFailed, McarError, RenderError
+from ..errors import McarError, RenderError
 from ..load.inputs import RobotInput
 from ..load.robot import LoadOptions
 from ..render.assembly import mesh_scene
-from ..render.session import SHOWN_WARNINGS, blocking_diagnostics, model_source
+from ..render.jobs import drawable_check
+from ..render.session import SHOWN_WARNINGS, model_source
 
 # The joint types a slider moves (and ``mcar render --joint`` poses).
 MOVING = ("revolute", "continuous", "prismatic")
@@ -62,10 +62,7 @@ class ViewModel:
 
 def load_model(inp: RobotInput, options: LoadOptions, stdin=None) -> ViewModel:
     """Load, check and parse one input; McarError (CheckFailed for check's findings)."""
-    result = check_input(inp, options, stdin=stdin)
-    blocking = blocking_diagnostics(result, collision=False)
-    if blocking:
-        raise CheckFailed(inp.label, blocking)
+    result = drawable_check(inp, options, collision=False, stdin=stdin)
     loaded = result.loaded
     source = model_source(loaded)
     meshes = [mesh.path for mesh in result.mesh_files if mesh.path is not None]

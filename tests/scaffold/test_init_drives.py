@@ -24,7 +24,7 @@ DRIVEN = {"differential": ["wheel_left_joint", "wheel_right_joint"],
           "ackermann": ["wheel_rear_left_joint", "wheel_rear_right_joint"]}
 
 
-def _mcar(mcar_bin, *args, cwd):
+def _mcar(*args, cwd):
     return mcar_process(*args, cwd=cwd, timeout=300)
 
 
@@ -33,12 +33,12 @@ def made(request, mcar_bin, tmp_path_factory):
     """(kind, package folder, `mcar sim --format json` of it, `mcar ci` of it)."""
     kind = request.param
     folder = tmp_path_factory.mktemp(kind)
-    init = _mcar(mcar_bin, "init", "my_bot_description", "--drive", kind, cwd=folder)
+    init = _mcar("init", "my_bot_description", "--drive", kind, cwd=folder)
     assert init.returncode == 0, init.stderr
     package = folder / "my_bot_description"
-    sim = _mcar(mcar_bin, "sim", "--format", "json", cwd=package)
+    sim = _mcar("sim", "--format", "json", cwd=package)
     assert sim.returncode == 0, sim.stderr
-    ci = _mcar(mcar_bin, "ci", "--strict", "--no-render", cwd=package)
+    ci = _mcar("ci", "--strict", "--no-render", cwd=package)
     return kind, package, json.loads(sim.stdout), ci
 
 
@@ -99,7 +99,7 @@ def test_a_new_part_used_twice_keeps_it_driving(made, mcar_bin):
     """`mcar new part` makes a macro that takes a name and reflect: the robot file calls
     it for a left and a right one (two links, no clash), and the robot still drives."""
     kind, package, _report, _ci = made
-    part = _mcar(mcar_bin, "new", "part", "bumper", cwd=package)
+    part = _mcar("new", "part", "bumper", cwd=package)
     assert part.returncode == 0, part.stderr
     robot = package / "urdf" / "my_bot_description.urdf.xacro"
     text = robot.read_text()
@@ -113,14 +113,14 @@ def test_a_new_part_used_twice_keeps_it_driving(made, mcar_bin):
   </xacro:bumper>
 </robot>"""
     robot.write_text(text.replace("</robot>", calls))
-    built = _mcar(mcar_bin, "build", robot, cwd=package)
+    built = _mcar("build", robot, cwd=package)
     assert built.returncode == 0, built.stderr
     assert '<link name="bumper_left_link">' in built.stdout
     assert '<link name="bumper_right_link">' in built.stdout
-    sim = _mcar(mcar_bin, "sim", robot, cwd=package)
+    sim = _mcar("sim", robot, cwd=package)
     assert sim.returncode == 0, sim.stdout + sim.stderr
     assert "mcar sim: 3 passed, 0 failed, 0 skipped in 1 file" in sim.stderr + sim.stdout
-    ci = _mcar(mcar_bin, "ci", "--strict", "--no-render", cwd=package)
+    ci = _mcar("ci", "--strict", "--no-render", cwd=package)
     assert ci.returncode == 0, ci.stderr
     assert f" {kind} 3/3 " in ci.stdout
     assert re.search(r"^bumper/test_bumper\.urdf\.xacro .* not a vehicle +- +ok$", ci.stdout,
@@ -153,7 +153,7 @@ def test_config_refuses_dimensions_that_do_not_fit_together(made, mcar_bin):
                       (("--set", "base_width=25cm"), "the wheels overlap the base: their "
                        "inner faces (track_width - wheel_width = 0.23 m apart) must be further "
                        "apart than base_width (0.25 m)")):
-        built = _mcar(mcar_bin, "build", robot, *args, "-o", "-", cwd=package)
+        built = _mcar("build", robot, *args, "-o", "-", cwd=package)
         assert (built.returncode, built.stdout) == (2, "")
         assert built.stderr == f"mcar: error: the dimensions do not fit together: {why}\n"
 

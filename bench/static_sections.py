@@ -121,7 +121,7 @@ def section_build(rows: list[str], work: Path, quick: bool) -> None:
               ("tutorial car (tutorial/04_xacro.xacro)",
                REPO / "urdf" / "tutorial" / "04_xacro.xacro"),
               ("500 macro calls (generated)", macros)]
-    runs = 3 if quick else 11
+    runs = 0 if quick else 11  # --quick: one watched run, timed (a smoke test)
     for label, path in inputs:
         peer_cmd, ours_cmd = [XACRO, str(path)], [MCAR, "build", str(path)]
         peer = measure([*peer_cmd, "-o", os.devnull], runs, env=env)
@@ -231,7 +231,7 @@ def section_folder(rows: list[str], work: Path, quick: bool) -> None:
             results = measure_rounds(
                 {"check": [MCAR, "check", str(folder)],
                  "build": [MCAR, "build", str(folder), "-o", f"{work / 'out' / folder.name}/"]},
-                3 if quick else 5)
+                0 if quick else 5)  # --quick: one watched run each, timed
             check, build = results["check"], results["build"]
             ratio = build.wall / check.wall if check.ok and build.ok else None
             met = None if per_file is None or not build.ok else (

@@ -29,8 +29,9 @@ SCREENSHOT_DIR = os.environ.get("MCAR_SCREENSHOT_DIR")
 SECONDS = 60  # every wait below is bounded by this
 
 
-@pytest.fixture
-def page():
+@pytest.fixture(scope="module")
+def browser():
+    """One chromium for the module's tests (its start is ~8 s of CPU with software GL)."""
     if not Path(CHROMIUM).exists():
         pytest.skip(f"{CHROMIUM} is not installed (Debian package chromium; `make test` "
                     "installs it)")
@@ -38,9 +39,19 @@ def page():
         browser = playwright.chromium.launch(executable_path=CHROMIUM, args=ARGS,
                                              timeout=SECONDS * 1000)
         try:
-            yield browser.new_page(viewport=VIEWPORT)
+            yield browser
         finally:
             browser.close()
+
+
+@pytest.fixture
+def page(browser):
+    """A page of its own (a new browser context: no cookies, storage or cache shared)."""
+    context = browser.new_context(viewport=VIEWPORT)
+    try:
+        yield context.new_page()
+    finally:
+        context.close()
 
 
 def _picture(page) -> np.ndarray:

@@ -27,11 +27,12 @@ import time
 
 # Imported once in the launcher: what mcar's commands import on their way.
 # (MuJoCo too, imported as mcar imports it: mobile_car.sim.engine sets MUJOCO_GL first.)
-# pandas: what `mcar sweep` writes its results with (0.7 s of CPU to import). Not Dask's
-# distributed: it adds exit handlers, which would run at the end of every run.
+# pandas: what `mcar sweep` writes its results with (0.7 s of CPU to import); pyseccomp:
+# the xacro sandbox's, whose import runs `ldconfig -p` twice. Not Dask's distributed: it
+# adds exit handlers, which would run at the end of every run.
 PRELOAD = ("mobile_car.cli.main", "lxml.etree", "xacro", "yaml", "numpy", "PIL.Image",
            "trimesh", "yourdfpy", "mobile_car.render.session", "mobile_car.check.checker",
-           "pandas")
+           "pandas", "pyseccomp")
 # Variables read as the interpreter starts (stream encodings, paths, flags), or as a
 # preloaded library is imported and that change what a run does: a run given other values
 # than the launcher's is started as a real process instead. Not PYTHONHASHSEED, nor the

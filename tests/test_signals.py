@@ -118,12 +118,14 @@ def _swallowed_by_python(err: str) -> str | None:
 
 
 def _args(render: bool, out):
-    """A build of the whole package's 13 robot files, or a render of the chassis folder's
-    4 (four pictures and the contact sheet: pictures finish on a second thread while the
-    next is drawn, and the sheet is written last)."""
-    return (["render", str(REPO / "urdf" / "chassis"), "--size", "160x120", "-o",
-             str(out / "renders")] if render
-            else ["build", str(REPO / "urdf"), "-o", str(out / "build")])
+    """A build or a render of the chassis folder's 4 robot files (its test file and its
+    three steps): a build expands each in the sandbox and writes each URDF atomically; a
+    render draws four pictures, which finish on a second thread while the next is drawn,
+    and writes the contact sheet last. (The folder, not the whole package's 13 files:
+    every stage is there, and a build takes 0.25 s instead of 0.38 s.)"""
+    folder = str(REPO / "urdf" / "chassis")
+    return (["render", folder, "--size", "160x120", "-o", str(out / "renders")] if render
+            else ["build", folder, "-o", str(out / "build")])
 
 
 def _seconds(args, cwd) -> float:
@@ -226,7 +228,7 @@ def _assert_complete(out, render: bool) -> None:
                 image.load()  # whole, or it would not decode
         return
     built = sorted((out / "build").rglob("*.urdf"))
-    assert len(built) == 13, built
+    assert len(built) == 4, built  # the chassis folder's 4 robots
     for urdf in built:
         assert etree.parse(str(urdf)).getroot().tag == "robot"
 

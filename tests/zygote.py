@@ -59,6 +59,12 @@ try:
 except Exception:
     pass
 os.environ.pop("MUJOCO_GL", None)  # (each run has its own environment)
+# What was preloaded is frozen: a run's garbage collections then never walk it, and so
+# never write to its pages, which the run shares with this process until it writes to
+# them (copy-on-write). Unfrozen, a launched `mcar ci` took 15 % more CPU (3.2 s, 2.7 s).
+import gc
+gc.collect()
+gc.freeze()
 
 
 def child(request, fds):

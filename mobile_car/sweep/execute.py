@@ -51,12 +51,25 @@ def _worker_started() -> None:
 def _pool(workers: int):
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
+    from multiprocessing import forkserver
 
     # forkserver: each worker starts from a small clean process, not a fork of this one
-    # (its threads and open files). Nothing is preloaded: the server runs with the working
-    # directory first on sys.path, where a source checkout's mobile_car/ would shadow the
-    # installed one; a worker imports mcar after taking this process's sys.path.
+    # (its threads and open files). The server imports what a point needs once
+    # (sweep/warm.py), and each worker is forked from it with that already imported. It
+    # is started with PYTHONSAFEPATH (python -P): `python -c` would otherwise put the
+    # working directory first on its sys.path, where a source checkout's mobile_car/ (or a
+    # robot package's numpy.py) would be imported in place of the installed one.
     context = multiprocessing.get_context("forkserver")
+    context.set_forkserver_preload(["mobile_car.sweep.warm"])
+    before = os.environ.get("PYTHONSAFEPATH")
+    os.environ["PYTHONSAFEPATH"] = "1"
+    try:
+        forkserver.ensure_running()
+    finally:
+        if before is None:
+            os.environ.pop("PYTHONSAFEPATH", None)
+        else:
+            os.environ["PYTHONSAFEPATH"] = before
     return ProcessPoolExecutor(max_workers=workers, mp_context=context,
                                initializer=_worker_started)
 

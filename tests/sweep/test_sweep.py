@@ -297,6 +297,22 @@ def test_runs_from_inside_a_source_checkout(tmp_path):
     assert list(frame["status"]) == ["ok", "ok"]
 
 
+def test_the_workers_import_nothing_from_the_working_folder(tmp_path):
+    """The fork server the local workers come from imports what a point needs before any
+    worker starts; a numpy.py or a mobile_car/ in the folder mcar runs in is not it."""
+    marker = tmp_path / "imported"
+    planted = f"open({str(marker)!r}, 'a').write(__name__ + '\\n')\n"
+    (tmp_path / "numpy.py").write_text(planted)
+    (tmp_path / "mujoco.py").write_text(planted)
+    (tmp_path / "mobile_car").mkdir()
+    (tmp_path / "mobile_car" / "__init__.py").write_text(planted)
+    done = sweep(ROBOT, "--vary", "wheel_radius=25mm,45mm", "--jobs", "2", "-o", "r.csv",
+                 cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert list(pd.read_csv(tmp_path / "r.csv")["status"]) == ["ok", "ok"]
+    assert not marker.exists(), marker.read_text()
+
+
 def test_on_dask_a_point_that_kills_its_workers_is_reported(tmp_path, monkeypatch):
     """Dask reschedules the point of a dead worker itself; when the scheduler gives up
     (allowed-failures, here 1), the point is a crashed row and the others are done."""

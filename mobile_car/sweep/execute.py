@@ -36,10 +36,15 @@ def crashed_row(point: Point, why: str) -> dict:
     return row
 
 
-def _worker_started() -> None:
+def _worker_started(scratch: str) -> None:
     """In each pool worker: Ctrl-C is the main process's to handle (the terminal sends it to
     the whole process group), and a worker must not outlive the sweep (its parent is the
-    fork server, which ends with mcar)."""
+    fork server, which ends with mcar). Its temporary files (a point's overrides file and
+    config probe) go to the sweep's own folder, which mcar removes at the end: a worker
+    stopped mid-point (Ctrl-C, SIGTERM, a crash) is killed and cleans up nothing."""
+    import tempfile
+
+    tempfile.tempdir = scratch
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     signal.signal(signal.SIGHUP, signal.SIG_DFL)
@@ -48,7 +53,7 @@ def _worker_started() -> None:
     die_with_parent()
 
 
-def _pool(workers: int):
+def _pool(workers: int, scratch: str):
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
     from multiprocessing import forkserver
@@ -71,7 +76,7 @@ def _pool(workers: int):
         else:
             os.environ["PYTHONSAFEPATH"] = before
     return ProcessPoolExecutor(max_workers=workers, mp_context=context,
-                               initializer=_worker_started)
+                               initializer=_worker_started, initargs=(scratch,))
 
 
 def _stop(pool) -> None:
@@ -93,12 +98,24 @@ def _stop(pool) -> None:
 def run_local(job: SweepJob, points: list[Point], jobs: int,
               on_row: Callable[[dict], None]) -> None:
     """The points on ``jobs`` worker processes of this machine."""
+    import shutil
+    import tempfile
+
+    scratch = tempfile.mkdtemp(prefix="mcar-sweep-")  # the workers' temporary files
+    try:
+        _run_pools(job, points, jobs, on_row, scratch)
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+
+
+def _run_pools(job: SweepJob, points: list[Point], jobs: int,
+               on_row: Callable[[dict], None], scratch: str) -> None:
     from concurrent.futures import FIRST_COMPLETED, wait
     from concurrent.futures.process import BrokenProcessPool
 
     todo = deque(points)
     while todo:
-        pool = _pool(min(jobs, len(todo)))
+        pool = _pool(min(jobs, len(todo)), scratch)
         running: dict = {}
         hit: list[Point] = []  # running when a worker died: any of them may be the cause
         broken = False  # a worker died while rows were being written: submit refused
@@ -132,15 +149,15 @@ def run_local(job: SweepJob, points: list[Point], jobs: int,
         finally:
             _stop(pool)
         for point in sorted(hit, key=lambda p: p.index):
-            on_row(_alone(job, point))
+            on_row(_alone(job, point, scratch))
 
 
-def _alone(job: SweepJob, point: Point) -> dict:
+def _alone(job: SweepJob, point: Point, scratch: str) -> dict:
     """A point that was running when a worker died, run again in a pool of its own: if it
     dies again, it is the one that kills its worker."""
     from concurrent.futures.process import BrokenProcessPool
 
-    pool = _pool(1)
+    pool = _pool(1, scratch)
     try:
         row = pool.submit(evaluate_point, job, point.index, point.values).result()
     except BrokenProcessPool:

@@ -9,6 +9,7 @@ import math
 import os
 import signal
 import subprocess
+import tempfile
 import time
 from pathlib import Path
 
@@ -234,9 +235,15 @@ def test_resume_keeps_finished_rows_and_runs_only_the_missing_points(tmp_path):
 @pytest.mark.parametrize("signum, code, said", [(signal.SIGINT, 130, "mcar: interrupted"),
                                                (signal.SIGTERM, 143, "mcar: terminated")])
 def test_a_signal_keeps_the_finished_rows_and_resume_finishes(tmp_path, signum, code, said):
+    """... and leaves no temporary file: the worker stopped mid-point is killed, and its
+    files (the point's overrides, its config probe) go with the sweep's own folder."""
     words = [ROBOT, "--vary", f"wheel_radius=25mm..45mm:{SIGNALLED}", "--vary", "track_width=0.16",
              "--jobs", "1", "-o", "r.parquet"]
+    # (A short TMPDIR: multiprocessing puts its fork server's socket in it, and a socket
+    # path past ~100 characters, as under pytest's tmp_path, is refused.)
+    scratch = Path(tempfile.mkdtemp(prefix="mcar-t-"))
     process = subprocess.Popen([str(MCAR), "sweep", *words], cwd=tmp_path,
+                               env={**os.environ, "TMPDIR": str(scratch)},
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 120
     while not (tmp_path / "r.parquet").exists() and time.monotonic() < deadline:
@@ -251,6 +258,8 @@ def test_a_signal_keeps_the_finished_rows_and_resume_finishes(tmp_path, signum, 
         "rest",
         said]
     assert set(kept["status"]) == {"ok"} and kept["speed_ratio"].notna().all()
+    assert sorted(p.name for p in scratch.iterdir()) == []
+    scratch.rmdir()
     done = sweep(*words, "--resume", cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     frame = pd.read_parquet(tmp_path / "r.parquet")

@@ -13,7 +13,7 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from conftest import MCAR, REPO, mcar_process
+from conftest import MCAR, REPO, clean_environ, mcar_process
 
 SECRET = "secret-content-7f3a"
 DEEP = 100_000
@@ -54,10 +54,8 @@ COMMANDS = {
 def run(args, cwd, timeout=60, prefix=()) -> subprocess.CompletedProcess:
     if not prefix:
         return mcar_process(*args, cwd=cwd, timeout=timeout)
-    env = {k: v for k, v in os.environ.items() if k not in ("ROS_PACKAGE_PATH",
-                                                            "AMENT_PREFIX_PATH")}
     return subprocess.run([*prefix, str(MCAR), *map(str, args)], cwd=cwd, capture_output=True,
-                          text=True, timeout=timeout, env=env)
+                          text=True, timeout=timeout, env=clean_environ())
 
 
 def assert_clean_failure(result, name: str, codes: set[int]) -> None:

@@ -184,8 +184,7 @@ def _judge_termination(run: int, signum: int, code: int, err: str, out, render: 
     the default handlers back (a shell shows 128 + signum)."""
     assert code in (0, 128 + signum, -signum), (run, code, err)
     assert "Traceback" not in err and "internal error" not in err, (run, err)
-    leftovers = [p.name for p in out.rglob("*") if p.name.endswith(".tmp")]
-    assert leftovers == [], (run, leftovers)
+    _assert_no_temporary_file(run, out)
     for urdf in out.rglob("*.urdf"):
         etree.parse(str(urdf))  # whole, or it would not parse
     if code == 0:  # it had finished: every output is there and whole
@@ -193,10 +192,14 @@ def _judge_termination(run: int, signum: int, code: int, err: str, out, render: 
     return code
 
 
-def _judge_ctrl_c(run: int, code: int, err: str, out, render: bool):
-    """What one interrupted run came to, once what it printed and left is checked."""
+def _assert_no_temporary_file(run: int, out) -> None:
     leftovers = [p.name for p in out.rglob("*") if p.name.endswith(".tmp")]
     assert leftovers == [], (run, leftovers)
+
+
+def _judge_ctrl_c(run: int, code: int, err: str, out, render: bool):
+    """What one interrupted run came to, once what it printed and left is checked."""
+    _assert_no_temporary_file(run, out)
     if _before_mcar_started(code, err, out):  # nothing of mcar ran: nothing to clean up
         assert not any(out.iterdir()), (run, err)
         return "python's start"

@@ -3,7 +3,6 @@ reads what a new `mcar` process does, in its own process, folder and environment
 
 from __future__ import annotations
 
-import os
 import re
 import subprocess
 
@@ -17,11 +16,9 @@ RUNAWAY = ('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
            '<link name="${9**9**9}"/></robot>')
 
 
-def _real(*args, cwd, input=None, env=None):
-    environment = {k: v for k, v in (env or os.environ).items()
-                   if k not in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")}
-    return subprocess.run([str(MCAR), *map(str, args)], cwd=cwd, input=input, env=environment,
-                          capture_output=True, text=True, timeout=120)
+def _real(*args, cwd, input=None):
+    return subprocess.run([str(MCAR), *map(str, args)], cwd=cwd, input=input,
+                          env=clean_environ(), capture_output=True, text=True, timeout=120)
 
 
 @pytest.mark.parametrize("args, stdin", [

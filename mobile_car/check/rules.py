@@ -108,6 +108,10 @@ _TABLE = [
          "reported at the massless link, with each link lost and their mass", "n/a"),
     Rule("E151", "gazebo-load-error", "libsdformat (Gazebo's URDF reader) reports an error "
          "loading the robot, or cannot load it", "n/a"),
+    Rule("E152", "gazebo-include", "an `<include>` (in a `<gazebo>` block): libsdformat would "
+         "read the file or model folder it names (a path, `file://`, `model://`) into the "
+         "robot, and mcar's Gazebo helper reads no file; refused before libsdformat runs",
+         "n/a"),
     # Warnings
     Rule("W201", "unknown-element", "an element URDF does not define (a typo such as "
          "`<visul>`, `<limits>`), with a did-you-mean", "ignores"),

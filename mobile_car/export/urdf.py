@@ -43,7 +43,9 @@ def export_sdf(loaded, folder: Path, options) -> Exported:
     """Write ``NAME.sdf`` (libsdformat's) and its meshes into ``folder``; GazeboError when
     libsdformat cannot make a model of the robot, GazeboUnavailable without the helper."""
     from ..gazebo.helper import run_helper
+    from ..gazebo.includes import refuse_includes
 
+    refuse_includes(loaded.urdf, loaded.label, loaded.locate)  # E152, at its source line
     root, prepared, warnings = _portable_urdf(loaded, folder)
     report = run_helper(_xml(root), loaded.label, with_sdf=True)
     if report.model is None or report.errors or not report.sdf:

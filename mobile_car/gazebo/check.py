@@ -11,11 +11,21 @@ from ..errors import GazeboError
 def check_in_gazebo(result) -> None:
     """Add what Gazebo changes to a CheckResult, in place: its ``gazebo`` view and
     diagnostics. A robot with errors is not converted (libsdformat would only repeat
-    them); the helper failing on this robot is E151. GazeboUnavailable passes through."""
+    them); the helper failing on this robot is E151; a robot that would make libsdformat
+    read a file (an ``<include>``) is E152, and is not given to it. GazeboUnavailable passes
+    through."""
     from .changes import gazebo_view
     from .helper import run_helper
+    from .includes import RULE, includes, refusal
 
     if not result.sound or result.loaded is None:
+        return
+    refused = []
+    for element in includes(result.robot.element.getroottree().getroot()):
+        file, line, note = result.where(element)
+        refused.append(Diagnostic(RULE, file, line, refusal(element) + note))
+    if refused:
+        result.diagnostics = sorted([*result.diagnostics, *refused], key=Diagnostic.sort_key)
         return
     try:
         report = run_helper(result.loaded.urdf, result.file)

@@ -87,7 +87,11 @@ def run_helper(urdf: bytes, label: str, with_sdf: bool = False, helper: Path | N
     robot)."""
     from ..settings import env_number
     from . import wire
+    from .includes import refuse_includes
 
+    # Every caller refuses an <include> first, at its source line; this is the last guard
+    # before libsdformat, for one that did not.
+    refuse_includes(urdf, label)
     helper = helper or find_helper()
     timeout = env_number(TIMEOUT_ENV, DEFAULT_TIMEOUT, 0.1, 86400, "seconds")
     memory_mb = int(env_number(MEMORY_ENV, DEFAULT_MEMORY_MB, 64, 1e7, "MB"))

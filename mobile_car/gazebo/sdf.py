@@ -14,7 +14,9 @@ def sdf_of(loaded) -> tuple[bytes, list[str]]:
     GazeboError (exit 1) where libsdformat cannot make a model of it; GazeboUnavailable
     (exit 2) without the helper."""
     from .helper import run_helper
+    from .includes import refuse_includes
 
+    refuse_includes(loaded.urdf, loaded.label, loaded.locate)  # E152, at its source line
     report = run_helper(loaded.urdf, loaded.label, with_sdf=True)
     if report.model is None or report.errors:
         first = report.errors[0].text.strip().splitlines()[0] if report.errors else \

@@ -18,22 +18,38 @@
 // It is given data only: the robot's text on stdin, never a path, and reads no other
 // file (libsdformat converts a URDF without opening its meshes); it writes nothing but
 // its answer (libsdformat's log file in ~/.sdformat is turned off by taking HOME away;
-// what libraries print is kept in memory). mcar runs it with a time, memory and output
-// bound and checks the answer field by field (mobile_car/gazebo/wire.py,
-// docs/security.md). Exit 0 when it answered (also about a robot libsdformat rejects:
-// that is in `errors`), 2 on bad usage or input it could not read.
+// what libraries print is kept in memory). libsdformat WOULD open files: an <include>
+// in a <gazebo> block names a model folder or file (a path, file://, model://) that it
+// reads into the SDF. mcar refuses such a robot before it gets here (E152), and the
+// helper also confines itself (Confine below): once the dynamic loader has loaded the
+// libraries and the console is set up, a seccomp filter lets through only the system
+// calls that work on memory and on the files already open, so no file is opened or
+// looked up (whether it exists included), no program runs, no socket opens.
+// mcar runs it with a time, memory and output bound and checks the answer field by
+// field (mobile_car/gazebo/wire.py, docs/security.md). Exit 0 when it answered (also
+// about a robot libsdformat rejects: that is in `errors`), 2 on bad usage, input it
+// could not read, or a kernel that would not confine it.
 #include <sdf/sdf.hh>
 
+#include <fcntl.h>
+#include <linux/audit.h>
+#include <linux/filter.h>
+#include <linux/seccomp.h>
 #include <sys/mman.h>
+#include <sys/prctl.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -299,6 +315,81 @@ bool WriteAll(int fd, const std::string &text) {
   return true;
 }
 
+// The system calls the helper may make once it is set up: memory, the files it
+// already holds (stdin, stdout, the memfd), time, its own end. Everything else fails with
+// EPERM: open, stat and access on any path (so nothing outside is read, and a missing
+// file looks like a present one), execve, fork, socket. An allow-list, not a deny-list,
+// so that a system call added to the kernel later is refused too.
+const long kAllowed[] = {
+    SYS_read, SYS_write, SYS_readv, SYS_writev, SYS_pread64, SYS_lseek, SYS_close,
+    SYS_fstat, SYS_dup, SYS_dup3, SYS_fcntl, SYS_mmap, SYS_munmap, SYS_mremap,
+    SYS_mprotect, SYS_madvise, SYS_brk, SYS_futex, SYS_getrandom, SYS_clock_gettime,
+    SYS_gettimeofday, SYS_getpid, SYS_gettid, SYS_rt_sigreturn, SYS_rt_sigprocmask,
+    SYS_rt_sigaction, SYS_sigaltstack, SYS_restart_syscall, SYS_sched_yield, SYS_exit,
+    SYS_exit_group,
+#ifdef SYS_dup2
+    SYS_dup2,
+#endif
+};
+
+#if defined(__x86_64__)
+const unsigned kArch = AUDIT_ARCH_X86_64;
+#elif defined(__aarch64__)
+const unsigned kArch = AUDIT_ARCH_AARCH64;
+#else
+const unsigned kArch = 0;  // no filter written for this architecture: Confine refuses
+#endif
+
+// The low 32 bits of argument i (both architectures above are little-endian).
+constexpr unsigned ArgLow(int i) {
+  return offsetof(struct seccomp_data, args) + 8 * i;
+}
+
+// Install the filter for good (it outlives nothing: the helper execs nothing). False,
+// with errno, when the kernel refuses it.
+bool Confine() {
+  if (kArch == 0) {
+    errno = ENOSYS;
+    return false;
+  }
+  const unsigned allow = SECCOMP_RET_ALLOW;
+  const unsigned refuse = SECCOMP_RET_ERRNO | (EPERM & SECCOMP_RET_DATA);
+  std::vector<sock_filter> program = {
+      BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, arch)),
+      BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, kArch, 1, 0),
+      BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_KILL_PROCESS),  // another ABI's numbers
+      BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, nr)),
+  };
+#if defined(__x86_64__)
+  // x32 system calls have other numbers with this bit set: refuse them all.
+  program.push_back(BPF_JUMP(BPF_JMP | BPF_JGE | BPF_K, 0x40000000u, 0, 1));
+  program.push_back(BPF_STMT(BPF_RET | BPF_K, refuse));
+#endif
+  for (long call : kAllowed) {
+    program.push_back(BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, unsigned(call), 0, 1));
+    program.push_back(BPF_STMT(BPF_RET | BPF_K, allow));
+  }
+  // fstat is newfstatat(fd, "", AT_EMPTY_PATH) or statx(fd, "", AT_EMPTY_PATH) in
+  // glibc: allowed on an open file only, never on a path.
+  for (auto [call, flags] : {std::pair<long, int>{SYS_newfstatat, 3}, {SYS_statx, 2}}) {
+    program.push_back(BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, unsigned(call), 0, 4));
+    program.push_back(BPF_STMT(BPF_LD | BPF_W | BPF_ABS, ArgLow(flags)));
+    program.push_back(BPF_JUMP(BPF_JMP | BPF_JSET | BPF_K, AT_EMPTY_PATH, 0, 1));
+    program.push_back(BPF_STMT(BPF_RET | BPF_K, allow));
+    program.push_back(BPF_STMT(BPF_RET | BPF_K, refuse));
+  }
+  // abort() signals the process itself (tgkill on its own pid): no other process.
+  program.push_back(BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, unsigned(SYS_tgkill), 0, 4));
+  program.push_back(BPF_STMT(BPF_LD | BPF_W | BPF_ABS, ArgLow(0)));
+  program.push_back(BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, unsigned(getpid()), 0, 1));
+  program.push_back(BPF_STMT(BPF_RET | BPF_K, allow));
+  program.push_back(BPF_STMT(BPF_RET | BPF_K, refuse));
+  program.push_back(BPF_STMT(BPF_RET | BPF_K, refuse));
+  sock_fprog filter = {static_cast<unsigned short>(program.size()), program.data()};
+  return prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) == 0 &&
+         prctl(PR_SET_SECCOMP, SECCOMP_MODE_FILTER, &filter, 0, 0) == 0;
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
@@ -340,6 +431,14 @@ int main(int argc, char **argv) {
   console->GetMsgStream().SetStream(&captured);  // errors and warnings
   console->GetLogStream().SetStream(&captured);  // the debug notes
 
+  // From here on the robot's text is read: no file opens any more (see Confine).
+  if (!Confine()) {
+    int error = errno;
+    dup2(saved_stderr, 2);
+    std::fprintf(stderr, "mcar-sdformat: cannot confine itself (seccomp: %s)\n",
+                 std::strerror(error));
+    return 2;
+  }
   sdf::Root root;
   sdf::Errors errors = root.LoadSdfString(robot);
   std::string sdf_text;

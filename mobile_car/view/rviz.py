@@ -74,8 +74,8 @@ def show(roslaunch: str, inp: RobotInput, model, options, sets, config_files) ->
     build_args += [word for value in sets for word in ("--set", value)]
     build_args += [word for path in config_files
                    for word in ("--config", str(Path(path).resolve()))]
-    build_args += [word for path in options.package_paths
-                   for word in ("--package-path", str(Path(path).resolve()))]
+    # The --package-path folders reach mcar build through ROS_PACKAGE_PATH (plan), which
+    # it searches in the same order: display.launch's args take dimension settings only.
     scene = model.urdf.scene
     bounds = scene.bounds if scene is not None else None
     with tempfile.TemporaryDirectory(prefix="mcar-rviz-") as folder:
@@ -92,11 +92,12 @@ def plan(roslaunch: str, inp: RobotInput, root: str, bounds, build_args: list[st
     if inp.path is None:
         raise UsageError("mcar view --rviz shows a robot file, not standard input")
     config = folder / "urdf.rviz"
+    model = _passable(inp.path.resolve(), inp.label)
     config.write_text(rviz_config(root, bounds), encoding="utf-8")
     bundled = description_dir()
     argv = [roslaunch, str(bundled / "launch" / "display.launch"),
-            f"model:={inp.path.resolve()}", f"rvizconfig:={config}",
-            "args:=" + " ".join(_quoted(arg) for arg in build_args)]
+            f"model:={model}", f"rvizconfig:={_passable(config, str(config))}",
+            "args:=" + " ".join(launch_word(arg) for arg in build_args)]
     env = dict(os.environ)
     mcar_bin = str(Path(sys.executable).parent)  # this mcar's console script is there
     env["PATH"] = os.pathsep.join([mcar_bin, env.get("PATH", os.defpath)])
@@ -105,6 +106,17 @@ def plan(roslaunch: str, inp: RobotInput, root: str, bounds, build_args: list[st
                bundled, *filter(None, env.get("ROS_PACKAGE_PATH", "").split(os.pathsep))]
     env["ROS_PACKAGE_PATH"] = os.pathsep.join(dict.fromkeys(str(f) for f in folders))
     return RvizLaunch(argv, env)
+
+
+def _passable(path: Path, label: str) -> str:
+    """``path`` as a roslaunch argument's value; UsageError where roslaunch would not pass
+    it on whole: it ignores an argument with a newline or a second ``:=`` (display.launch
+    would silently show its default robot) and strips white space at the ends."""
+    value = str(path)
+    if "\n" in value or "\r" in value or ":=" in value or value != value.strip():
+        raise UsageError("mcar view --rviz: roslaunch cannot pass this path on whole (a "
+                         "newline, ':=' or white space at an end): rename it", file=label)
+    return value
 
 
 def rviz_config(root: str, bounds) -> str:
@@ -160,8 +172,12 @@ def _stop(process: subprocess.Popen) -> None:
     process.wait()
 
 
-def _quoted(arg: str) -> str:
-    """One argument as roslaunch's shlex.split of the param command reads it back."""
-    import shlex
-
-    return shlex.quote(arg)
+def launch_word(arg: str) -> str:
+    """One argument as display.launch's args takes it: words apart by spaces, each with
+    %XX for its bytes that would split it (white space, non-printing), for % and for ``:``
+    (roslaunch drops a command line argument with a second ``:=`` in it, and so did
+    ``args:=prefix:=left_``), which scripts/robot_description decodes back to exactly
+    ``arg``."""
+    return "".join(c if c.isprintable() and not c.isspace() and c not in "%:"
+                   else "".join(f"%{byte:02X}" for byte in c.encode("utf-8", "surrogateescape"))
+                   for c in arg)

@@ -1,6 +1,7 @@
 """scripts/robot_description, which display.launch runs for robot_description: it finds
 an mcar (PATH's, else the package's own .venv, as after `make demo` without activating
-it) and passes the launch's config and args to `mcar build`. Needs no ROS."""
+it) and passes the launch's config and args to `mcar build`, each given as display.launch
+encodes it (one word: "x" and the value's bytes in hex). Needs no ROS."""
 
 from __future__ import annotations
 
@@ -24,11 +25,17 @@ def package(tmp_path):
     return tmp_path / NAME
 
 
-def _describe(package, *args, path=BARE_PATH):
+def _encoded(value: str) -> str:
+    """A value as display.launch hands it to the script."""
+    return "x" + value.encode("utf-8").hex()
+
+
+def _describe(package, config="", args="", path=BARE_PATH):
     env = {key: value for key, value in os.environ.items() if not key.startswith("ROS_")}
     env["PATH"] = path
+    model = str(package / "urdf" / f"{NAME}.urdf.xacro")
     return subprocess.run([str(package / "scripts" / "robot_description"),
-                           str(package / "urdf" / f"{NAME}.urdf.xacro"), *args],
+                           *(_encoded(value) for value in (model, config, args))],
                           env=env, capture_output=True, text=True, cwd=package)
 
 
@@ -40,7 +47,7 @@ def _built(package, *args):
 def test_the_packages_own_venv_when_none_is_active(package):
     (package / ".venv" / "bin").mkdir(parents=True)
     (package / ".venv" / "bin" / "mcar").symlink_to(MCAR)  # what `make demo` leaves there
-    described = _describe(package, "")
+    described = _describe(package)
     assert described.returncode == 0, described.stderr
     assert described.stdout == _built(package)
 
@@ -48,7 +55,7 @@ def test_the_packages_own_venv_when_none_is_active(package):
 def test_the_mcar_on_path_first_with_config_and_args(package, tmp_path):
     overrides = tmp_path / "long.yaml"
     overrides.write_text("base_length: 45cm\n")
-    described = _describe(package, str(overrides), "--set", "base_width=22cm",
+    described = _describe(package, str(overrides), "--set base_width=22cm",
                           path=f"{MCAR.parent}:{BARE_PATH}")
     assert described.returncode == 0, described.stderr
     assert described.stdout == _built(package, "--config", str(overrides),
@@ -57,7 +64,7 @@ def test_the_mcar_on_path_first_with_config_and_args(package, tmp_path):
 
 
 def test_no_mcar_anywhere_is_one_line_and_exit_2(package):
-    described = _describe(package, "")
+    described = _describe(package)
     assert described.returncode == 2 and described.stdout == ""
     assert described.stderr == (
         f"robot_description: mcar is neither on PATH nor in {package}/.venv: "
@@ -66,6 +73,6 @@ def test_no_mcar_anywhere_is_one_line_and_exit_2(package):
 
 def test_a_bad_robot_is_mcars_own_error(package):
     (package / "urdf" / f"{NAME}.urdf.xacro").write_text("<robot name='x'><link></robot>")
-    described = _describe(package, "", path=f"{MCAR.parent}:{BARE_PATH}")
+    described = _describe(package, path=f"{MCAR.parent}:{BARE_PATH}")
     assert described.returncode == 1 and described.stdout == ""
     assert f"{NAME}.urdf.xacro:1" in described.stderr and "error:" in described.stderr

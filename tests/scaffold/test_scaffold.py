@@ -45,7 +45,7 @@ def test_a_new_package_gets_the_bundled_ros_files_with_its_own_names(run_mcar, t
     package = tmp_path / "demo"
     launch = (package / "launch" / "display.launch").read_text()
     assert '<arg name="model" default="$(find demo)/urdf/demo.urdf.xacro"/>' in launch
-    assert "$(find demo)/scripts/robot_description" in launch
+    assert "find('demo').replace(" in launch and "/scripts/robot_description" in launch
     assert "mobile_car" not in launch and "mobile_robot" not in launch
     assert "project(demo NONE)" in (package / "CMakeLists.txt").read_text()
     assert "\n      Distance: 0.75\n" in (package / "rviz" / "urdf.rviz").read_text()

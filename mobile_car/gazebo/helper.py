@@ -8,8 +8,11 @@ at ``MCAR_SDFORMAT`` (a path), then beside the Python scripts of the running int
 searched.
 
 The URDF it is given may come from an untrusted xacro, and libsdformat parses it in C++, so
-the helper is run as something less trusted than mcar: it gets the URDF's bytes on stdin
-(never a path), an environment of PATH and LC_ALL only (no HOME: libsdformat keeps no log),
+the helper is run as something less trusted than mcar: a URDF with an ``<include>``, which
+libsdformat would read from disk, is refused before it starts (:mod:`.includes`, E152), and
+the helper confines itself once set up (a seccomp filter: no file lookups, programs or
+sockets); it gets the URDF's bytes on stdin (never a path), an environment of PATH and
+LC_ALL only (no HOME: libsdformat keeps no log),
 ``/`` as its working folder, ``MCAR_GAZEBO_MEMORY_MB`` of address space and
 ``MCAR_GAZEBO_TIMEOUT`` seconds (the kernel's CPU limit backs the deadline up even if mcar
 dies); at most ``MCAR_GAZEBO_OUTPUT_MB`` of its answer is read, and then checked field by

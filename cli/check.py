@@ -88,7 +88,7 @@ def _emit_text(results: list, quiet: bool) -> None:
                 if many:
                     out.write(f"==> {result.file} <==\n".encode())
                 # check_urdf writes names byte for byte: UTF-8 whatever the locale says.
-                write_batches(out, _tree_batches(result))
+                streams.write_lines(_tree_lines(result))
         for diagnostic in result.diagnostics:
             print_diagnostic(diagnostic)
         if not quiet and result.extents is not None:
@@ -107,12 +107,14 @@ def _emit_text(results: list, quiet: bool) -> None:
                    f"file{'s' * (len(results) != 1)}", err=True)
 
 
-def _tree_batches(result):
+def _tree_lines(result):
+    """check_urdf's tree text, made line by line as it is written (a read-back check
+    has it whole: it is kept only when small, see mobile_car.check.replay)."""
     if isinstance(result, ReplayedResult):
-        return [[result.tree_text]]
-    from mobile_car.check.tree import check_urdf_batches
+        return [result.tree_text]
+    from mobile_car.check.tree import check_urdf_lines
 
-    return check_urdf_batches(result.robot.name, result.tree)
+    return check_urdf_lines(result.robot.name, result.tree)
 
 
 def _document(result) -> dict:
@@ -142,35 +144,6 @@ def _checked(inputs, options, stdin, basis, keep: bool) -> list:
         if keep:
             replay.record(inp, basis, result, stamper)
     return results
-
-
-def write_batches(out, batches) -> None:
-    """Write batches of buffers to the binary stream ``out``, gathered: one ``os.writev``
-    per batch straight to the file descriptor (the buffers are never joined, which for a
-    deep chain's 800 MB of indentation is most of the work), else joined per batch."""
-    out.flush()
-    try:
-        fd = out.fileno()
-    except (AttributeError, OSError, ValueError):  # io.UnsupportedOperation: CliRunner
-        fd = None
-    for batch in batches:
-        if fd is None or not hasattr(os, "writev"):
-            out.write(b"".join(batch))
-        else:
-            _writev_all(fd, batch)
-    out.flush()
-
-
-def _writev_all(fd: int, buffers: list) -> None:
-    while buffers:
-        written = os.writev(fd, buffers)
-        done = 0
-        while done < len(buffers) and written >= len(buffers[done]):
-            written -= len(buffers[done])
-            done += 1
-        buffers = buffers[done:]
-        if buffers and written:  # a partial write stopped inside this buffer
-            buffers[0] = memoryview(buffers[0])[written:]
 
 
 def _emit_github(results: list) -> None:

@@ -347,10 +347,11 @@ def test_binary_stl_cut_short_is_W207_and_a_sound_one_needs_no_trimesh(run_mcar,
 
 
 def test_gathered_write_finishes_after_partial_writes(monkeypatch):
-    """os.writev may write less than asked (a signal, a full pipe): the rest follows, in order."""
+    """os.writev may write less than asked (a signal, a full pipe): the rest follows, in
+    order, across chunks, after what was already buffered on stdout."""
     import os
 
-    from mobile_car.cli import check
+    from mobile_car.cli import streams
 
     real_writev = os.writev
 
@@ -359,11 +360,13 @@ def test_gathered_write_finishes_after_partial_writes(monkeypatch):
         return real_writev(fd, [data])
 
     monkeypatch.setattr(os, "writev", short_writev)
-    spaces = memoryview(b" " * 64)
-    batches = [[b"robot name is: r\n", spaces[:4], b"child(1):  a\n"],
-               [spaces[:8], b"child(1):  b\n"]]
+    monkeypatch.setattr(streams, "CHUNK_LINES", 2)  # three lines: two chunks
+    lines = [b"robot name is: r\n", b"    child(1):  a\n", b"        child(1):  b\n"]
     read_end, write_end = os.pipe()
-    with os.fdopen(write_end, "wb") as out:
-        check.write_batches(out, batches)
+    with open(write_end, "w", encoding="utf-8") as out:
+        monkeypatch.setattr(sys, "stdout", out)
+        out.write("==> r.urdf <==\n")  # buffered, not yet written: must still come first
+        streams.write_lines(iter(lines))
+        monkeypatch.undo()
     with os.fdopen(read_end, "rb") as pipe:
-        assert pipe.read() == b"robot name is: r\n    child(1):  a\n        child(1):  b\n"
+        assert pipe.read() == b"==> r.urdf <==\n" + b"".join(lines)

@@ -15,8 +15,8 @@ failed first write does: quietly, or with one line and exit 2.
 
 from __future__ import annotations
 
-import os
 import subprocess
+import sys
 import tracemalloc
 from dataclasses import dataclass
 from pathlib import Path
@@ -63,14 +63,27 @@ class Streamed:
     peak_mb: float     # the child's peak resident memory
 
 
+# The child's peak is read by a small process that starts it, not by the test worker:
+# Linux carries the resident size of the process that forked a child over its exec into
+# the child's ru_maxrss, and a worker that has run many tests is itself hundreds of MB.
+_MEASURE = """
+import os, subprocess, sys
+child = subprocess.Popen(sys.argv[2:])
+_pid, status, usage = os.wait4(child.pid, 0)
+with open(sys.argv[1], "w") as out:
+    out.write(f"{os.waitstatus_to_exitcode(status)} {usage.ru_maxrss}")
+"""
+
+
 def _stream(args, tmp_path: Path) -> Streamed:
     """Run `mcar ARGS`, reading its stdout as it comes: counted, its first and last lines
     kept, nothing else (stderr, which check fills with thousands of warnings, goes to a
     file so that neither pipe can block the other)."""
+    measured = tmp_path / "measured"
     with open(tmp_path / "stderr", "w+b") as err:
-        process = subprocess.Popen([str(MCAR), *map(str, args)], stdout=subprocess.PIPE,
-                                   stderr=err, stdin=subprocess.DEVNULL, env=clean_environ(),
-                                   cwd=tmp_path)
+        process = subprocess.Popen([sys.executable, "-c", _MEASURE, str(measured), str(MCAR),
+                                    *map(str, args)], stdout=subprocess.PIPE, stderr=err,
+                                   stdin=subprocess.DEVNULL, env=clean_environ(), cwd=tmp_path)
         size = lines = 0
         head = tail = b""
         while chunk := process.stdout.read(1 << 20):
@@ -80,13 +93,13 @@ def _stream(args, tmp_path: Path) -> Streamed:
             # The last 256 KB: longer than the longest line (40 KB).
             tail = chunk if len(chunk) >= 1 << 18 else (tail + chunk)[-(1 << 18):]
         process.stdout.close()
-        _pid, status, usage = os.wait4(process.pid, 0)
-        process.returncode = os.waitstatus_to_exitcode(status)  # reaped here, not by Popen
+        assert process.wait(timeout=60) == 0, err.read().decode()
         err.seek(0)
         stderr = err.read().decode()
-    return Streamed(process.returncode, size, lines, head.split(b"\n", 1)[0],
+    exit_code, peak_kib = map(int, measured.read_text().split())
+    return Streamed(exit_code, size, lines, head.split(b"\n", 1)[0],
                     tail.rstrip(b"\n").rsplit(b"\n", 1)[-1], stderr,
-                    usage.ru_maxrss / 1024)  # ru_maxrss is in KiB on Linux
+                    peak_kib / 1024)  # ru_maxrss is in KiB on Linux
 
 
 def _tree_line(i: int) -> bytes:

@@ -160,8 +160,25 @@ def _emit_json(results: list, exit_code: int) -> None:
                 "errors": sum(r.errors for r in results),
                 "warnings": sum(r.warnings for r in results),
                 "exit_code": exit_code}
-    streams.write(json_safe(json.dumps(document, indent=1, ensure_ascii=False)).encode("utf-8")
-                  + b"\n")
+    streams.write_lines(_json_pieces(document))
+
+
+def _json_pieces(document: dict):
+    """``json.dumps(document, indent=1, ensure_ascii=False)`` made safe (json_safe) and
+    UTF-8, with its newline, in pieces of about 64 KB. dumps gathers every token of the
+    text in one list before joining it: for a 10,000-link robot, 9 MB of JSON held as a
+    million small strings, ~80 MB. (json_safe works character by character: the pieces
+    may be cut anywhere.)"""
+    piece: list[str] = []
+    size = 0
+    for token in json.JSONEncoder(indent=1, ensure_ascii=False).iterencode(document):
+        piece.append(token)
+        size += len(token)
+        if size >= 1 << 16:
+            yield json_safe("".join(piece)).encode("utf-8")
+            piece, size = [], 0
+    piece.append("\n")
+    yield json_safe("".join(piece)).encode("utf-8")
 
 
 def overall_exit(results: list, strict: bool) -> int:

@@ -370,3 +370,23 @@ def test_gathered_write_finishes_after_partial_writes(monkeypatch):
         monkeypatch.undo()
     with os.fdopen(read_end, "rb") as pipe:
         assert pipe.read() == b"==> r.urdf <==\n" + b"".join(lines)
+
+
+def test_json_is_written_in_pieces_byte_for_byte():
+    """--format json's text is json.dumps's, made safe (escapes and all), UTF-8, written
+    in pieces of about 64 KB instead of dumps's one string, built from a list of every
+    token (a million small strings, ~80 MB, for a 10,000-link robot)."""
+    from mobile_car.cli.check import _json_pieces
+
+    from mobile_car.names import json_safe
+
+    document = {"files": [{"robot": "r\u202e", "links": [
+        {"name": f"l{i}\x85é", "line": i, "origin": {"xyz": [0.0, 0.1, -2e-3]}, "axis": None}
+        for i in range(3000)]}], "errors": 0, "exit_code": 0}
+    expected = json_safe(json.dumps(document, indent=1, ensure_ascii=False)).encode() + b"\n"
+    pieces = list(_json_pieces(document))
+    assert b"".join(pieces) == expected
+    assert b"\\u0085" in expected and b"\\u202e" in expected  # the escapes are in play
+    assert len(pieces) > 5
+    # Cut after the token that passes 64 KB: "\x85" grows six-fold once escaped.
+    assert max(len(piece) for piece in pieces) < 6 * (1 << 16) + 100

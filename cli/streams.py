@@ -6,6 +6,8 @@ has gone (``mcar tree | head -1``), into :class:`ReaderGone`: the reader wanted 
 the run ends quietly with exit 0. stderr has no one left to tell: a failure there ends the
 run with exit 2 and no word. :func:`exit_quietly` then makes sure that the interpreter's
 final flush cannot fail again and print "Exception ignored ... BrokenPipeError".
+A text too large to hold (a deep tree's: hundreds of megabytes of indentation) is written
+as it is made, by :func:`write_lines`, and fails the same way wherever it stops.
 """
 
 from __future__ import annotations

@@ -88,7 +88,7 @@ def _emit_text(results: list, quiet: bool) -> None:
                 if many:
                     out.write(f"==> {result.file} <==\n".encode())
                 # check_urdf writes names byte for byte: UTF-8 whatever the locale says.
-                write_batches(out, _tree_batches(result))
+                streams.write_lines(_tree_lines(result))
         for diagnostic in result.diagnostics:
             print_diagnostic(diagnostic)
         if not quiet and result.extents is not None:
@@ -107,12 +107,14 @@ def _emit_text(results: list, quiet: bool) -> None:
                    f"file{'s' * (len(results) != 1)}", err=True)
 
 
-def _tree_batches(result):
+def _tree_lines(result):
+    """check_urdf's tree text, made line by line as it is written (a read-back check
+    has it whole: it is kept only when small, see mobile_car.check.replay)."""
     if isinstance(result, ReplayedResult):
-        return [[result.tree_text]]
-    from mobile_car.check.tree import check_urdf_batches
+        return [result.tree_text]
+    from mobile_car.check.tree import check_urdf_lines
 
-    return check_urdf_batches(result.robot.name, result.tree)
+    return check_urdf_lines(result.robot.name, result.tree)
 
 
 def _document(result) -> dict:
@@ -144,35 +146,6 @@ def _checked(inputs, options, stdin, basis, keep: bool) -> list:
     return results
 
 
-def write_batches(out, batches) -> None:
-    """Write batches of buffers to the binary stream ``out``, gathered: one ``os.writev``
-    per batch straight to the file descriptor (the buffers are never joined, which for a
-    deep chain's 800 MB of indentation is most of the work), else joined per batch."""
-    out.flush()
-    try:
-        fd = out.fileno()
-    except (AttributeError, OSError, ValueError):  # io.UnsupportedOperation: CliRunner
-        fd = None
-    for batch in batches:
-        if fd is None or not hasattr(os, "writev"):
-            out.write(b"".join(batch))
-        else:
-            _writev_all(fd, batch)
-    out.flush()
-
-
-def _writev_all(fd: int, buffers: list) -> None:
-    while buffers:
-        written = os.writev(fd, buffers)
-        done = 0
-        while done < len(buffers) and written >= len(buffers[done]):
-            written -= len(buffers[done])
-            done += 1
-        buffers = buffers[done:]
-        if buffers and written:  # a partial write stopped inside this buffer
-            buffers[0] = memoryview(buffers[0])[written:]
-
-
 def _emit_github(results: list) -> None:
     for result in results:
         if result.failure is not None:
@@ -187,8 +160,25 @@ def _emit_json(results: list, exit_code: int) -> None:
                 "errors": sum(r.errors for r in results),
                 "warnings": sum(r.warnings for r in results),
                 "exit_code": exit_code}
-    streams.write(json_safe(json.dumps(document, indent=1, ensure_ascii=False)).encode("utf-8")
-                  + b"\n")
+    streams.write_lines(_json_pieces(document))
+
+
+def _json_pieces(document: dict):
+    """``json.dumps(document, indent=1, ensure_ascii=False)`` made safe (json_safe) and
+    UTF-8, with its newline, in pieces of about 64 KB. dumps gathers every token of the
+    text in one list before joining it: for a 10,000-link robot, 9 MB of JSON held as a
+    million small strings, ~80 MB. (json_safe works character by character: the pieces
+    may be cut anywhere.)"""
+    piece: list[str] = []
+    size = 0
+    for token in json.JSONEncoder(indent=1, ensure_ascii=False).iterencode(document):
+        piece.append(token)
+        size += len(token)
+        if size >= 1 << 16:
+            yield json_safe("".join(piece)).encode("utf-8")
+            piece, size = [], 0
+    piece.append("\n")
+    yield json_safe("".join(piece)).encode("utf-8")
 
 
 def overall_exit(results: list, strict: bool) -> int:

@@ -6,6 +6,8 @@ has gone (``mcar tree | head -1``), into :class:`ReaderGone`: the reader wanted 
 the run ends quietly with exit 0. stderr has no one left to tell: a failure there ends the
 run with exit 2 and no word. :func:`exit_quietly` then makes sure that the interpreter's
 final flush cannot fail again and print "Exception ignored ... BrokenPipeError".
+A text too large to hold (a deep tree's: hundreds of megabytes of indentation) is written
+as it is made, by :func:`write_lines`, and fails the same way wherever it stops.
 """
 
 from __future__ import annotations
@@ -39,6 +41,53 @@ def write(data: bytes) -> None:
         _refuse_closed_stdout()
         sys.stdout.buffer.write(data)
         sys.stdout.buffer.flush()
+
+
+# What one gathered write takes at most: Linux refuses more than 1,024 buffers in one
+# os.writev (IOV_MAX), and a chunk's lines are held until written, so bytes are capped too.
+CHUNK_LINES = 1024
+CHUNK_BYTES = 1 << 20
+
+
+def write_lines(lines) -> None:
+    """Bytes to stdout as they come from the iterable ``lines`` (each usually one line of
+    a text too large to hold: a deep tree's), gathered into chunks of at most
+    :data:`CHUNK_LINES` lines or about :data:`CHUNK_BYTES`, each one ``os.writev`` straight
+    to the file descriptor (no copy joins them), else joined per chunk. What came before
+    on ``sys.stdout`` is flushed first, so the order holds."""
+    with stdout_writes():
+        _refuse_closed_stdout()
+        sys.stdout.flush()  # its text layer too: what was printed comes first
+        out = sys.stdout.buffer
+        try:
+            fd = out.fileno()
+        except (AttributeError, OSError, ValueError):  # io.UnsupportedOperation: CliRunner
+            fd = None
+        chunk, size = [], 0
+        for line in lines:
+            chunk.append(line)
+            size += len(line)
+            if len(chunk) >= CHUNK_LINES or size >= CHUNK_BYTES:
+                _write_chunk(out, fd, chunk)
+                chunk, size = [], 0
+        if chunk:
+            _write_chunk(out, fd, chunk)
+        out.flush()
+
+
+def _write_chunk(out, fd: int | None, chunk: list) -> None:
+    if fd is None or not hasattr(os, "writev"):
+        out.write(b"".join(chunk))
+        return
+    while chunk:
+        written = os.writev(fd, chunk)
+        done = 0
+        while done < len(chunk) and written >= len(chunk[done]):
+            written -= len(chunk[done])
+            done += 1
+        chunk = chunk[done:]
+        if chunk and written:  # a partial write stopped inside this buffer
+            chunk[0] = memoryview(chunk[0])[written:]
 
 
 def echo(text: str = "", nl: bool = True) -> None:

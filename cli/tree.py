@@ -8,7 +8,7 @@ import click
 
 from mobile_car.check.checker import check_input
 from mobile_car.check.graphviz import write_graph
-from mobile_car.check.tree import graphviz_dot, rich_text
+from mobile_car.check.tree import graphviz_dot, rich_lines
 from mobile_car.errors import EXIT_PROBLEMS
 
 from . import streams
@@ -72,7 +72,8 @@ def command(words, graph_output, quiet, package_paths, sets, config_files):
         click.echo(f"mcar tree: {result.file} {why}", err=True)
         sys.exit(EXIT_PROBLEMS)
     if not quiet:
-        streams.write(rich_text(result.tree).encode("utf-8"))
+        # Written as it is made: a deep chain's text is hundreds of megabytes.
+        streams.write_lines(rich_lines(result.tree))
     if graph_output:
         written = write_graph(graphviz_dot(result.robot.name, result.tree), graph_output)
         click.echo(f"wrote {written}", err=True)

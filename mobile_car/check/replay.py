@@ -135,14 +135,14 @@ def record(inp, basis: Basis, result, stamper: Stamper) -> None:
 def _tree_text(result):
     """check_urdf's tree text of a sound result (None for an unsound one), or False when
     it is too large to keep."""
-    from .tree import check_urdf_batches
+    from .tree import check_urdf_lines
 
     if not result.sound:
         return None
     kept, size = [], 0
-    for batch in check_urdf_batches(result.robot.name, result.tree):
-        kept.extend(batch)
-        size += sum(len(buffer) for buffer in batch)
+    for line in check_urdf_lines(result.robot.name, result.tree):
+        kept.append(line)
+        size += len(line)
         if size > MAX_KEPT_BYTES:
             return False
     return b"".join(kept)

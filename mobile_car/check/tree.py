@@ -7,11 +7,15 @@ cycle can neither overflow the stack nor loop.
 
 Three views of a sound tree: :func:`check_urdf_text` (byte for byte what ``check_urdf``
 prints), :func:`rich_text` (joints with type, origin, axis, limits) and :func:`graphviz_dot`.
+The first two grow with the square of a chain's depth (its indentation), so each is also
+a generator of lines, :func:`check_urdf_lines` and :func:`rich_lines`, that the command
+writes as they come: the whole text is never held.
 """
 
 from __future__ import annotations
 
 from collections import defaultdict
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 from ..names import shown
@@ -152,27 +156,24 @@ def _closed_path(component: list[str], children: dict[str, list[Joint]]) -> list
 
 def check_urdf_text(robot_name: str, tree: KinematicTree) -> str:
     """What ``check_urdf`` prints on stdout for a sound robot, byte for byte."""
-    return b"".join(buffer for batch in check_urdf_batches(robot_name, tree)
-                    for buffer in batch).decode("utf-8")
+    return b"".join(check_urdf_lines(robot_name, tree)).decode("utf-8")
 
 
-def check_urdf_batches(robot_name: str, tree: KinematicTree, lines_per_batch: int = 511):
-    """:func:`check_urdf_text` as batches of UTF-8 buffers, each batch at most
-    ``2 * lines_per_batch + 1`` buffers (one ``os.writev`` call; Linux takes 1,024).
+def check_urdf_lines(robot_name: str, tree: KinematicTree) -> Iterator[bytes]:
+    """:func:`check_urdf_text` line by line, each line UTF-8 with its newline.
 
     The text of a deep chain grows with the square of its depth: each generation is
-    indented four more spaces, so a 20,000-link chain prints 800 MB, nearly all of it
-    spaces. A line's indentation is therefore a slice of one shared run of spaces (a
-    memoryview: no copy), and only the ``child(N):  name`` part is made per line.
+    indented four more spaces, so a 10,000-link chain prints 200 MB, nearly all of it
+    spaces. It is therefore made as it is written, one line at a time: what is held is
+    one shared run of spaces and the walk's stack, never the text.
     """
     root = tree.root
     kids = {link: [joint.child for joint in joints] for link, joints in tree.children.items()}
     # Names escaped (a no-op for every name check_urdf could print cleanly): "&#13;" or a
     # C1 control in a link name must not rewrite the terminal (see mobile_car.names).
-    batch = [(f"robot name is: {shown(robot_name)}\n"
-              "---------- Successfully Parsed XML ---------------\n"
-              f"root Link: {shown(root)} has {len(kids.get(root, ()))} child(ren)\n").encode()]
-    append = batch.append
+    yield f"robot name is: {shown(robot_name)}\n".encode()
+    yield b"---------- Successfully Parsed XML ---------------\n"
+    yield f"root Link: {shown(root)} has {len(kids.get(root, ()))} child(ren)\n".encode()
     spaces = memoryview(b" " * 4096)
     # A stack of iterators over (number, child): depth-first, in order, without recursion.
     stack = [enumerate(kids.get(root, ()), start=1)]
@@ -182,20 +183,13 @@ def check_urdf_batches(robot_name: str, tree: KinematicTree, lines_per_batch: in
             indent = 4 * len(stack)
             if indent > len(spaces):
                 spaces = memoryview(b" " * (2 * indent))
-            append(spaces[:indent])
-            append(f"child({number}):  {shown(link)}\n".encode())
+            yield b"".join((spaces[:indent], f"child({number}):  {shown(link)}\n".encode()))
             below = kids.get(link)
             if below:
                 stack.append(enumerate(below, start=1))
-            if len(batch) >= 2 * lines_per_batch:
-                yield batch
-                batch = []
-                append = batch.append
             break
         else:
             stack.pop()
-    if batch:
-        yield batch
 
 
 def _numbers(values) -> str:
@@ -221,17 +215,43 @@ def joint_summary(joint: Joint) -> str:
 
 def rich_text(tree: KinematicTree) -> str:
     """The tree drawn with box characters; each link shows the joint that carries it."""
-    lines = [shown(tree.root)]
-    kids = tree.children.get(tree.root, [])
-    stack = [(joint, "", i == len(kids) - 1) for i, joint in reversed(list(enumerate(kids)))]
+    return b"".join(rich_lines(tree)).decode("utf-8")
+
+
+_TEE, _ELBOW = "├── ".encode(), "└── ".encode()
+_BAR, _GAP = "│   ".encode(), b"    "
+
+
+def rich_lines(tree: KinematicTree) -> Iterator[bytes]:
+    """:func:`rich_text` line by line, each line UTF-8 with its newline.
+
+    Like check_urdf's, this text grows with the square of the depth, and so would a
+    drawn prefix kept per waiting sibling (a deep tree with a branch at every level
+    holds one per level). One prefix is kept instead, cut back to a depth's length
+    when the walk climbs back to it: memory follows the depth, not the text.
+    """
+    yield f"{shown(tree.root)}\n".encode()
+    prefix = bytearray()  # what is drawn left of the current depth's branches
+    cuts: list[int] = []  # the prefix's length for each depth above the current one
+    # A stack of (iterator over (number, joint), the last number): depth-first, in order.
+    kids = tree.children.get(tree.root, ())
+    stack = [(enumerate(kids), len(kids) - 1)]
     while stack:
-        joint, prefix, last = stack.pop()
-        lines.append(f"{prefix}{'└── ' if last else '├── '}{shown(joint.child)}  "
-                     f"({joint_summary(joint)})")
-        kids = tree.children.get(joint.child, [])
-        inner = prefix + ("    " if last else "│   ")
-        stack.extend((kid, inner, i == len(kids) - 1) for i, kid in reversed(list(enumerate(kids))))
-    return "\n".join(lines) + "\n"
+        siblings, final = stack[-1]
+        for number, joint in siblings:
+            last = number == final
+            yield b"".join((prefix, _ELBOW if last else _TEE,
+                            f"{shown(joint.child)}  ({joint_summary(joint)})\n".encode()))
+            below = tree.children.get(joint.child)
+            if below:
+                cuts.append(len(prefix))
+                prefix += _GAP if last else _BAR
+                stack.append((enumerate(below), len(below) - 1))
+            break
+        else:
+            stack.pop()
+            if cuts:
+                del prefix[cuts.pop():]
 
 
 def _dot_id(text: str) -> str:

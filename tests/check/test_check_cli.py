@@ -347,10 +347,11 @@ def test_binary_stl_cut_short_is_W207_and_a_sound_one_needs_no_trimesh(run_mcar,
 
 
 def test_gathered_write_finishes_after_partial_writes(monkeypatch):
-    """os.writev may write less than asked (a signal, a full pipe): the rest follows, in order."""
+    """os.writev may write less than asked (a signal, a full pipe): the rest follows, in
+    order, across chunks, after what was already buffered on stdout."""
     import os
 
-    from mobile_car.cli import check
+    from mobile_car.cli import streams
 
     real_writev = os.writev
 
@@ -359,11 +360,33 @@ def test_gathered_write_finishes_after_partial_writes(monkeypatch):
         return real_writev(fd, [data])
 
     monkeypatch.setattr(os, "writev", short_writev)
-    spaces = memoryview(b" " * 64)
-    batches = [[b"robot name is: r\n", spaces[:4], b"child(1):  a\n"],
-               [spaces[:8], b"child(1):  b\n"]]
+    monkeypatch.setattr(streams, "CHUNK_LINES", 2)  # three lines: two chunks
+    lines = [b"robot name is: r\n", b"    child(1):  a\n", b"        child(1):  b\n"]
     read_end, write_end = os.pipe()
-    with os.fdopen(write_end, "wb") as out:
-        check.write_batches(out, batches)
+    with open(write_end, "w", encoding="utf-8") as out:
+        monkeypatch.setattr(sys, "stdout", out)
+        out.write("==> r.urdf <==\n")  # buffered, not yet written: must still come first
+        streams.write_lines(iter(lines))
+        monkeypatch.undo()
     with os.fdopen(read_end, "rb") as pipe:
-        assert pipe.read() == b"robot name is: r\n    child(1):  a\n        child(1):  b\n"
+        assert pipe.read() == b"==> r.urdf <==\n" + b"".join(lines)
+
+
+def test_json_is_written_in_pieces_byte_for_byte():
+    """--format json's text is json.dumps's, made safe (escapes and all), UTF-8, written
+    in pieces of about 64 KB instead of dumps's one string, built from a list of every
+    token (a million small strings, ~80 MB, for a 10,000-link robot)."""
+    from mobile_car.cli.check import _json_pieces
+
+    from mobile_car.names import json_safe
+
+    document = {"files": [{"robot": "r\u202e", "links": [
+        {"name": f"l{i}\x85é", "line": i, "origin": {"xyz": [0.0, 0.1, -2e-3]}, "axis": None}
+        for i in range(3000)]}], "errors": 0, "exit_code": 0}
+    expected = json_safe(json.dumps(document, indent=1, ensure_ascii=False)).encode() + b"\n"
+    pieces = list(_json_pieces(document))
+    assert b"".join(pieces) == expected
+    assert b"\\u0085" in expected and b"\\u202e" in expected  # the escapes are in play
+    assert len(pieces) > 5
+    # Cut after the token that passes 64 KB: "\x85" grows six-fold once escaped.
+    assert max(len(piece) for piece in pieces) < 6 * (1 << 16) + 100

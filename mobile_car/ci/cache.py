@@ -4,7 +4,7 @@ The record (``.mcar-ci.json`` in the build folder) holds per built file the key 
 settings and the stamps of every file it was made from (see :mod:`mobile_car.freshness`),
 the stamp of the URDF written, the check's verdict, counts and diagnostics, and the sim
 step's outcome (status, message, testcases, error lines and diagnostics), and the gazebo
-step's (status, message, diagnostics; the helper's path, size and time are part of the
+step's (status, message, diagnostics; the helper's path and identity are part of the
 key, so a rebuilt helper is asked again). An item
 whose key, inputs and output are unchanged, and whose picture the render manifest finds
 current, is *replayed*: its steps are made from the record, so the report (text, JUnit,
@@ -25,6 +25,7 @@ from ..freshness import (
     diagnostics_data,
     diagnostics_from,
     file_sha256,
+    identity,
     key_of,
     output_current,
     output_stamp,
@@ -182,7 +183,7 @@ def _helper_stamp(helper: Path | None):
         stat = os.stat(helper)
     except OSError:
         return str(helper)
-    return [os.path.abspath(helper), stat.st_size, stat.st_mtime_ns]
+    return [os.path.abspath(helper), *identity(stat)]
 
 
 def _gazebo_step(data: dict) -> Step:

@@ -11,6 +11,7 @@ from pathlib import Path
 import click
 
 from mobile_car.errors import EXIT_OK, UsageError, combine_exit_codes
+from mobile_car.load.default_outputs import default_folder
 from mobile_car.names import shown
 from mobile_car.packages.bundled import PACKAGE_NAME
 from mobile_car.render.options import (
@@ -294,7 +295,8 @@ def _jobs(selection, output: str | None):
                 names_folder(output) or Path(output).is_dir())):
             target = None if output == "-" else Path(output)
             return [file_job(inputs[0], target)], None if target is None else target.parent, False
-        outdir = Path(output) if output else selection.output_root / "renders"
+        outdir = Path(output) if output else default_folder(selection.output_root,
+                                                            "renders", "-o")
         jobs = selection_jobs(selection, outdir)
         names = [job.target.name for job in jobs]
         clashes = sorted({name for name in names if names.count(name) > 1})
@@ -304,7 +306,8 @@ def _jobs(selection, output: str | None):
         return jobs, outdir, False
     if output == "-":
         raise UsageError("-o - (stdout) works with one INPUT only")
-    outdir = Path(output) if output else selection.output_root / "renders"
+    outdir = Path(output) if output else default_folder(selection.output_root, "renders",
+                                                        "-o")
     return selection_jobs(selection, outdir), outdir, True
 
 

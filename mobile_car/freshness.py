@@ -151,8 +151,11 @@ class Stamper:
                 digest = _digest_and_names(path, info.st_size, names)
             except OSError:
                 return None
-            # (ctime: a same-size edit with its mtime put back is racy too)
-            if max(info.st_mtime_ns, info.st_ctime_ns) >= self.started_ns - RACY_MARGIN_NS:
+            # A change since the run started with its mtime put back is racy too (its
+            # ctime says so). Without the margin: a checkout or copy made just before the
+            # run changed ctimes, not mtimes, and must not make every stamp racy.
+            if info.st_mtime_ns >= self.started_ns - RACY_MARGIN_NS or \
+                    info.st_ctime_ns >= self.started_ns:
                 result.append([path, [-1], ""])  # never matches: rebuilt next time
             else:
                 result.append([path, identity(info), digest])
@@ -291,11 +294,14 @@ def read_record(path: Path, section: str) -> dict[str, dict]:
     record), or none when it is missing, damaged, not a record, or not sealed by this
     user's mcar (a record in a checkout may have come with a pull request: see
     :mod:`.record_seal`). Read within the input limit: the record may be a link to
-    /dev/zero, or a FIFO."""
+    /dev/zero, or a FIFO. UsageError for a record in a default output folder that is a
+    link leading out of the checkout (:mod:`.load.default_outputs`): never followed."""
     from .errors import InputError
     from .load.bounded import read_input
+    from .load.default_outputs import placed
     from .record_seal import unsealed_entries
 
+    path, _ = placed(path)
     try:
         data = json.loads(read_input(path))
     except (OSError, ValueError, RecursionError, InputError):

@@ -112,10 +112,11 @@ class CiCache:
         if check is None or check.status == "skipped":
             self.entries.pop(name, None)
             return
-        # and what its sim step read (a control package's YAML)
+        # and what its sim step read (a control package's YAML), and the meshes its check
+        # read: a mesh edited is checked again (with --no-render nothing else stamps it)
         reads = [path for step in item.steps for path in step.reads]
-        files = self.stamper.stamps([*item.deps, *item_basis(item, basis).files, *reads],
-                                    skip=item.generated)
+        files = self.stamper.stamps([*item.deps, *item_basis(item, basis).files, *reads,
+                                     *_mesh_inputs(item.check_result)], skip=item.generated)
         try:
             urdf = output_stamp(item.urdf, file_sha256(item.urdf))
         except OSError:
@@ -173,6 +174,15 @@ def _recorded(entry: dict) -> tuple[bool, list, Step | None]:
 
 
 _STATUSES = ("passed", "failed", "skipped")
+
+
+def _mesh_inputs(result) -> list:
+    """The mesh files a check read and the files they pull in (materials, textures); a
+    mesh that is missing is among them, so the item is not recorded (as mcar check's own
+    record does: :mod:`mobile_car.check.replay`)."""
+    meshes = getattr(result, "mesh_files", None) or []
+    return [*(m.path for m in meshes if m.path is not None),
+            *(path for m in meshes for path in m.reads)]
 
 
 def _helper_stamp(helper: Path | None):

@@ -222,7 +222,8 @@ def _build_into(inp, target: Path, options, deps: str | None, output_format: str
 @click.option("-o", "--output", metavar="OUT",
               help="Output file (one file INPUT; default: stdout) or folder "
                    "(a folder, parts, several files or no INPUT; default: build/ under the "
-                   "package's root, or here for files outside a package).")
+                   "package's root, or here for files outside a package; refused if it is a "
+                   "link leading out of there, unless named here).")
 @click.option("--deps", "deps", is_flag=True,
               help="Print the files the expansion reads, one per line (for Make); without "
                    "-o build nothing, with -o write the outputs too.")

@@ -101,10 +101,12 @@ Exit codes:
               help="text: the summary table on stdout, problems on stderr; junit: JUnit XML "
                    "on stdout; github: workflow annotations, then the table.")
 @click.option("--build-dir", type=click.Path(),
-              help="Where the URDFs are written (default: build/ under the package's root).")
+              help="Where the URDFs are written (default: build/ under the package's root; "
+                   "refused if it is a link leading out of the package).")
 @click.option("--render-dir", type=click.Path(),
               help="Where the PNGs and the contact sheet index.png are written (default: "
-                   "renders/ under the package's root).")
+                   "renders/ under the package's root; refused if it is a link leading out of the "
+                   "package).")
 @click.option("--no-render", is_flag=True, help="Draw nothing.")
 @click.option("--no-sim", is_flag=True, help="Simulate nothing.")
 @click.option("--no-gazebo", is_flag=True,

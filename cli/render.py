@@ -130,7 +130,8 @@ def _progress(jobs, quiet: bool):
 @click.command("render", help=HELP, short_help="Draw robot descriptions as PNG pictures.")
 @click.argument("words", nargs=-1, metavar="[INPUT]... [NAME:=VALUE]...")
 @click.option("-o", "--output", metavar="OUT",
-              help="Output PNG (one FILE; '-' for stdout) or folder (default: renders/).")
+              help="Output PNG (one FILE; '-' for stdout) or folder (default: renders/, refused "
+                   "if it is a link leading out of the package or working folder).")
 @click.option("--view", type=click.Choice(VIEW_CHOICES), default="iso", show_default=True,
               help="Camera direction; 'all' draws the four views in a 2x2 picture.")
 @click.option("--size", "size", default="800x600", show_default=True, callback=_size,

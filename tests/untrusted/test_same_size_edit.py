@@ -144,3 +144,41 @@ def test_render_draws_again_after_a_same_size_mesh_edit(run_mcar, package):
     again = run_mcar(*RENDER, cwd=package)
     assert "1 picture in renders: 1 rendered" in again.stderr, again.stderr
     assert picture.read_bytes() != drawn  # the mesh that cannot be read is a marker now
+
+
+def test_a_file_over_the_hashed_size_is_known_by_its_whole_identity(tmp_path):
+    """Above HASHED_BYTES a file is not hashed while its identity holds: a same-size edit
+    with the mtime put back still changes its ctime (in place) or its inode (a copy
+    renamed over it, as rsync -t does), and then its bytes are compared."""
+    import time
+
+    from mobile_car.freshness import HASHED_BYTES, Stamper, stamp_current
+
+    mesh = tmp_path / "big.stl"
+    mesh.write_bytes(bytes(HASHED_BYTES + 1))
+    old = 1_600_000_000_000_000_000
+    os.utime(mesh, ns=(old, old))
+    # The stamp must not be racy: the file's last change is before the run started.
+    while time.time_ns() <= mesh.stat().st_ctime_ns:
+        time.sleep(0.001)
+    [stamp] = Stamper().stamps([mesh])
+    assert stamp_current(list(stamp)) == (True, False)  # the control: a no-op
+
+    copy = tmp_path / "copy.stl"  # rsync -t: a new file with the old times, renamed in
+    copy.write_bytes(b"\1" + bytes(HASHED_BYTES))
+    os.utime(copy, ns=(old, old))
+    os.replace(copy, mesh)
+    assert stamp_current(list(stamp)) == (False, False)
+
+    mesh.write_bytes(bytes(HASHED_BYTES + 1))  # the bytes back: same content, refreshed
+    os.utime(mesh, ns=(old, old))
+    again = list(stamp)
+    assert stamp_current(again) == (True, True) and again[1] != stamp[1]
+
+    # In place, the mtime put back: the change time moves on (once the clock has ticked).
+    while time.time_ns() <= mesh.stat().st_ctime_ns + 20_000_000:
+        time.sleep(0.001)
+    with open(mesh, "r+b") as handle:
+        handle.write(b"\2")
+    os.utime(mesh, ns=(old, old))
+    assert stamp_current(list(again)) == (False, False)

@@ -51,6 +51,9 @@ RECORD_FORMAT = 2
 # What a file that is not a regular file (a FIFO, a device) is stamped with: it never
 # counts as unchanged.
 NOT_REGULAR = "not a regular file"
+# What a file that was missing is stamped with (a mesh the check found missing, W207): the
+# stamp holds while the file is still missing.
+ABSENT = "absent"
 
 
 def file_sha256(path: str | os.PathLike) -> str:
@@ -139,12 +142,17 @@ class Stamper:
     def __init__(self):
         self.started_ns = time.time_ns()
 
-    def stamps(self, paths, skip=()) -> list[list] | None:
-        """Stamps of the files (each once, ``skip`` left out); None if one is missing."""
+    def stamps(self, paths, skip=(), absent=()) -> list[list] | None:
+        """Stamps of the files (each once, ``skip`` left out); None if one is missing,
+        but for those of ``absent``: stamped as missing (current while they are)."""
         skipped = {os.path.abspath(p) for p in skip if p is not None}
+        may_miss = {os.path.abspath(p) for p in absent}
         result, names = [], set()
-        for path in dict.fromkeys(os.path.abspath(p) for p in paths):
+        for path in dict.fromkeys(os.path.abspath(p) for p in [*paths, *absent]):
             if path in skipped:
+                continue
+            if path in may_miss and not os.path.lexists(path):
+                result.append([path, None, ABSENT])
                 continue
             try:
                 info = os.stat(path)
@@ -226,6 +234,8 @@ def stamp_current(stamp) -> tuple[bool, bool]:
         return isinstance(stamp[1], str) and os.environ.get(stamp[1]) == stamp[2], False
     try:
         path, recorded, digest = stamp
+        if digest == ABSENT and recorded is None:
+            return not os.path.lexists(path), False
         info = os.stat(path)
     except (OSError, ValueError, TypeError):
         return False, False

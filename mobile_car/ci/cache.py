@@ -115,8 +115,9 @@ class CiCache:
         # and what its sim step read (a control package's YAML), and the meshes its check
         # read: a mesh edited is checked again (with --no-render nothing else stamps it)
         reads = [path for step in item.steps for path in step.reads]
+        meshes, missing = _mesh_inputs(item.check_result)
         files = self.stamper.stamps([*item.deps, *item_basis(item, basis).files, *reads,
-                                     *_mesh_inputs(item.check_result)], skip=item.generated)
+                                     *meshes], skip=item.generated, absent=missing)
         try:
             urdf = output_stamp(item.urdf, file_sha256(item.urdf))
         except OSError:
@@ -176,13 +177,13 @@ def _recorded(entry: dict) -> tuple[bool, list, Step | None]:
 _STATUSES = ("passed", "failed", "skipped")
 
 
-def _mesh_inputs(result) -> list:
-    """The mesh files a check read and the files they pull in (materials, textures); a
-    mesh that is missing is among them, so the item is not recorded (as mcar check's own
-    record does: :mod:`mobile_car.check.replay`)."""
-    meshes = getattr(result, "mesh_files", None) or []
-    return [*(m.path for m in meshes if m.path is not None),
-            *(path for m in meshes for path in m.reads)]
+def _mesh_inputs(result) -> tuple[list, list]:
+    """(the mesh files a check read and the files they pull in: materials, textures; the
+    meshes it found missing, W207: the verdict holds while they are missing)."""
+    meshes = [m for m in getattr(result, "mesh_files", None) or [] if m.path is not None]
+    missing = [m.path for m in meshes if not os.path.lexists(m.path)]
+    return [*(m.path for m in meshes if m.path not in missing),
+            *(path for m in meshes for path in m.reads)], missing
 
 
 def _helper_stamp(helper: Path | None):

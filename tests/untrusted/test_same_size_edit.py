@@ -182,3 +182,20 @@ def test_a_file_over_the_hashed_size_is_known_by_its_whole_identity(tmp_path):
         handle.write(b"\2")
     os.utime(mesh, ns=(old, old))
     assert stamp_current(list(again)) == (False, False)
+
+
+def test_a_missing_mesh_is_stamped_as_missing_and_its_arrival_is_a_change(run_mcar, package):
+    mesh = package / "meshes" / "m.stl"
+    kept = mesh.read_bytes()
+    mesh.unlink()
+    first = run_mcar(*CI, cwd=package)
+    assert first.returncode == 1 and "[W207]" in first.stderr, first.stderr
+    before = built(package)
+    again = run_mcar(*CI, cwd=package)  # still missing: the verdict is replayed
+    assert again.returncode == 1 and "[W207]" in again.stderr
+    assert built(package) == before
+
+    mesh.write_bytes(kept)
+    arrived = run_mcar(*CI, cwd=package)
+    assert arrived.returncode == 0, arrived.stderr
+    assert "[W207]" not in arrived.stderr

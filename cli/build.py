@@ -9,6 +9,7 @@ import click
 
 from mobile_car.atomic import atomic_write
 from mobile_car.errors import EXIT_OK, McarError, UsageError, combine_exit_codes
+from mobile_car.load.default_outputs import default_folder
 from mobile_car.load.inputs import display_path
 from mobile_car.names import shown
 from mobile_car.packages.discover import output_name
@@ -221,7 +222,8 @@ def _build_into(inp, target: Path, options, deps: str | None, output_format: str
 @click.option("-o", "--output", metavar="OUT",
               help="Output file (one file INPUT; default: stdout) or folder "
                    "(a folder, parts, several files or no INPUT; default: build/ under the "
-                   "package's root, or here for files outside a package).")
+                   "package's root, or here for files outside a package; refused if it is a "
+                   "link leading out of there, unless named here).")
 @click.option("--deps", "deps", is_flag=True,
               help="Print the files the expansion reads, one per line (for Make); without "
                    "-o build nothing, with -o write the outputs too.")
@@ -263,6 +265,7 @@ def command(words, output, deps, absolute, output_format, quiet, package_paths, 
         if names_file:
             raise UsageError(f"-o {output} is one file, but there are {len(inputs)} robot "
                              "files to build; name one INPUT file, or give -o a folder")
-        outdir = Path(output) if output else None if deps else selection.output_root / "build"
+        outdir = Path(output) if output else None if deps else \
+            default_folder(selection.output_root, "build", "-o")
         basis = input_basis(options.mappings, package_paths, sets, config_files)
         sys.exit(_build_many(inputs, options, outdir, deps, quiet, output_format, basis))

@@ -10,6 +10,7 @@ import click
 
 from mobile_car.check import replay
 from mobile_car.errors import UsageError
+from mobile_car.load.default_outputs import default_folder
 from mobile_car.load.inputs import display_path
 from mobile_car.names import shown
 from mobile_car.packages.bundled import PACKAGE_NAME
@@ -100,10 +101,12 @@ Exit codes:
               help="text: the summary table on stdout, problems on stderr; junit: JUnit XML "
                    "on stdout; github: workflow annotations, then the table.")
 @click.option("--build-dir", type=click.Path(),
-              help="Where the URDFs are written (default: build/ under the package's root).")
+              help="Where the URDFs are written (default: build/ under the package's root; "
+                   "refused if it is a link leading out of the package).")
 @click.option("--render-dir", type=click.Path(),
               help="Where the PNGs and the contact sheet index.png are written (default: "
-                   "renders/ under the package's root).")
+                   "renders/ under the package's root; refused if it is a link leading out of the "
+                   "package).")
 @click.option("--no-render", is_flag=True, help="Draw nothing.")
 @click.option("--no-sim", is_flag=True, help="Simulate nothing.")
 @click.option("--no-gazebo", is_flag=True,
@@ -138,8 +141,11 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
     started = time.perf_counter()
     # A .urdf is "built" as it is: only xacro files are expanded, as check sees them.
     selection, mappings = select_inputs(words, package_paths, sets, config_files)
-    build_dir = Path(build_dir) if build_dir else selection.output_root / "build"
-    render_dir = Path(render_dir) if render_dir else selection.output_root / "renders"
+    # Not named: build/ and renders/ of the output root, kept inside it (default_outputs)
+    build_dir = Path(build_dir) if build_dir else \
+        default_folder(selection.output_root, "build", "--build-dir")
+    render_dir = Path(render_dir) if render_dir else \
+        default_folder(selection.output_root, "renders", "--render-dir")
     if diff_report and not against:
         raise UsageError("--diff-report FILE needs --against REV (the revision to compare with)")
     for report_file in (junit_xml, diff_report):

@@ -259,10 +259,12 @@ def handle_errors(func):
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         from mobile_car.load import xacro_use
+        from mobile_car.load.default_outputs import forget_default_folders
 
         from . import signals
 
         try:
+            forget_default_folders()
             signals.arm()
             _said_xacro_use.clear()
             xacro_use.listen(_say_xacro_use)

@@ -11,6 +11,7 @@ from pathlib import Path
 import click
 
 from mobile_car.errors import EXIT_OK, UsageError, combine_exit_codes
+from mobile_car.load.default_outputs import default_folder
 from mobile_car.names import shown
 from mobile_car.packages.bundled import PACKAGE_NAME
 from mobile_car.render.options import (
@@ -129,7 +130,8 @@ def _progress(jobs, quiet: bool):
 @click.command("render", help=HELP, short_help="Draw robot descriptions as PNG pictures.")
 @click.argument("words", nargs=-1, metavar="[INPUT]... [NAME:=VALUE]...")
 @click.option("-o", "--output", metavar="OUT",
-              help="Output PNG (one FILE; '-' for stdout) or folder (default: renders/).")
+              help="Output PNG (one FILE; '-' for stdout) or folder (default: renders/, refused "
+                   "if it is a link leading out of the package or working folder).")
 @click.option("--view", type=click.Choice(VIEW_CHOICES), default="iso", show_default=True,
               help="Camera direction; 'all' draws the four views in a 2x2 picture.")
 @click.option("--size", "size", default="800x600", show_default=True, callback=_size,
@@ -294,7 +296,8 @@ def _jobs(selection, output: str | None):
                 names_folder(output) or Path(output).is_dir())):
             target = None if output == "-" else Path(output)
             return [file_job(inputs[0], target)], None if target is None else target.parent, False
-        outdir = Path(output) if output else selection.output_root / "renders"
+        outdir = Path(output) if output else default_folder(selection.output_root,
+                                                            "renders", "-o")
         jobs = selection_jobs(selection, outdir)
         names = [job.target.name for job in jobs]
         clashes = sorted({name for name in names if names.count(name) > 1})
@@ -304,7 +307,8 @@ def _jobs(selection, output: str | None):
         return jobs, outdir, False
     if output == "-":
         raise UsageError("-o - (stdout) works with one INPUT only")
-    outdir = Path(output) if output else selection.output_root / "renders"
+    outdir = Path(output) if output else default_folder(selection.output_root, "renders",
+                                                        "-o")
     return selection_jobs(selection, outdir), outdir, True
 
 

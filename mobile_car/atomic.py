@@ -9,6 +9,10 @@ A rebuilt file keeps its permission bits (0600 stays private, 0755 executable). 
 output (0444) is replaced and stays 0444, as ``make`` would: the rename replaces the
 folder's entry, which needs a writable folder, not a writable file; read-only guards the
 file against editors, not against the tool that generates it.
+
+A default output (below ``build/`` or ``renders/``, :mod:`.load.default_outputs`) is
+written beneath its folder as resolved once, and never through a link leading out of the
+output root; a file there that is not a regular file is replaced, not written into.
 """
 
 from __future__ import annotations
@@ -23,9 +27,11 @@ from .held_signals import hold_signals, release_signals
 
 def atomic_write(path: str | os.PathLike, data: bytes | str) -> Path:
     """Write ``data`` to ``path`` atomically, creating parent directories; returns the path."""
-    target = Path(path)
+    from .load.default_outputs import placed
+
+    target, confined = placed(path)
     payload = data.encode("utf-8") if isinstance(data, str) else data
-    if _is_special(target):
+    if not confined and _is_special(target):
         try:
             with open(target, "wb") as handle:
                 handle.write(payload)

@@ -1,14 +1,24 @@
-"""Decide "nothing changed" from file stats, without loading anything.
+"""Decide "nothing changed" without loading anything.
 
 An output (a built URDF, a picture) records the files it was made from as *stamps*:
-``[path, size, mtime_ns, sha256]``, and a *key*: a hash of everything else that decides it
-(the command line's arguments and overrides, the package search environment, options,
-mcar's version). A later run that finds the same key and every stamped file with the same
-size and mtime knows the output is current after a few ``stat()`` calls; only a file whose
-stat differs is hashed, and only a changed hash means rebuilding. A file that would newly
-be included cannot appear without a stamped file (the one including it) changing. The
-environment variables a stamped file reads through xacro's ``$(env)`` and ``$(optenv)``
-are stamped beside it, with their values.
+``[path, identity, sha256]``, the identity being ``[size, mtime_ns, ctime_ns, inode,
+device]``, and a *key*: a hash of everything else that decides it (the command line's
+arguments and overrides, the package search environment, options, mcar's version, the
+record format). A later run that finds the same key and every stamped file still the
+same knows the output is current. A file that would newly be included cannot appear
+without a stamped file (the one including it) changing. The environment variables a
+stamped file reads through xacro's ``$(env)`` and ``$(optenv)`` are stamped beside it,
+with their values.
+
+"Still the same" is decided by something an edit cannot keep. A file up to
+:data:`HASHED_BYTES` (4 MiB) is hashed on every check: size and mtime alone were fooled
+by a same-size edit whose mtime was put back (``cp -p``, ``rsync -t``, ``touch -r``, ``tar
+x``, a restored cache), and every xacro is read whole at that size anyway (for its
+``$(env)`` names); every mesh of the released TurtleBot3, Husky, Jackal, Clearpath, MiR
+and Kobuki packages is below it (the largest, 3.2 MB), and SHA-256 of 4 MiB costs ~3 ms.
+A larger file (a mesh) counts as unchanged when its whole identity is: the change time
+cannot be set back by its owner, and a copy put in its place has another inode; when the
+identity differs, its bytes are hashed, and only a changed hash means rebuilding.
 
 Kept free of xacro, lxml, numpy and trimesh: this is what a no-op run imports.
 """
@@ -32,6 +42,18 @@ SEARCH_ENVIRONMENT = ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")
 # changed after it was read, within one tick of the file system's clock: it gets no
 # stamp, so the next run rebuilds what it made (git's "racy" files).
 RACY_MARGIN_NS = 30_000_000
+# Files up to this size are known by their bytes, hashed on every check (see above).
+HASHED_BYTES = 4 << 20
+# In every record key: bumped when stamps change shape or meaning, so that records an
+# older mcar wrote are simply not matched (2: identities with ctime, inode and device,
+# small files hashed on every check).
+RECORD_FORMAT = 2
+# What a file that is not a regular file (a FIFO, a device) is stamped with: it never
+# counts as unchanged.
+NOT_REGULAR = "not a regular file"
+# What a file that was missing is stamped with (a mesh the check found missing, W207): the
+# stamp holds while the file is still missing.
+ABSENT = "absent"
 
 
 def file_sha256(path: str | os.PathLike) -> str:
@@ -42,7 +64,7 @@ def file_sha256(path: str | os.PathLike) -> str:
     try:
         handle = open_regular(path)
     except InputError:  # never opened for reading: a FIFO would block
-        return "not a regular file"  # a device or FIFO never counts as unchanged
+        return NOT_REGULAR  # a device or FIFO never counts as unchanged
     with handle:
         for block in iter(lambda: handle.read(1 << 20), b""):
             digest.update(block)
@@ -58,7 +80,8 @@ def _hash_limit() -> int:
 def key_of(*parts) -> str:
     """A hash of plain data (and mcar's version and installation): two runs with equal
     keys were asked the same thing."""
-    text = json.dumps([__version__, installed_stamp(), *parts], sort_keys=True, default=str)
+    text = json.dumps([__version__, RECORD_FORMAT, installed_stamp(), *parts], sort_keys=True,
+                      default=str)
     return hashlib.sha256(text.encode()).hexdigest()
 
 
@@ -106,28 +129,44 @@ def installed_stamp() -> list:
     return stamp
 
 
+def identity(info: os.stat_result) -> list[int]:
+    """What a file's stat says of its content: ``[size, mtime_ns, ctime_ns, inode,
+    device]``. Size and mtime can be put back after an edit; ctime cannot (but by
+    changing the clock), and a copy renamed into place has another inode."""
+    return [info.st_size, info.st_mtime_ns, info.st_ctime_ns, info.st_ino, info.st_dev]
+
+
 class Stamper:
     """Stamps files read by one run (started when the Stamper was made)."""
 
     def __init__(self):
         self.started_ns = time.time_ns()
 
-    def stamps(self, paths, skip=()) -> list[list] | None:
-        """Stamps of the files (each once, ``skip`` left out); None if one is missing."""
+    def stamps(self, paths, skip=(), absent=()) -> list[list] | None:
+        """Stamps of the files (each once, ``skip`` left out); None if one is missing,
+        but for those of ``absent``: stamped as missing (current while they are)."""
         skipped = {os.path.abspath(p) for p in skip if p is not None}
+        may_miss = {os.path.abspath(p) for p in absent}
         result, names = [], set()
-        for path in dict.fromkeys(os.path.abspath(p) for p in paths):
+        for path in dict.fromkeys(os.path.abspath(p) for p in [*paths, *absent]):
             if path in skipped:
+                continue
+            if path in may_miss and not os.path.lexists(path):
+                result.append([path, None, ABSENT])
                 continue
             try:
                 info = os.stat(path)
                 digest = _digest_and_names(path, info.st_size, names)
             except OSError:
                 return None
-            if info.st_mtime_ns >= self.started_ns - RACY_MARGIN_NS:
-                result.append([path, -1, -1, ""])  # never matches: rebuilt next time
+            # A change since the run started with its mtime put back is racy too (its
+            # ctime says so). Without the margin: a checkout or copy made just before the
+            # run changed ctimes, not mtimes, and must not make every stamp racy.
+            if info.st_mtime_ns >= self.started_ns - RACY_MARGIN_NS or \
+                    info.st_ctime_ns >= self.started_ns:
+                result.append([path, [-1], ""])  # never matches: rebuilt next time
             else:
-                result.append([path, info.st_size, info.st_mtime_ns, digest])
+                result.append([path, identity(info), digest])
         return result + [[ENV_STAMP, name, os.environ.get(name), ""] for name in sorted(names)]
 
 
@@ -152,7 +191,7 @@ def _digest_and_names(path: str, size: int, names: set[str]) -> str:
     try:
         handle = open_regular(path)
     except InputError:  # never opened for reading: a FIFO would block
-        return "not a regular file"  # as file_sha256 says: never counts as unchanged
+        return NOT_REGULAR  # as file_sha256 says: never counts as unchanged
     with handle:
         data = handle.read()
     names.update(name.decode("ascii") for name in _ENV_USE.findall(data))
@@ -164,17 +203,18 @@ def is_environment_stamp(stamp) -> bool:
 
 
 def output_stamp(path: str | os.PathLike, digest: str) -> list | None:
-    """[size, mtime_ns] of a file this run just wrote (its hash is known)."""
+    """``[identity, sha256]`` of a file this run just wrote (its hash is known)."""
     try:
         info = os.stat(path)
     except OSError:
         return None
-    return [info.st_size, info.st_mtime_ns, digest]
+    return [identity(info), digest]
 
 
 def stamps_current(stamps) -> tuple[bool, bool]:
     """(current, refreshed): whether every stamped file still has its recorded content,
-    and whether a stamp was brought up to date (same bytes, new mtime: a touch)."""
+    and whether a stamp was brought up to date (same bytes, new identity: a touch, a
+    fresh checkout)."""
     refreshed = False
     if not isinstance(stamps, list):
         return False, False
@@ -187,36 +227,46 @@ def stamps_current(stamps) -> tuple[bool, bool]:
 
 
 def stamp_current(stamp) -> tuple[bool, bool]:
-    """One ``[path, size, mtime_ns, sha256]`` stamp: (current, refreshed in place); or an
-    environment variable's (:data:`ENV_STAMP`)."""
+    """One ``[path, identity, sha256]`` stamp: (current, refreshed in place); or an
+    environment variable's (:data:`ENV_STAMP`). A stamp of another shape (an older
+    mcar's ``[path, size, mtime_ns, sha256]``) is not current."""
     if is_environment_stamp(stamp):
         return isinstance(stamp[1], str) and os.environ.get(stamp[1]) == stamp[2], False
     try:
-        path, size, mtime_ns, digest = stamp
+        path, recorded, digest = stamp
+        if digest == ABSENT and recorded is None:
+            return not os.path.lexists(path), False
         info = os.stat(path)
     except (OSError, ValueError, TypeError):
         return False, False
-    if info.st_size == size and info.st_mtime_ns == mtime_ns:
+    if not isinstance(digest, str) or digest == NOT_REGULAR:
+        return False, False
+    now = identity(info)
+    # (no digest: a file over the mesh cap, never read, is known by its identity alone)
+    if (info.st_size > HASHED_BYTES or not digest) and now == recorded:
         return True, False
-    if info.st_size != size or not digest:
+    if not isinstance(recorded, list) or not recorded or info.st_size != recorded[0] \
+            or not digest:
         return False, False
     try:
         if file_sha256(path) != digest:
             return False, False
     except OSError:
         return False, False
-    stamp[2] = info.st_mtime_ns
+    if now == recorded:
+        return True, False
+    stamp[1] = now
     return True, True
 
 
 def output_current(path: str | os.PathLike, stamp) -> tuple[bool, bool]:
-    """Whether an output still holds what was written (``[size, mtime_ns, sha256]``), and
-    whether its stamp was refreshed in place (same bytes, new mtime)."""
-    if not isinstance(stamp, list) or len(stamp) != 3:
+    """Whether an output still holds what was written (``[identity, sha256]``), and
+    whether its stamp was refreshed in place (same bytes, new identity)."""
+    if not isinstance(stamp, list) or len(stamp) != 2:
         return False, False
     full = [os.fspath(path), *stamp]
     ok, refreshed = stamp_current(full)
-    stamp[1] = full[2]
+    stamp[0] = full[1]
     return ok, refreshed
 
 
@@ -254,11 +304,14 @@ def read_record(path: Path, section: str) -> dict[str, dict]:
     record), or none when it is missing, damaged, not a record, or not sealed by this
     user's mcar (a record in a checkout may have come with a pull request: see
     :mod:`.record_seal`). Read within the input limit: the record may be a link to
-    /dev/zero, or a FIFO."""
+    /dev/zero, or a FIFO. UsageError for a record in a default output folder that is a
+    link leading out of the checkout (:mod:`.load.default_outputs`): never followed."""
     from .errors import InputError
     from .load.bounded import read_input
+    from .load.default_outputs import placed
     from .record_seal import unsealed_entries
 
+    path, _ = placed(path)
     try:
         data = json.loads(read_input(path))
     except (OSError, ValueError, RecursionError, InputError):

@@ -4,7 +4,7 @@ The record (``.mcar-ci.json`` in the build folder) holds per built file the key 
 settings and the stamps of every file it was made from (see :mod:`mobile_car.freshness`),
 the stamp of the URDF written, the check's verdict, counts and diagnostics, and the sim
 step's outcome (status, message, testcases, error lines and diagnostics), and the gazebo
-step's (status, message, diagnostics; the helper's path, size and time are part of the
+step's (status, message, diagnostics; the helper's path and identity are part of the
 key, so a rebuilt helper is asked again). An item
 whose key, inputs and output are unchanged, and whose picture the render manifest finds
 current, is *replayed*: its steps are made from the record, so the report (text, JUnit,
@@ -25,6 +25,7 @@ from ..freshness import (
     diagnostics_data,
     diagnostics_from,
     file_sha256,
+    identity,
     key_of,
     output_current,
     output_stamp,
@@ -111,10 +112,12 @@ class CiCache:
         if check is None or check.status == "skipped":
             self.entries.pop(name, None)
             return
-        # and what its sim step read (a control package's YAML)
+        # and what its sim step read (a control package's YAML), and the meshes its check
+        # read: a mesh edited is checked again (with --no-render nothing else stamps it)
         reads = [path for step in item.steps for path in step.reads]
-        files = self.stamper.stamps([*item.deps, *item_basis(item, basis).files, *reads],
-                                    skip=item.generated)
+        meshes, missing = _mesh_inputs(item.check_result)
+        files = self.stamper.stamps([*item.deps, *item_basis(item, basis).files, *reads,
+                                     *meshes], skip=item.generated, absent=missing)
         try:
             urdf = output_stamp(item.urdf, file_sha256(item.urdf))
         except OSError:
@@ -174,6 +177,15 @@ def _recorded(entry: dict) -> tuple[bool, list, Step | None]:
 _STATUSES = ("passed", "failed", "skipped")
 
 
+def _mesh_inputs(result) -> tuple[list, list]:
+    """(the mesh files a check read and the files they pull in: materials, textures; the
+    meshes it found missing, W207: the verdict holds while they are missing)."""
+    meshes = [m for m in getattr(result, "mesh_files", None) or [] if m.path is not None]
+    missing = [m.path for m in meshes if not os.path.lexists(m.path)]
+    return [*(m.path for m in meshes if m.path not in missing),
+            *(path for m in meshes for path in m.reads)], missing
+
+
 def _helper_stamp(helper: Path | None):
     """What identifies the Gazebo helper a run used (None: no gazebo step)."""
     if helper is None:
@@ -182,7 +194,7 @@ def _helper_stamp(helper: Path | None):
         stat = os.stat(helper)
     except OSError:
         return str(helper)
-    return [os.path.abspath(helper), stat.st_size, stat.st_mtime_ns]
+    return [os.path.abspath(helper), *identity(stat)]
 
 
 def _gazebo_step(data: dict) -> Step:

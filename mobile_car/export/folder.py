@@ -55,7 +55,9 @@ def refuse_replacing(target: Path, protected: Iterable[Path | None]) -> None:
 def staged_folder(target: Path, protected: Iterable[Path | None]) -> Iterator[Path]:
     """Yield an empty staging folder; when the block ends without an error, it becomes
     ``target``. InputError (exit 2) when the file system refuses."""
-    target = Path(os.path.abspath(target))
+    from ..load.default_outputs import placed
+
+    target = Path(os.path.abspath(placed(target)[0]))  # below build/: resolved, kept inside
     refuse_replacing(target, protected)
     made = make_parents(target.parent)
     staging = target.parent / f".{target.name[:200]}.mcar-export-{secrets.token_hex(4)}"

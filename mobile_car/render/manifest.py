@@ -29,6 +29,7 @@ from pathlib import Path
 from ..freshness import (
     Basis,
     diagnostics_from,
+    identity,
     is_environment_stamp,
     key_of,
     output_current,
@@ -51,7 +52,7 @@ def sha256(data: bytes) -> str:
 
 def input_fingerprint(urdf: bytes, meshes: list[Path], settings: dict) -> str:
     """Hash of the URDF, its mesh files and the files they pull in (names and bytes; for a
-    file over the mesh size limit, which is not read, its size and time) and the
+    file over the mesh size limit, which is not read, its identity) and the
     settings (plain data)."""
     from ..load.compressed import max_mesh_bytes
 
@@ -63,7 +64,7 @@ def input_fingerprint(urdf: bytes, meshes: list[Path], settings: dict) -> str:
         with open(mesh, "rb") as handle:  # in chunks: a mesh may be large
             info = os.fstat(handle.fileno())
             if info.st_size > cap:
-                mesh_hash = f"{info.st_size} {info.st_mtime_ns}"
+                mesh_hash = " ".join(map(str, identity(info)))  # (not read: never hashed)
             else:
                 mesh_hash = hashlib.file_digest(handle, "sha256").hexdigest()
         digest.update(str(mesh).encode() + b"\0" + mesh_hash.encode())

@@ -33,8 +33,8 @@ def _forge(package: Path, key_dir: Path) -> None:
     digest = hashlib.sha256(data).hexdigest()
 
     def fix(node):
-        if isinstance(node, list) and len(node) == 4 and str(node[0]).endswith("urdf/r.urdf"):
-            node[1:] = [len(data), 0, digest]
+        if isinstance(node, list) and len(node) == 3 and str(node[0]).endswith("urdf/r.urdf"):
+            node[1:] = [[len(data), 0, 0, 0, 0], digest]  # [path, identity, sha256]
         for child in node.values() if isinstance(node, dict) else \
                 node if isinstance(node, list) else ():
             fix(child)

@@ -19,7 +19,9 @@ first byte, in three layers:
   readable.
 
 The child also dies with its parent (``PR_SET_PDEATHSIG``), and has only the result pipe
-and ``/dev/null`` as open files. ``trust_inputs()`` (``--no-sandbox``) turns it all off.
+and ``/dev/null`` as open files. It holds no secret to find in its own memory: the record
+key is never read into mcar (:mod:`mobile_car.seal_keeper`). ``trust_inputs()``
+(``--no-sandbox``) turns it all off.
 """
 
 from __future__ import annotations
@@ -175,6 +177,13 @@ def _restrict_reads(read_roots: list[Path]) -> None:
         except OSError:
             continue  # vanished, or not a kind of file Landlock takes: stays unreadable
     ruleset.apply()
+    # The ruleset's descriptor is not the child's to keep: it needs no handle but its pipe.
+    fd = getattr(ruleset, "_fd", None)
+    if isinstance(fd, int):
+        try:
+            os.close(fd)
+        except OSError:
+            pass
 
 
 # System calls the child never needs and an attacker wants, refused with EPERM.

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import os
 import secrets
+import signal
 import subprocess
 import time
 from pathlib import Path
@@ -216,3 +217,155 @@ def test_a_xacro_cannot_print_the_key_nor_have_things_sealed(run_mcar, tmp_path,
         assert key.hex() not in result.stdout + result.stderr
     else:
         assert found[0] == key.hex() and len(found[1]) == 64, leak
+
+
+# -- nor act on another process ------------------------------------------------------------
+
+ACT_ON = """
+import errno, os, resource
+out = []
+for name, attempt in [
+        ('setpriority', lambda: os.setpriority(os.PRIO_PROCESS, {pid}, 17)),
+        ('prlimit', lambda: resource.prlimit({pid}, resource.RLIMIT_NOFILE, (3, 3))),
+        ('affinity', lambda: os.sched_setaffinity({pid}, [{cpu}])),
+]:
+    try:
+        attempt()
+        out.append(name + '-done')
+    except OSError as error:
+        out.append(name + '-' + errno.errorcode[error.errno])
+out = '.'.join(out)
+"""
+
+
+def _link_names(urdf: Path) -> list[str]:
+    import xml.etree.ElementTree as ET
+
+    return [link.get("name") for link in ET.parse(urdf).getroot().iter("link")]
+
+
+def _state(pid: int) -> tuple:
+    import resource
+
+    return (os.getpriority(os.PRIO_PROCESS, pid), resource.prlimit(pid, resource.RLIMIT_NOFILE),
+            os.sched_getaffinity(pid))
+
+
+@pytest.mark.parametrize("sandboxed", [True, False], ids=["sandboxed", "control-unsandboxed"])
+def test_another_process_keeps_its_priority_limits_and_cpus(run_mcar, tmp_path, sandboxed):
+    sleeper = subprocess.Popen(["sleep", "120"])
+    try:
+        before = _state(sleeper.pid)
+        cpu = min(before[2])
+        (tmp_path / "z.xacro").write_text(hostile(ACT_ON.format(pid=sleeper.pid, cpu=cpu)))
+        result = run_mcar("build", "z.xacro", "-o", "out.urdf",
+                          *([] if sandboxed else ["--no-sandbox"]), cwd=tmp_path)
+        assert result.returncode == 0, result.stderr
+        outcome = _link_names(tmp_path / "out.urdf")[1]
+        after = _state(sleeper.pid)
+    finally:
+        sleeper.kill()
+        sleeper.wait()
+    if sandboxed:
+        assert outcome == "setpriority-EPERM.prlimit-EACCES.affinity-EPERM"
+        assert after == before
+    else:  # the same calls, not refused, do change it
+        assert outcome == "setpriority-done.prlimit-done.affinity-done"
+        assert after[:2] == (17, (3, 3)) and after[2] == {cpu}
+
+
+SIGNAL_PARENT = """
+import ctypes, errno, os, signal
+libc = ctypes.CDLL(None, use_errno=True)
+parent = os.getppid()
+info = (ctypes.c_int * 32)()
+info[0], info[2] = signal.SIGSTOP, -1  # si_signo, si_code SI_QUEUE: as sigqueue(3) sends
+calls = [
+    ('rt_sigqueueinfo', lambda: libc.syscall({rt_sigqueueinfo}, parent, signal.SIGSTOP, info)),
+    ('rt_tgsigqueueinfo',
+     lambda: libc.syscall({rt_tgsigqueueinfo}, parent, parent, signal.SIGSTOP, info)),
+    ('tgkill', lambda: libc.syscall({tgkill}, parent, parent, signal.SIGSTOP)),
+    ('kill', lambda: libc.kill(parent, signal.SIGSTOP)),
+    ('group', lambda: libc.kill(0, signal.SIGSTOP)),
+][:{how_many}]
+out = '.'.join(name + '-' + ('done' if call() == 0 else errno.errorcode[ctypes.get_errno()])
+               for name, call in calls)
+"""
+
+
+def _process_state(pid: int) -> str:
+    return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+
+
+@pytest.mark.parametrize("sandboxed", [True, False], ids=["sandboxed", "control-unsandboxed"])
+def test_the_parent_cannot_be_stopped_by_a_queued_signal(mcar_bin, tmp_path, sandboxed):
+    """On main a SIGSTOP queued to mcar froze ``mcar build`` until killed. The control
+    queues only that one, without the sandbox: mcar stops (and is continued by the test)."""
+    import pyseccomp
+
+    numbers = {name: pyseccomp.resolve_syscall(pyseccomp.system_arch(), name)
+               for name in ("rt_sigqueueinfo", "rt_tgsigqueueinfo", "tgkill")}
+    code = SIGNAL_PARENT.format(**numbers, how_many=5 if sandboxed else 1)
+    (tmp_path / "z.xacro").write_text(hostile(code))
+    # Its own session: were kill(0) let through, it would stop mcar's group, not pytest's.
+    mcar = subprocess.Popen(
+        [str(mcar_bin), "build", "z.xacro", "-o", "out.urdf",
+         *([] if sandboxed else ["--no-sandbox"])], cwd=tmp_path, text=True,
+        env={**clean_environ(), "MCAR_XACRO_TIMEOUT": "20"}, start_new_session=True,
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        if not sandboxed:
+            _wait_for(lambda: _process_state(mcar.pid) == "T", what="mcar to be stopped")
+            os.killpg(mcar.pid, signal.SIGCONT)
+        _, err = mcar.communicate(timeout=60)
+    finally:
+        if mcar.poll() is None:
+            os.killpg(mcar.pid, signal.SIGKILL)
+            mcar.wait()
+    assert mcar.returncode == 0, err
+    outcome = _link_names(tmp_path / "out.urdf")[1]
+    assert outcome == ("rt_sigqueueinfo-EPERM.rt_tgsigqueueinfo-EPERM.tgkill-EPERM.kill-EPERM"
+                       ".group-EPERM" if sandboxed else "rt_sigqueueinfo-done")
+
+
+# -- and what it does to itself ends in one located error, in time -------------------------
+
+CLOSE_PIPE = """
+import stat
+for fd in range(3, 1024):
+    try:
+        if stat.S_ISFIFO(os.fstat(fd).st_mode):
+            os.close(fd)
+    except OSError:
+        pass
+"""
+TIMED_OUT = "z.xacro: error: xacro did not finish within 2 s"
+REFUSED = "z.xacro:4: error: [Errno 13] Permission denied"
+
+
+@pytest.mark.parametrize("code, expected", [
+    ("os.kill(os.getpid(), signal.SIGSTOP)", TIMED_OUT),
+    # On main, mcar then waited for the child's exit for ever.
+    (CLOSE_PIPE + "os.kill(os.getpid(), signal.SIGSTOP)", TIMED_OUT),
+    (CLOSE_PIPE + "while True:\n    pass", TIMED_OUT),
+    ("resource.setrlimit(resource.RLIMIT_NOFILE, (0, 0))", REFUSED),
+    ("resource.setrlimit(resource.RLIMIT_FSIZE, (0, 0))", REFUSED),
+    ("resource.setrlimit(resource.RLIMIT_CPU, (1, 1))\nwhile True:\n    pass", REFUSED),
+    ("os.kill(os.getpid(), signal.SIGUSR1)",
+     "z.xacro: error: xacro ended before sending a result (it was ended by SIGUSR1)"),
+    ("os._exit(0)", "z.xacro: error: xacro ended before sending a result (it exited with "
+                    "status 0)"),
+], ids=["stops", "closes-its-pipe-and-stops", "closes-its-pipe-and-spins", "no-files",
+        "no-file-size", "no-cpu", "signals-itself", "leaves-quietly"])
+def test_a_xacro_that_harms_itself_ends_in_one_located_error(run_mcar, tmp_path, code, expected):
+    (tmp_path / "z.xacro").write_text(hostile(f"import os, resource, signal\n{code}\nout = 'x'"))
+    start = time.monotonic()
+    result = run_mcar("build", "z.xacro", "-o", "out.urdf", cwd=tmp_path,
+                      env={"MCAR_XACRO_TIMEOUT": "2"}, timeout=60)
+    took = time.monotonic() - start
+    errors = [line for line in result.stderr.splitlines() if ": error:" in line]
+    assert result.returncode == 1, result.stderr
+    assert len(errors) == 1 and errors[0].startswith(expected), result.stderr
+    assert "Traceback" not in result.stderr and "internal error" not in result.stderr
+    assert took < 2 + 15  # the limit, and a loaded machine's start-up
+    assert not (tmp_path / "out.urdf").exists()

@@ -13,8 +13,8 @@ the text to seal and gets the hex digest back; the key bytes never cross. Every 
 forked later (each xacro child) is forked from mcar, which never had the key. A forked
 process that needs seals itself starts its own keeper: the socket is not shared.
 
-The keeper is a new interpreter running this file (``python -I -S``, the standard library
-only), not a fork of mcar: a fork would share mcar's memory for the whole run, and every
+The keeper is a new interpreter running this module (``python -I -S``, the standard
+library only), not a fork of mcar: a fork would share mcar's memory for the whole run, and every
 page mcar then wrote would be copied (3,000 page faults, ~40 ms of CPU on a no-op
 ``mcar ci``). It leaves when mcar closes the socket or dies. Where no keeper can be
 started (no ``posix_spawn``, no interpreter to run), the seal is computed in this process.
@@ -121,6 +121,12 @@ def _read_key(path: str) -> bytes | None:
     return data if len(data) == KEY_BYTES else None
 
 
+# The keeper imports this file as a module of its own (its compiled form is cached, where
+# running it as a script compiles it each time), after the standard library on the path.
+_START = ("import sys; sys.path.append(sys.argv[1]); import seal_keeper; "
+          "seal_keeper._serve(int(sys.argv[2]), int(sys.argv[3]))")
+
+
 def _keeper() -> int:
     """mcar's end of the socket to its keeper, started on first use."""
     global _link, _keeper_pid, _owner_pid
@@ -133,8 +139,9 @@ def _keeper() -> int:
     try:
         os.set_inheritable(theirs, True)
         null = [(os.POSIX_SPAWN_OPEN, fd, os.devnull, os.O_RDWR, 0) for fd in (0, 1, 2)]
-        pid = os.posix_spawn(sys.executable, [sys.executable, "-I", "-S", __file__,
-                                              str(theirs), str(os.getpid())],
+        pid = os.posix_spawn(sys.executable, [sys.executable, "-I", "-S", "-c", _START,
+                                              os.path.dirname(__file__), str(theirs),
+                                              str(os.getpid())],
                              os.environ, file_actions=null)
     except BaseException:
         os.close(ours)
@@ -211,7 +218,3 @@ def _after_fork_in_child() -> None:
 
 if hasattr(os, "register_at_fork"):
     os.register_at_fork(after_in_child=_after_fork_in_child)
-
-
-if __name__ == "__main__":  # the keeper, as _keeper() starts it: FD PARENT_PID
-    _serve(int(sys.argv[1]), int(sys.argv[2]))

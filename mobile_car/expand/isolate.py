@@ -72,13 +72,23 @@ class OutOfMemory(Exception):
         self.megabytes = megabytes
 
 
+class Ended(Exception):
+    """The child ended before sending a result, not by the memory limit: ``how`` says
+    ("it was ended by SIGTERM", "it exited with status 0")."""
+
+    def __init__(self, how: str):
+        super().__init__(how)
+        self.how = how
+
 
 def run_isolated(func, *args, read_roots: list[Path] = (), codec: Codec = JSON_VALUE):
     """func(*args) in a guarded child that may read only below ``read_roots`` (where the
     kernel can enforce it), its value sent back through ``codec``. Raises the McarError
     func raised (of the kinds :data:`wire.ERROR_KINDS` allows), wire.ChildCrashed for any
-    other exception, Timeout, OutOfMemory, or wire.MalformedResult when what came back is
-    not a well-formed result within ``MCAR_XACRO_OUTPUT_MB``."""
+    other exception, Timeout (the child has neither sent its result nor exited within
+    ``MCAR_XACRO_TIMEOUT``), OutOfMemory, Ended (it died without a word, not of memory),
+    or wire.MalformedResult when what came back is not a well-formed result within
+    ``MCAR_XACRO_OUTPUT_MB``."""
     from . import sandbox
 
     if not hasattr(os, "fork"):
@@ -132,15 +142,20 @@ def run_isolated(func, *args, read_roots: list[Path] = (), codec: Codec = JSON_V
         finally:
             os._exit(status)
     os.close(write_fd)
+    deadline = time.monotonic() + timeout
     try:
         release_signals(held)  # a signal held over the fork lands here, and kills the child
-        data = _read_result(read_fd, timeout, most, output_mb)
+        data = _read_result(read_fd, deadline, timeout, most, output_mb)
+        # The pipe's end is not the child's: it may have closed the pipe itself, then
+        # stopped (SIGSTOP) or spun; the time limit covers its exit too.
+        status = _exit_status(pid, deadline)
+        if status is None:
+            raise Timeout(timeout)
     except BaseException:
         _kill(pid)  # a timeout, a bad frame, Ctrl-C: the child must not outlive us
         raise
-    _reap(pid)
-    if not data:  # the child died without a word: most likely the memory limit
-        raise OutOfMemory(memory_mb)
+    if not data:
+        raise _without_a_word(status, memory_mb)
     header, body = wire.unframe(data)
     if not header["ok"]:
         try:
@@ -148,6 +163,26 @@ def run_isolated(func, *args, read_roots: list[Path] = (), codec: Codec = JSON_V
         except wire.ChildOutOfMemory:
             raise OutOfMemory(memory_mb) from None
     return codec.unpack(header, body)
+
+
+# How a child under RLIMIT_AS dies when even reporting the MemoryError fails: malloc's
+# abort, a stack that cannot grow, the kernel's own out-of-memory killer.
+_MEMORY_DEATHS = (signal.SIGKILL, signal.SIGSEGV, signal.SIGABRT, signal.SIGBUS)
+
+
+def _without_a_word(status: int, memory_mb: int) -> Exception:
+    """What a child that sent nothing died of: most likely the memory limit, unless its
+    exit says otherwise (a xacro may kill itself, or leave with os._exit)."""
+    if os.WIFSIGNALED(status):
+        number = os.WTERMSIG(status)
+        if number in _MEMORY_DEATHS:
+            return OutOfMemory(memory_mb)
+        try:
+            name = signal.Signals(number).name
+        except ValueError:
+            name = f"signal {number}"
+        return Ended(f"it was ended by {name}")
+    return Ended(f"it exited with status {os.WEXITSTATUS(status)}")
 
 
 def _address_space() -> int:
@@ -160,13 +195,13 @@ def _address_space() -> int:
         return 0
 
 
-def _read_result(read_fd: int, timeout: float, most: int, output_mb: float) -> bytes:
-    """Everything the child writes until it closes the pipe, read within ``timeout``;
+def _read_result(read_fd: int, deadline: float, timeout: float, most: int,
+                 output_mb: float) -> bytes:
+    """Everything the child writes until it closes the pipe, read before ``deadline``;
     stops (MalformedResult) at the first byte that cannot belong to a frame of at most
     ``most`` bytes, so a child that sends garbage or 10 GB costs no more than that."""
     data = bytearray()
     expected = None
-    deadline = time.monotonic() + timeout
     with os.fdopen(read_fd, "rb") as pipe:
         while True:
             left = deadline - time.monotonic()
@@ -184,6 +219,32 @@ def _read_result(read_fd: int, timeout: float, most: int, output_mb: float) -> b
                         f"{OUTPUT_ENV}={output_mb:g}")
             if expected is not None and len(data) > expected:
                 raise wire.MalformedResult("more bytes followed the result")
+
+
+def _exit_status(pid: int, deadline: float) -> int | None:
+    """The child's wait status once it has exited, or None when ``deadline`` passes
+    first (the child is then still there, to be killed)."""
+    try:
+        watch = os.pidfd_open(pid)  # readable once the child has exited
+    except (AttributeError, OSError):  # no pidfd (Linux < 5.3): ask every few ms
+        watch = None
+    try:
+        pause = 0.001
+        while True:
+            done, status = os.waitpid(pid, os.WNOHANG)
+            if done:
+                return status
+            left = deadline - time.monotonic()
+            if left <= 0:
+                return None
+            if watch is not None:
+                select.select([watch], [], [], left)
+            else:
+                time.sleep(min(pause, left))
+                pause = min(pause * 2, 0.05)
+    finally:
+        if watch is not None:
+            os.close(watch)
 
 
 def _kill(pid: int) -> None:

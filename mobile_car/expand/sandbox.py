@@ -7,19 +7,23 @@ first byte, in three layers:
 
 * **seccomp** (libseccomp through ``pyseccomp``), the kernel's guarantee: no program runs
   (execve, fork, clone), no socket opens, no file opens for writing, nothing in the file
-  system is created, renamed, removed or changed, no other process is signalled or traced.
-  Each such call fails with EPERM.
+  system is created, renamed, removed or changed, and no call names another process: no
+  signal (queued or not) but to itself, no tracing, no reading or writing its memory, no
+  change to its priority, CPUs, scheduling or limits (nor to the child's own limits).
+  Each such call fails with EPERM (EACCES for the limits).
 * **Landlock** (through ``landlock``), where the kernel offers it: files are read only below
   the roots the build needs (the packages it may use, the input's folder, Python's own
   library); reading ``/etc/passwd`` or ``~/.ssh`` fails.
 * **an audit hook**, for the message only: Python reports ``os.system``, ``open(...,
   'w')``, ``socket`` and ``ctypes`` before they reach the kernel, and the hook refuses
   them with a :class:`SandboxViolation` that xacro reports at the expression's line.
-  Audit hooks are no security boundary (the kernel layers are); they make the refusal
-  readable.
+  Audit hooks are no security boundary (the kernel layers are): the xacro can switch
+  this one off from Python. They make the refusal readable, nothing more.
 
 The child also dies with its parent (``PR_SET_PDEATHSIG``), and has only the result pipe
-and ``/dev/null`` as open files. ``trust_inputs()`` (``--no-sandbox``) turns it all off.
+and ``/dev/null`` as open files. It holds no secret to find in its own memory: the record
+key is never read into mcar (:mod:`mobile_car.seal_keeper`). ``trust_inputs()``
+(``--no-sandbox``) turns it all off.
 """
 
 from __future__ import annotations
@@ -53,7 +57,8 @@ class Support:
         if _trusted:
             return ["sandbox: off (--no-sandbox)"]
         return [
-            "sandbox seccomp: " + ("on (no programs, sockets or file writes)"
+            "sandbox seccomp: " + ("on (no programs, sockets, file writes "
+                                   "or calls on other processes)"
                                    if self.seccomp is None else f"unavailable: {self.seccomp}"),
             "sandbox landlock: " + (f"on, ABI {self.landlock_abi} (reads below the package "
                                     "roots and the input's folder only)" if self.landlock_abi
@@ -175,13 +180,25 @@ def _restrict_reads(read_roots: list[Path]) -> None:
         except OSError:
             continue  # vanished, or not a kind of file Landlock takes: stays unreadable
     ruleset.apply()
+    # The ruleset's descriptor is not the child's to keep: it needs no handle but its pipe.
+    fd = getattr(ruleset, "_fd", None)
+    if isinstance(fd, int):
+        try:
+            os.close(fd)
+        except OSError:
+            pass
 
 
 # System calls the child never needs and an attacker wants, refused with EPERM.
 _DENIED = (
     # programs and processes
-    "execve", "execveat", "fork", "vfork", "clone", "ptrace", "process_vm_readv",
-    "process_vm_writev", "pidfd_open", "pidfd_getfd", "pidfd_send_signal",
+    "execve", "execveat", "fork", "vfork", "clone",
+    # other processes: tracing them, reading or writing their memory, comparing their
+    # handles, moving their pages, their priority or I/O class (setpriority and
+    # ioprio_set also name a whole process group, or every process of the user)
+    "ptrace", "process_vm_readv", "process_vm_writev", "pidfd_open", "pidfd_getfd",
+    "pidfd_send_signal", "process_madvise", "process_mrelease", "kcmp", "get_robust_list",
+    "setpriority", "ioprio_set", "migrate_pages", "move_pages",
     # network
     "socket", "socketpair", "connect", "bind", "listen", "accept", "accept4",
     # changing the file system
@@ -196,6 +213,13 @@ _DENIED = (
     "delete_module", "kexec_load", "reboot", "swapon", "swapoff", "keyctl", "add_key",
     "request_key", "memfd_create", "name_to_handle_at", "open_by_handle_at",
 )
+# Signals go to the child itself only (its first argument, a process or thread group id,
+# is its own pid: one thread), never to its parent, its group (0) or everyone (-1).
+_SIGNALS = ("kill", "tkill", "tgkill", "rt_sigqueueinfo", "rt_tgsigqueueinfo")
+# Calls that act on the pid of their first argument: 0 (the child itself, as libc names
+# it) only.
+_SELF_ONLY = ("sched_setaffinity", "sched_setparam", "sched_setscheduler", "sched_setattr",
+              "setpgid")
 # clone3 and openat2 take their flags in a struct seccomp cannot read: ENOSYS makes libc
 # fall back to clone and openat, whose flags it can.
 _UNSUPPORTED = ("clone3", "openat2")
@@ -215,8 +239,19 @@ def _deny_syscalls() -> None:
         for flag in _WRITE_FLAGS:
             _add(rules, refuse, name, sc.Arg(flags_arg, sc.MASKED_EQ, flag, flag))
     own = os.getpid()
-    for name in ("kill", "tkill", "tgkill"):  # signals to itself only
+    for name in _SIGNALS:
         _add(rules, refuse, name, sc.Arg(0, sc.NE, own))
+    for name in _SELF_ONLY:
+        _add(rules, refuse, name, sc.Arg(0, sc.NE, 0))
+    # Limits: the child's own are set before the filter, and are not the xacro's to
+    # change (starving its own files or CPU), nor another process's. getrlimit reads
+    # through prlimit64(0, resource, NULL, &old): that stays. EACCES, not EPERM: Python's
+    # resource module words EPERM as "not allowed to raise maximum limit", even when
+    # lowering it.
+    limits = sc.ERRNO(errno.EACCES)
+    _add(rules, limits, "setrlimit")
+    _add(rules, limits, "prlimit64", sc.Arg(0, sc.NE, 0))
+    _add(rules, limits, "prlimit64", sc.Arg(2, sc.NE, 0))  # a new limit given
     rules.load()
 
 

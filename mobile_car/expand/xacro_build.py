@@ -234,7 +234,7 @@ def build_file(path: str | os.PathLike | None, mappings: dict[str, str] | None =
     elif search.origin is None:
         search.origin = source
     from . import wire
-    from .isolate import OutOfMemory, Timeout, run_isolated
+    from .isolate import Ended, OutOfMemory, Timeout, run_isolated
 
     if text is None and is_inert(source):  # nothing in it can run: no child needed
         return _expand(source, mappings, search, optional_args, None)
@@ -254,6 +254,9 @@ def build_file(path: str | os.PathLike | None, mappings: dict[str, str] | None =
         raise BuildError(f"xacro needed more than {limit.megabytes} MB of memory; "
                          "MCAR_XACRO_MEMORY_MB raises the limit",
                          file=display_path(source)) from None
+    except Ended as end:
+        raise BuildError(f"xacro ended before sending a result ({end.how}); nothing of "
+                         "it was used", file=display_path(source)) from None
     except wire.MalformedResult as bad:
         raise BuildError(f"the sandboxed xacro sent back something that is not a result "
                          f"({bad.reason}); nothing of it was used",

@@ -8,8 +8,10 @@ that would leave a trace targets the file PWNED in the working folder.
 
 from __future__ import annotations
 
+import errno
 import os
 import re
+import resource
 import shutil
 import signal
 import socket
@@ -61,6 +63,29 @@ def test_without_the_sandbox_the_attack_works(run_mcar, tmp_path):
     assert (tmp_path / "PWNED").exists()
 
 
+def _syscall(name: str, *args) -> str:
+    """Make system call ``name`` with ``args`` through libc: its errno's name, or "done"."""
+    import ctypes
+
+    import pyseccomp
+
+    libc = ctypes.CDLL(None, use_errno=True)
+    number = pyseccomp.resolve_syscall(pyseccomp.system_arch(), name)
+    if libc.syscall(number, *args) == 0:
+        return "done"
+    return errno.errorcode[ctypes.get_errno()]
+
+
+def _queued():
+    """A siginfo as sigqueue(3) fills it (si_code SI_QUEUE): what a process may queue to
+    another of its user's."""
+    import ctypes
+
+    info = (ctypes.c_int * 32)()
+    info[2] = -1
+    return info
+
+
 def _in_confined_child(layer, probe) -> str:
     """Run probe() in a forked child confined by one layer only (no audit hook): what the
     kernel alone refuses. Returns the child's report."""
@@ -91,6 +116,27 @@ def _in_confined_child(layer, probe) -> str:
     (lambda: os.kill(os.getppid(), 0), "PermissionError: [Errno 1]"),
     (lambda: os.mkdir("PWNED"), "PermissionError: [Errno 1]"),
     (lambda: len(open("/etc/hostname", "rb").read()) > 0, "True"),  # reading is allowed
+    # Nothing that names another process: each probe would leave the parent as it is.
+    (lambda: os.kill(0, 0), "PermissionError: [Errno 1]"),  # its process group
+    (lambda: _syscall("rt_sigqueueinfo", os.getppid(), 0, _queued()), "EPERM"),
+    (lambda: _syscall("rt_tgsigqueueinfo", os.getppid(), os.getppid(), 0, _queued()), "EPERM"),
+    (lambda: os.setpriority(os.PRIO_PROCESS, os.getppid(),
+                            os.getpriority(os.PRIO_PROCESS, os.getppid())),
+     "PermissionError: [Errno 1]"),
+    (lambda: os.sched_setaffinity(os.getppid(), os.sched_getaffinity(os.getppid())),
+     "PermissionError: [Errno 1]"),
+    (lambda: resource.prlimit(os.getppid(), resource.RLIMIT_NOFILE),
+     "PermissionError: [Errno 13]"),
+    (lambda: os.pidfd_open(os.getppid()), "PermissionError: [Errno 1]"),
+    (lambda: _syscall("kcmp", os.getpid(), os.getppid(), 0, 0, 0), "EPERM"),
+    (lambda: _syscall("process_vm_readv", os.getppid(), None, 0, None, 0, 0), "EPERM"),
+    (lambda: _syscall("ptrace", 16, os.getppid(), None, None), "EPERM"),  # PTRACE_ATTACH
+    # Its own limits it reads, and may not change (starving its files or CPU).
+    (lambda: resource.setrlimit(resource.RLIMIT_NOFILE,
+                                resource.getrlimit(resource.RLIMIT_NOFILE)),
+     "PermissionError: [Errno 13]"),
+    (lambda: resource.getrlimit(resource.RLIMIT_NOFILE)[0] > 0, "True"),
+    (lambda: os.kill(os.getpid(), 0) is None, "True"),  # itself, as Python may
 ])
 def test_seccomp_alone_refuses(tmp_path, monkeypatch, probe, expected):
     monkeypatch.chdir(tmp_path)
@@ -119,7 +165,8 @@ def test_version_verbose_says_what_the_sandbox_uses(run_mcar):
     assert result.returncode == 0
     lines = result.stdout.splitlines()
     assert lines[0] == "mcar, version 0.1.0"
-    assert lines[1] == ("sandbox seccomp: on (no programs, sockets or file writes)"
+    assert lines[1] == ("sandbox seccomp: on (no programs, sockets, file writes or calls on "
+                        "other processes)"
                         if SUPPORT.seccomp is None else
                         f"sandbox seccomp: unavailable: {SUPPORT.seccomp}")
     assert lines[2].startswith("sandbox landlock: on, ABI" if SUPPORT.landlock_abi

@@ -86,7 +86,6 @@ def _forge(cache: Path, key_cache: Path) -> int:
 
     saved = os.environ.get(record_seal.CACHE_DIR_ENV)
     os.environ[record_seal.CACHE_DIR_ENV] = str(key_cache)
-    record_seal._key_in.cache_clear()
     count = 0
     try:
         for path in (cache / "mesh-facts").glob("*.json"):
@@ -101,7 +100,6 @@ def _forge(cache: Path, key_cache: Path) -> int:
             os.environ.pop(record_seal.CACHE_DIR_ENV)
         else:
             os.environ[record_seal.CACHE_DIR_ENV] = saved
-        record_seal._key_in.cache_clear()
     return count
 
 

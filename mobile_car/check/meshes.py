@@ -1,6 +1,7 @@
 """Mesh rules W207 (every ``<mesh filename>`` must exist and load), W210 (a mesh over
 a size or face limit is not read, and is drawn as a marker) and W215 (a mesh or texture
-outside the folders a robot may name files in is never read: :mod:`~mobile_car.packages.asset_roots`).
+outside the folders a robot may name files in is never read:
+:mod:`~mobile_car.packages.asset_roots`).
 
 ``package://PKG/...`` is resolved by the same :class:`~mobile_car.packages.search.PackageSearch` as
 ``mcar build``; ``file://`` and relative paths against the folder of the checked file.

@@ -283,3 +283,24 @@ def test_mcar_yaml_may_not_allow_a_folder_outside(run_mcar, tmp_path, named, why
         assert f"{package / 'mcar.yaml'}:4: error: assets.paths: {message} " \
                "(--asset-path names any folder)" in result.stderr.splitlines()
     assert _holding_secret(package) == []
+
+
+def test_a_urdf_on_stdin_may_name_files_of_the_working_folder_only(run_mcar, robot):
+    urdf = robot.parent
+    result = run_mcar("check", "-", input=robot.read_text(), cwd=urdf)
+    assert result.returncode == 0, result.stderr
+    found = [line for line in result.stderr.splitlines() if line.endswith("[W215]")]
+    assert [int(line.split(":")[1]) for line in found] == REFUSED_LINES
+    assert f"may name files in: {urdf}," in found[0]  # the working folder, no package
+
+
+def test_asset_paths_do_not_widen_what_a_sandboxed_xacro_reads(robot):
+    """--asset-path is for meshes and textures: the Landlock roots of a xacro stay the
+    package roots."""
+    from mobile_car.packages.search import PackageSearch
+
+    outside = robot.parents[2] / "outside"
+    search = PackageSearch(origin=robot, environ={}, asset_paths=[outside])
+    assert outside not in search.read_roots()
+    assert outside in search.allowed_roots()
+    assert search.resolve_uri(f"file://{outside}/secret.png") == outside / "secret.png"

@@ -96,6 +96,7 @@ class PackageSearch:
     # Folders whose files a robot may name besides the packages (--asset-path).
     asset_paths: list[Path] = field(default_factory=lambda: list(chosen_asset_paths()))
     _allowed: tuple | None = field(default=None, init=False, repr=False)
+    _package_assets: list[Path] | None = field(default=None, init=False, repr=False)
     # The mcar.yaml files whose assets.paths were consulted (a record of the run stamps them).
     settings_read: list[Path] = field(default_factory=list, init=False, repr=False)
     _cache: dict[str, Path] = field(default_factory=dict, init=False, repr=False)
@@ -243,10 +244,10 @@ class PackageSearch:
         """assets.paths of the mcar.yaml of the input's own package."""
         from .package_config import load_package_config
 
-        own = None if self.origin is None else enclosing_package(self.origin)
-        if own is None:
-            return []
-        config = load_package_config(own[1])
-        if config.path is not None:  # what was allowed depends on it: a record stamps it
-            self.settings_read.append(config.path)
-        return list(config.asset_paths)
+        if self._package_assets is None:
+            own = None if self.origin is None else enclosing_package(self.origin)
+            config = None if own is None else load_package_config(own[1])
+            if config is not None and config.path is not None:
+                self.settings_read.append(config.path)  # what was allowed depends on it
+            self._package_assets = [] if config is None else list(config.asset_paths)
+        return self._package_assets

@@ -285,13 +285,14 @@ def test_mcar_yaml_may_not_allow_a_folder_outside(run_mcar, tmp_path, named, why
     assert _holding_secret(package) == []
 
 
-def test_a_urdf_on_stdin_may_name_files_of_the_working_folder_only(run_mcar, robot):
-    urdf = robot.parent
-    result = run_mcar("check", "-", input=robot.read_text(), cwd=urdf)
+def test_a_urdf_on_stdin_is_held_to_the_working_folder_s_roots(run_mcar, robot):
+    """Relative names start at the working folder (here in the package): the same W215s."""
+    result = run_mcar("check", "-", input=robot.read_text(), cwd=robot.parent)
     assert result.returncode == 0, result.stderr
     found = [line for line in result.stderr.splitlines() if line.endswith("[W215]")]
     assert [int(line.split(":")[1]) for line in found] == REFUSED_LINES
-    assert f"may name files in: {urdf}," in found[0]  # the working folder, no package
+    assert all(line.startswith("<stdin>:") for line in found)
+    assert f"may name files in: {robot.parents[1]}, " in found[0]
 
 
 def test_asset_paths_do_not_widen_what_a_sandboxed_xacro_reads(robot):

@@ -65,15 +65,18 @@ def real_path(path: Path) -> Path:
 
 def within(path: Path, roots) -> bool:
     """Whether the real ``path`` lies in one of ``roots`` (real paths themselves)."""
-    return any(path == root or path.is_relative_to(root) for root in roots)
+    text = str(path)
+    # by text, not Path.is_relative_to: asked for every file a robot names
+    return any(text == str(root) or text.startswith(str(root).rstrip("/") + "/")
+               for root in roots)
 
 
 def confine(uri: str, path: Path, roots: list[Path]) -> Path:
-    """``path`` when its real path lies in one of ``roots``; OutsideRootsError otherwise,
-    naming the file and the roots."""
+    """The real path of ``path`` when it lies in one of ``roots``; OutsideRootsError
+    otherwise, naming the file and the roots."""
     real = real_path(path)
     if within(real, roots):
-        return path
+        return real
     # A folder inside another one adds nothing to read in a message.
     outer = [root for root in roots if not any(root != other and root.is_relative_to(other)
                                                for other in roots)]

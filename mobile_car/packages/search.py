@@ -204,21 +204,23 @@ class PackageSearch:
             rest = uri[len("package://"):]
             name, _, inner = rest.partition("/")
             root = self.find(name).resolve()
-            path = self.confined(uri, root / inner).resolve()
+            path = self.confined(uri, root / inner)
             if root != path and root not in path.parents:
                 raise InputError(f"{uri}: path leaves package '{name}' ({root})")
             return path
         if uri.startswith("file://"):
-            return self.confined(uri, Path(uri[len("file://"):]))
-        path = Path(uri)
-        if not path.is_absolute() and base is not None:
-            path = Path(base) / path
-        return self.confined(uri, path)
+            path = Path(uri[len("file://"):])
+        else:
+            path = Path(uri)
+            if not path.is_absolute() and base is not None:
+                path = Path(base) / path
+        self.confined(uri, path)
+        return path  # as named: messages show the name the robot gave
 
     def confined(self, uri: str, path: Path) -> Path:
-        """``path`` (named ``uri``) if it lies in the allowed roots, else OutsideRootsError;
-        the package's mcar.yaml is read only for a file outside the others (UsageError
-        when its assets.paths leave the repository)."""
+        """The real path of ``path`` (named ``uri``) if it lies in the allowed roots, else
+        OutsideRootsError; the package's mcar.yaml is read only for a file outside the
+        others (UsageError when its assets.paths leave the repository)."""
         try:
             return confine(uri, path, self.allowed_roots())
         except OutsideRootsError:

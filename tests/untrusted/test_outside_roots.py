@@ -13,6 +13,8 @@ attack then works, so the tests can fail.
 from __future__ import annotations
 
 import importlib.util
+import json
+import shutil
 import struct
 from pathlib import Path
 
@@ -186,12 +188,14 @@ def test_control_an_allowed_folder_is_exported(run_mcar, robot):
 
 
 def test_a_picture_draws_a_refused_mesh_as_a_missing_one(run_mcar, robot):
-    """The secret cube (2 m) would fill the picture: drawn as it is missing instead, and
-    the render's record stamps no file outside."""
+    """The secret cube (2 m) would fill the picture: drawn as if it were missing instead,
+    and the render's record stamps no file outside."""
     package, outside = robot.parents[1], robot.parents[2] / "outside"
     args = ("render", "urdf/robot.urdf", "--renderer", "raycast", "--size", "64x64")
     refused = run_mcar(*args, "-o", "refused/", cwd=package)
     assert refused.returncode == 0, refused.stderr
+    assert [int(line.split(":")[1]) for line in refused.stderr.splitlines()
+            if line.endswith("[W215]")] == REFUSED_LINES  # said with the picture
     allowed = run_mcar(*args, "-o", "allowed/", "--asset-path", "../outside", cwd=package)
     assert allowed.returncode == 0, allowed.stderr
     secret = (outside / "secret.stl").read_bytes()
@@ -204,9 +208,12 @@ def test_a_picture_draws_a_refused_mesh_as_a_missing_one(run_mcar, robot):
         (package / "missing" / picture).read_bytes()
     assert (package / "refused" / picture).read_bytes() != \
         (package / "allowed" / picture).read_bytes()
-    for path in (package / "refused").rglob("*"):
-        if path.is_file():
-            assert str(outside).encode() not in path.read_bytes() or path.suffix == ".png"
+    # the render's record stamps (and so hashed) the files read: none outside
+    record = json.loads((package / "refused" / ".mcar-render.json").read_text())
+    stamped = [entry[0] for entry in record["outputs"][picture]["files"]]
+    assert stamped and not [name for name in stamped if str(outside) in name]
+    assert all(name.startswith(str(package)) for name in stamped)
+    assert _holding_secret(package / "refused") == []
 
 
 def _ci_package(root: Path, yaml: str) -> Path:
@@ -305,3 +312,15 @@ def test_asset_paths_do_not_widen_what_a_sandboxed_xacro_reads(robot):
     assert outside not in search.read_roots()
     assert outside in search.allowed_roots()
     assert search.resolve_uri(f"file://{outside}/secret.png") == outside / "secret.png"
+
+
+@pytest.mark.skipif(shutil.which("roslaunch") is None, reason="ROS 1's roslaunch is not "
+                    "installed")
+def test_rviz_is_not_given_a_robot_naming_files_outside(run_mcar, robot):
+    """RViz follows file:// and links itself: it would read what mcar refused."""
+    result = run_mcar("view", "--rviz", "urdf/robot.urdf", cwd=robot.parents[1])
+    assert result.returncode == 1
+    assert result.stderr.splitlines()[-1] == (
+        "urdf/robot.urdf: error: not opened in RViz: 9 files outside the folders a robot "
+        "may name files in (W215 above), which RViz would read")
+    assert result.stdout == ""  # roslaunch never ran

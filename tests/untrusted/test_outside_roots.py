@@ -324,3 +324,37 @@ def test_rviz_is_not_given_a_robot_naming_files_outside(run_mcar, robot):
         "urdf/robot.urdf: error: not opened in RViz: 9 files outside the folders a robot "
         "may name files in (W215 above), which RViz would read")
     assert result.stdout == ""  # roslaunch never ran
+
+
+XACRO = """<?xml version="1.0"?>
+<robot name="atk" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="base">
+    <visual><geometry><mesh filename="file://{outside}/secret.stl"/></geometry></visual>
+  </link>
+</robot>
+"""
+
+
+def test_a_kept_check_is_not_replayed_once_the_folder_is_no_longer_allowed(run_mcar,
+                                                                            tmp_path):
+    """mcar check keeps what it found of a xacro robot and replays it while its files are
+    unchanged: what was allowed (--asset-path, mcar.yaml's assets.paths) is part of that."""
+    repository = tmp_path / "repo"
+    package = _ci_package(repository, "")
+    (repository / ".git").mkdir()
+    robot = package / "urdf" / "robot.urdf.xacro"
+    robot.write_text(XACRO.format(outside=repository / "outside"))
+    env = {"XDG_CACHE_HOME": str(tmp_path / "cache")}
+
+    def warned(*args):
+        result = run_mcar("check", *args, "urdf/robot.urdf.xacro", cwd=package, env=env)
+        assert result.returncode == 0, result.stderr
+        return "[W215]" in result.stderr
+
+    assert not warned("--asset-path", "../outside")
+    assert warned()  # the same files, without the folder: checked again, refused
+    (package / "mcar.yaml").write_text("assets:\n  paths: [../outside]\n")
+    assert not warned()
+    assert not warned()  # replayed
+    (package / "mcar.yaml").write_text("")
+    assert warned()  # mcar.yaml was stamped with the run it allowed

@@ -1,4 +1,5 @@
-"""What every command shares: the package-path option and turning errors into exit codes."""
+"""What every command shares: the package-path and asset-path options and turning errors
+into exit codes."""
 
 from __future__ import annotations
 
@@ -88,9 +89,24 @@ def _no_sandbox(ctx, param, value):
     return value
 
 
+def _allow_asset_paths(ctx, param, value):
+    from mobile_car.packages.asset_roots import allow_asset_paths
+
+    allow_asset_paths(value)  # none too: a run in the same process starts from none
+    return value
+
+
+asset_path_option = click.option(
+    "--asset-path", "asset_paths", multiple=True, metavar="DIR", expose_value=False,
+    type=click.Path(file_okay=False, exists=True), callback=_allow_asset_paths,
+    help="Also let the robot name meshes and textures under DIR; repeatable. Without it, "
+         "a file outside the robot's folder and the package folders is never read nor "
+         "exported (W215).")
+
+
 def robot_options(func):
     """The options every command that loads a robot takes: --set, --config,
-    --package-path, --no-sandbox, --color/--no-color."""
+    --package-path, --asset-path, --no-sandbox, --color/--no-color."""
     func = click.option("--color/--no-color", "color", default=None, expose_value=False,
                         callback=_set_color, is_eager=True,
                         help="Colour the severity of problems (default: on a terminal, "
@@ -102,7 +118,7 @@ def robot_options(func):
                         callback=_no_sandbox,
                         help="Expand xacro without the sandbox (no seccomp, no Landlock): "
                              "only for trees you trust; a .xacro is code.")(func)
-    return package_path_option(config_options(func))
+    return package_path_option(asset_path_option(config_options(func)))
 
 
 @contextlib.contextmanager

@@ -155,6 +155,7 @@ def _session(selection, options, varies, samples, seed, scenarios, left, right, 
 
     from mobile_car.config.spec import config_file, load_spec
     from mobile_car.expand.sandbox import is_trusted
+    from mobile_car.packages.asset_roots import chosen_asset_paths
     from mobile_car.packages.search import PackageSearch
     from mobile_car.sweep.plan import grid, read_axes
     from mobile_car.sweep.plan import samples as sample_points
@@ -175,7 +176,8 @@ def _session(selection, options, varies, samples, seed, scenarios, left, right, 
     job = SweepJob(str(path), str(robot.base) if robot.base else None,
                    tuple(str(Path(p).resolve()) for p in options.package_paths),
                    tuple(sorted(options.mappings.items())), tuple(sorted(fixed.items())),
-                   tuple(scenarios), left, right, is_trusted())
+                   tuple(scenarios), left, right, is_trusted(),
+                   tuple(str(p) for p in chosen_asset_paths()))
     return Session(job, [axis.name for axis in axes], points,
                    output if output != "-" else None, {axis.name: axis.unit for axis in axes})
 

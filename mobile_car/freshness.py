@@ -35,6 +35,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import __version__
+from .packages.asset_roots import chosen_asset_paths
 
 # Environment that changes where $(find PKG) and package:// lead.
 SEARCH_ENVIRONMENT = ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")
@@ -89,7 +90,7 @@ def key_of(*parts) -> str:
 class Basis:
     """What, besides the files a robot's expansion reads, decides what it becomes: xacro
     arguments, --set words, --config files (read, not included, so stamped here), package
-    search paths and environment."""
+    search paths (packages', assets') and environment."""
 
     settings: dict = field(default_factory=dict)
     files: tuple[Path, ...] = ()
@@ -101,6 +102,8 @@ class Basis:
         settings = {"mappings": dict(sorted((mappings or {}).items())), "sets": list(sets),
                     "configs": [str(p) for p in configs],
                     "package_paths": [os.path.abspath(p) for p in package_paths],
+                    # --asset-path decides which meshes are read at all (W215)
+                    "asset_paths": [str(p) for p in chosen_asset_paths()],
                     "environment": {name: environ.get(name) for name in SEARCH_ENVIRONMENT}}
         return cls(settings, configs)
 

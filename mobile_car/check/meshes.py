@@ -1,5 +1,7 @@
-"""Mesh rules W207 (every ``<mesh filename>`` must exist and load) and W210 (a mesh over
-a size or face limit is not read, and is drawn as a marker).
+"""Mesh rules W207 (every ``<mesh filename>`` must exist and load), W210 (a mesh over
+a size or face limit is not read, and is drawn as a marker) and W215 (a mesh or texture
+outside the folders a robot may name files in is never read:
+:mod:`~mobile_car.packages.asset_roots`).
 
 ``package://PKG/...`` is resolved by the same :class:`~mobile_car.packages.search.PackageSearch` as
 ``mcar build``; ``file://`` and relative paths against the folder of the checked file.
@@ -17,10 +19,11 @@ import os
 from pathlib import Path
 from typing import NamedTuple
 
-from ..errors import InputError, McarError
+from ..errors import InputError, PackageNotFoundError
 from ..load.bounded import not_regular
 from ..load.inputs import display_path
 from ..load.mesh_facts import mesh_facts
+from ..packages.asset_roots import OutsideRootsError
 from ..packages.search import PackageSearch
 from .context import Reporter, has_xacro_expression
 
@@ -65,7 +68,11 @@ def check_meshes(root, base: Path, search: PackageSearch, report: Reporter
         kind = holder.tag if holder is not None and isinstance(holder.tag, str) else ""
         try:
             path = search.resolve_uri(filename, base)
-        except McarError as error:
+        except OutsideRootsError as error:
+            report.add("W215", mesh, f"mesh {error.message}; not read, {PLACEHOLDER}")
+            found.append(MeshFile(kind, None, False, element=mesh))
+            continue
+        except (InputError, PackageNotFoundError) as error:
             report.add("W207", mesh, f"mesh '{filename}': {error.message}")
             found.append(MeshFile(kind, None, False, element=mesh))
             continue
@@ -87,7 +94,24 @@ def check_meshes(root, base: Path, search: PackageSearch, report: Reporter
                        f"{PLACEHOLDER}")
         found.append(MeshFile(kind, path, not outcome.problem, outcome.over_limit,
                               outcome.reads, mesh, outcome.bounds))
+    check_textures(root, base, search, report)
     return found
+
+
+def check_textures(root, base: Path, search: PackageSearch, report: Reporter) -> None:
+    """W215 for each ``<material><texture filename>`` outside the allowed folders (an
+    export would copy it into its folder). Whether a texture exists is not checked: URDF
+    tools load them lazily, and a missing one costs only its picture."""
+    for texture in root.iter("texture"):
+        filename = texture.get("filename")
+        if not filename or has_xacro_expression(filename):
+            continue
+        try:
+            search.resolve_uri(filename, base)
+        except OutsideRootsError as error:
+            report.add("W215", texture, f"texture {error.message}; not read")
+        except (InputError, PackageNotFoundError):
+            continue  # not found: said by nothing today, as before
 
 
 def _where_looked(filename: str, search: PackageSearch) -> str:

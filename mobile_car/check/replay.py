@@ -115,7 +115,8 @@ def record(inp, basis: Basis, result, stamper: Stamper) -> None:
         return
     reads = [r for m in result.mesh_files for r in m.reads]
     files = stamper.stamps([*result.loaded.deps, path, *basis.files,
-                            *(m.path for m in result.mesh_files), *reads])
+                            *(m.path for m in result.mesh_files), *reads,
+                            *result.loaded.search.settings_read])
     if files is None:
         return  # a file missing now may appear later: nothing to stamp it by
     try:

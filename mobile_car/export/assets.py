@@ -9,7 +9,9 @@ file), measured within the mesh limits before anything reads it
 * ``package://PKG/a/b.stl`` -> ``meshes/PKG/a/b.stl``, a file path -> ``meshes/b.stl``
   (``b-2.stl`` where two files share a name);
 * a format the target reads is copied byte for byte, with the ``.mtl`` and textures it
-  names (found beside it, as trimesh finds them) at the same places relative to it;
+  names (found beside it, as trimesh finds them) at the same places relative to it; an
+  OBJ's and a ``.mtl``'s names are rewritten to name only those copies
+  (:mod:`.material_names`);
 * any other is read by mcar's mesh reader (:func:`~mobile_car.load.mesh_reader.load_mesh`,
   within the same limits) into one mesh in metres, COLLADA's ``<unit>`` applied, and
   written as binary STL (an OBJ past MuJoCo's 200,000 triangles) named after the source
@@ -33,6 +35,7 @@ from ..load.inputs import display_path
 from ..load.mesh_facts import binary_stl_triangles
 from ..load.mesh_limits import scan_mesh
 from ..names import component_problem
+from .material_names import portable_names
 
 MESHES = "meshes"
 STL_FACES = 200_000  # MuJoCo's STL reader refuses more ("between 1 and 200000")
@@ -77,16 +80,21 @@ class Assets:
         place = self._place_for(uri, source)
         if self._reads_as_it_is(source):
             asset = Asset(uri, source, self._claim(place))
-            self._copy(source, asset.relative)
+            # The scan looked below the mesh's real folder: its names are rewritten
+            # against that folder, naming only the copies (material_names).
+            folder = source.resolve().parent
+            copied = set()
             for extra in scan.reads:
-                inside = _below(extra, source.parent)
+                inside = _below(extra, folder)
                 if inside is not None:
                     name = f"{asset.relative.rsplit('/', 1)[0]}/{inside}" \
                         if "/" in asset.relative else inside
                     if name not in self.taken:
                         self.taken.add(name)
-                        self._copy(extra, name)
+                        self._copy(extra, name, folder, copied)
                         asset.extra.append(name)
+                    copied.add(Path(extra).resolve())
+            self._copy(source, asset.relative, folder, copied)
         else:
             asset = self._convert(uri, source, place, label)
         self.by_uri[uri] = asset
@@ -140,11 +148,15 @@ class Assets:
         self.taken.add(candidate)
         return candidate
 
-    def _copy(self, source: Path, relative: str) -> None:
+    def _copy(self, source: Path, relative: str, folder: Path | None = None,
+              copied: set[Path] = frozenset()) -> None:
+        """Copy ``source``; an OBJ or .mtl of a mesh in ``folder`` names only ``copied``."""
         with open_regular(source, str(source)) as handle:
             data = handle.read(max_mesh_bytes() + 1)
         if len(data) > max_mesh_bytes():
             raise InputError("grew past the mesh size limit while read", file=str(source))
+        if folder is not None:
+            data = portable_names(data, Path(source).suffix, folder, copied)
         self._write(relative, data)
 
     def _write(self, relative: str, data: bytes) -> None:

@@ -80,10 +80,12 @@ class Prepared:
 
 
 def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = False,
-            binary_stl_only: bool = True) -> Prepared:
+            binary_stl_only: bool = True, copy_textures: bool = False) -> Prepared:
     """The robot's URDF with its meshes copied into ``folder``; the simulators' extras
     (``<gazebo>``, ``<transmission>``, ``<ros2_control>``) taken out unless ``keep_extras``
-    (an importer that does not read them must not trip on them)."""
+    (an importer that does not read them must not trip on them); its ``<texture>``s
+    copied too with ``copy_textures``, else taken out (MuJoCo reads none): the tool given
+    the URDF never reads a file the export did not measure and allow."""
     from ..sim.drives import actuated_joints
     from ..sim.model import gazebo_friction
     from ..sim.servos import DriveSources
@@ -97,6 +99,7 @@ def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = Fal
             element.getparent().remove(element)
     assets = Assets(folder, readable, binary_stl_only)
     warnings = place_meshes(root, assets, loaded)
+    warnings += place_textures(root, assets, loaded, copy_textures)
     return Prepared(root, joints, sources, assets, warnings)
 
 
@@ -212,6 +215,26 @@ def place_meshes(root, assets: Assets, loaded) -> list[str]:
                 _child(holder, "material") is None:
             material = etree.SubElement(holder, "material", name=f"mcar_colour_{asset.relative}")
             etree.SubElement(material, "color", rgba=" ".join(f"{c:.4g}" for c in asset.colour))
+    return warnings
+
+
+def place_textures(root, assets: Assets, loaded, copy: bool) -> list[str]:
+    """Point every ``<texture>`` at its copy in the folder (``copy``), or take it out; one
+    that cannot be copied (outside the allowed folders, missing) is taken out with a
+    warning."""
+    warnings = []
+    for texture in list(root.iter("texture")):
+        uri = texture.get("filename")
+        if copy and not uri:
+            continue  # names no file
+        if copy:
+            try:
+                texture.set("filename", assets.add_file(uri, loaded.search, loaded.base,
+                                                        loaded.label))
+                continue
+            except McarError as error:
+                warnings.append(f"texture left out: {error.message}")
+        texture.getparent().remove(texture)
     return warnings
 
 

@@ -24,7 +24,6 @@ from pathlib import Path
 
 from lxml import etree
 
-from ..errors import McarError
 from .mjcf import Exported, moving_joints, prepare, robot_file_name, urdf_mass
 
 URDF_KEEPS = (".stl", ".obj", ".dae")  # what URDF tools read: RViz, Gazebo, trimesh
@@ -84,19 +83,10 @@ def sdf_notes(report, root) -> tuple[list[str], list[str]]:
 
 
 def _portable_urdf(loaded, folder: Path):
-    prepared = prepare(loaded, folder, URDF_KEEPS, keep_extras=True, binary_stl_only=False)
+    prepared = prepare(loaded, folder, URDF_KEEPS, keep_extras=True, binary_stl_only=False,
+                       copy_textures=True)
     root = prepared.root
     warnings = prepared.warnings
-    for texture in list(root.iter("texture")):
-        uri = texture.get("filename")
-        if not uri:
-            continue
-        try:
-            texture.set("filename", prepared.assets.add_file(uri, loaded.search, loaded.base,
-                                                             loaded.label))
-        except McarError as error:
-            warnings.append(f"texture left out: {error.message}")
-            texture.getparent().remove(texture)
     for element in root.iter():
         said = [v for v in [*element.attrib.values(), element.text or ""] if PACKAGE in v]
         if said and element.tag not in ("mesh", "texture"):

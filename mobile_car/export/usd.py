@@ -41,7 +41,8 @@ def export_usd(loaded, folder: Path, options) -> Exported:
     from pxr import Usd
 
     with tempfile.TemporaryDirectory(prefix=".mcar-usd-sources-", dir=folder.parent) as scratch:
-        prepared = prepare(loaded, Path(scratch), USD_READS)
+        # its textures too: the converter reads what the URDF names (never a file outside)
+        prepared = prepare(loaded, Path(scratch), USD_READS, copy_textures=True)
         root = prepared.root
         rehung = rehang_on_bodies(root)
         stem = robot_file_name(root, "")

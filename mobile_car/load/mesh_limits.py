@@ -83,8 +83,10 @@ def scan_mesh(path: str | os.PathLike, shown: str | None = None) -> MeshScan:
                 _scanned[key] = MeshScan()
             else:
                 with open_regular(path, shown) as handle:  # swapped for a FIFO: no wait
+                    # The folder the mesh really is in: a mesh reached through a link
+                    # finds its .mtl and maps beside its target, never beside the link.
                     _scanned[key] = scan_stream(suffix_of(path.name), handle, info.st_size,
-                                                shown, path.parent)
+                                                shown, Path(os.path.realpath(path)).parent)
         except InputError as error:  # check and render both ask: scanned once
             _scanned[key] = error
     if isinstance(_scanned[key], InputError):

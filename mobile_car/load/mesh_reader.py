@@ -47,7 +47,12 @@ class BoundedResolver(trimesh.resolvers.FilePathResolver):
         self.read = read
 
     def namespaced(self, namespace: str) -> BoundedResolver:
-        return BoundedResolver(Path(self.parent) / namespace / "_", self.read)
+        # A namespace is a folder below this one: one that climbs out (``..``, a link
+        # leading away) leaves the resolver where it is.
+        here = Path(os.path.realpath(self.parent))
+        inner = Path(os.path.realpath(here / namespace))
+        return BoundedResolver((inner if inner.is_relative_to(here) else here) / "_",
+                               self.read)
 
     def get(self, name: str) -> bytes:
         for candidate in (name.strip(), name.strip().lstrip("/"), os.path.split(name)[-1]):
@@ -95,7 +100,9 @@ def load_mesh(path: str | os.PathLike, shown: str | None = None, **kwargs):
     read: list[Path] = []
     scan_mesh(path, shown)
     kind = compressed_kind(path)
-    resolver = BoundedResolver(path, read)
+    # Anchored at the real file: what it names is taken below the folder it really lies
+    # in (trimesh then follows every link of a name and keeps it below that folder).
+    resolver = BoundedResolver(Path(os.path.realpath(path)), read)
     if kind is None:
         with open(path, "rb", opener=_no_blocking) as handle:
             data = handle.read(max_mesh_bytes() + 1)

@@ -14,6 +14,13 @@ mcar cannot find out from the files themselves::
       robots: ["urdf/*.urdf.xacro"]   # which robots (default: every robot ci builds)
     ci:
       strict: true          # a check warning fails ci too (default: only errors do)
+    assets:
+      paths: ["../meshes"]  # folders whose meshes and textures the robots may name
+
+``assets.paths`` are relative to the package root and must lie, every symlink followed,
+inside the repository holding the package (the nearest folder with ``.git``, else the
+package itself): in CI the pull request writes this file, so it can never open the
+runner's other folders to an export (see :mod:`.asset_roots`).
 
 Globs are matched against the file's path relative to the package root, written with
 ``/``, by :func:`fnmatch.fnmatchcase`: ``*`` also matches across folders, so
@@ -28,6 +35,7 @@ so a typo never silently changes what ci tests.
 from __future__ import annotations
 
 import fnmatch
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -36,7 +44,8 @@ from ..errors import InputError, UsageError
 FILE_NAME = "mcar.yaml"
 # Each section and the keys it takes; a list of globs or a mapping glob -> reason.
 _SCHEMA = {"robots": {"include": list, "exclude": list}, "sim": {"skip": dict},
-           "export": {"formats": list, "robots": list}, "ci": {"strict": bool}}
+           "export": {"formats": list, "robots": list}, "ci": {"strict": bool},
+           "assets": {"paths": list}}
 EXPORT_FORMATS = ("mjcf", "usd", "urdf", "sdf")  # as mobile_car.export.FORMATS
 
 
@@ -52,6 +61,7 @@ class PackageConfig:
     export_formats: tuple[str, ...] = ()
     export_robots: tuple[str, ...] = ()  # globs; none: every robot
     strict: bool | None = None  # ci.strict; None: not said
+    asset_paths: tuple[Path, ...] = ()  # assets.paths, real paths inside the repository
     lines: dict = field(default_factory=dict, compare=False)  # key path -> line
 
     def relative(self, path: Path) -> str | None:
@@ -162,7 +172,28 @@ def _parse(root: Path, path: Path) -> PackageConfig:
                          sim_skip=tuple(skip.items()),
                          export_formats=tuple(dict.fromkeys(formats)),
                          export_robots=tuple(found.get(("export", "robots"), ())),
-                         strict=found.get(("ci", "strict")), lines=lines)
+                         strict=found.get(("ci", "strict")),
+                         asset_paths=_asset_paths(root, found.get(("assets", "paths"), []),
+                                                  lambda m: fail(m, "assets", "paths")),
+                         lines=lines)
+
+
+def _asset_paths(root: Path, paths: list[str], fail) -> tuple[Path, ...]:
+    """assets.paths as real folders, each inside the repository holding the package."""
+    from .asset_roots import real_path, repository_of, within
+
+    repository = repository_of(root)
+    found = []
+    for text in paths:
+        if os.path.isabs(text):
+            fail(f"assets.paths: '{text}' is absolute; name a folder relative to the package, "
+                 f"inside {repository} (--asset-path names any folder)")
+        real = real_path(Path(root) / text)
+        if not within(real, [repository]):
+            fail(f"assets.paths: '{text}' leads to {real}, outside {repository} "
+                 "(--asset-path names any folder)")
+        found.append(real)
+    return tuple(dict.fromkeys(found))
 
 
 def _checked(entry, kind, name: str, fail):
@@ -176,7 +207,8 @@ def _checked(entry, kind, name: str, fail):
         return kind()
     if kind is list:
         if not isinstance(entry, list) or not all(isinstance(g, str) and g for g in entry):
-            fail(f"{name}: expected a list of globs, got {short_repr(entry)}")
+            what = "folders" if name == "assets.paths" else "globs"
+            fail(f"{name}: expected a list of {what}, got {short_repr(entry)}")
         return list(entry)
     if not isinstance(entry, dict) or not all(
             isinstance(g, str) and g and isinstance(r, str) and r.strip()

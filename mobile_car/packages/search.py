@@ -19,6 +19,7 @@ from pathlib import Path
 
 from ..errors import InputError, PackageNotFoundError
 from ..load.bounded import read_head
+from .asset_roots import OutsideRootsError, chosen_asset_paths, confine, real_path
 from .bundled import PACKAGE_NAME, description_dir
 
 _NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
@@ -92,6 +93,12 @@ class PackageSearch:
     package_paths: list[Path] = field(default_factory=list)
     origin: Path | None = None  # the input file, whose own package wins
     environ: dict[str, str] | None = None
+    # Folders whose files a robot may name besides the packages (--asset-path).
+    asset_paths: list[Path] = field(default_factory=lambda: list(chosen_asset_paths()))
+    _allowed: tuple | None = field(default=None, init=False, repr=False)
+    _package_assets: list[Path] | None = field(default=None, init=False, repr=False)
+    # The mcar.yaml files whose assets.paths were consulted (a record of the run stamps them).
+    settings_read: list[Path] = field(default_factory=list, init=False, repr=False)
     _cache: dict[str, Path] = field(default_factory=dict, init=False, repr=False)
     _crawled: dict[str, Path] | None = field(default=None, init=False, repr=False)
 
@@ -187,21 +194,62 @@ class PackageSearch:
         return None
 
     def resolve_uri(self, uri: str, base: Path | None = None) -> Path:
-        """A mesh or file URI (``package://``, ``file://``, or a relative path) as a path.
+        """A mesh or file URI (``package://``, ``file://``, an absolute or a relative path)
+        as a path, confined to :meth:`allowed_roots` (every symlink followed):
+        OutsideRootsError for one outside them, before anything opens it.
 
-        A ``package://`` path may not climb out of its package with ``..``.
+        A ``package://`` path may not climb out of its package with ``..`` either.
         """
         if uri.startswith("package://"):
             rest = uri[len("package://"):]
             name, _, inner = rest.partition("/")
             root = self.find(name).resolve()
-            path = (root / inner).resolve()
+            path = self.confined(uri, root / inner)
             if root != path and root not in path.parents:
                 raise InputError(f"{uri}: path leaves package '{name}' ({root})")
             return path
         if uri.startswith("file://"):
-            return Path(uri[len("file://"):])
-        path = Path(uri)
-        if not path.is_absolute() and base is not None:
-            path = Path(base) / path
-        return path
+            path = Path(uri[len("file://"):])
+        else:
+            path = Path(uri)
+            if not path.is_absolute() and base is not None:
+                path = Path(base) / path
+        self.confined(uri, path)
+        return path  # as named: messages show the name the robot gave
+
+    def confined(self, uri: str, path: Path) -> Path:
+        """The real path of ``path`` (named ``uri``) if it lies in the allowed roots, else
+        OutsideRootsError; the package's mcar.yaml is read only for a file outside the
+        others (UsageError when its assets.paths leave the repository)."""
+        try:
+            return confine(uri, path, self.allowed_roots())
+        except OutsideRootsError:
+            extra = self._package_asset_roots()
+            if not extra:
+                raise
+            return confine(uri, path, self.allowed_roots() + extra)
+
+    def allowed_roots(self) -> list[Path]:
+        """The folders the files a robot names may lie in (:mod:`.asset_roots`): the
+        package roots, the input's own folder and ``--asset-path``'s, as real paths."""
+        known = tuple(self._cache)  # a package found since widens read_roots()
+        if self._allowed is None or self._allowed[0] != known:
+            folder = Path.cwd() if self.origin is None else Path(self.origin)
+            if not folder.is_dir():
+                folder = folder.parent
+            roots = [*self.read_roots(), real_path(folder),
+                     *(real_path(p) for p in self.asset_paths)]
+            self._allowed = (known, list(dict.fromkeys(roots)))
+        return self._allowed[1]
+
+    def _package_asset_roots(self) -> list[Path]:
+        """assets.paths of the mcar.yaml of the input's own package."""
+        from .package_config import load_package_config
+
+        if self._package_assets is None:
+            own = None if self.origin is None else enclosing_package(self.origin)
+            config = None if own is None else load_package_config(own[1])
+            if config is not None and config.path is not None:
+                self.settings_read.append(config.path)  # what was allowed depends on it
+            self._package_assets = [] if config is None else list(config.asset_paths)
+        return self._package_assets

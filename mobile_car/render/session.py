@@ -43,8 +43,9 @@ from .scene import ModelSource, load_scene
 from .sheet import THUMBNAIL_WIDTH, contact_sheet
 
 # The check's warnings shown with a picture: xacro's, and a mesh not read, missing or
-# broken (W207) or over a limit (W210), drawn as a marker.
-SHOWN_WARNINGS = ("W207", "W210", "W220")
+# broken (W207), over a limit (W210) or outside the allowed folders (W215), drawn as a
+# marker.
+SHOWN_WARNINGS = ("W207", "W210", "W215", "W220")
 # Pictures finished (overlays, PNG, write) in parallel with drawing the next ones.
 FINISH_THREADS = 1
 

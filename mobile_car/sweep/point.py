@@ -36,6 +36,7 @@ class SweepJob:
     left: str | None = None
     right: str | None = None
     trusted: bool = False                   # --no-sandbox
+    asset_paths: tuple[str, ...] = ()       # --asset-path
 
     def fingerprint(self, names) -> str:
         """Identifies the sweep a results file belongs to (what --resume compares)."""
@@ -67,6 +68,10 @@ def evaluate_point(job: SweepJob, index: int, values: dict[str, float]) -> dict:
         from ..expand.sandbox import trust_inputs
 
         trust_inputs()
+    if job.asset_paths:  # a worker is a fresh process: the command line's choice again
+        from ..packages.asset_roots import allow_asset_paths
+
+        allow_asset_paths(job.asset_paths)
     try:
         _evaluate(job, values, row)
     except (UsageError, InputError):

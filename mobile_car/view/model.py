@@ -75,7 +75,10 @@ def load_model(inp: RobotInput, options: LoadOptions, stdin=None) -> ViewModel:
     unread = {mesh.path for mesh in result.mesh_files if mesh.over_limit or not mesh.sound}
 
     def resolve(fname: str) -> str:
-        path = loaded.search.resolve_uri(fname, base=source.path.parent)
+        try:
+            path = loaded.search.resolve_uri(fname, base=source.path.parent)
+        except McarError:  # outside the allowed folders (W215), or no package: not read
+            return ""
         return "" if path in unread else str(path)
 
     # yourdfpy logs what it cannot load; a library must not print, and mcar check has

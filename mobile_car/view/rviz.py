@@ -55,13 +55,20 @@ def require_roslaunch() -> str:
 
 
 def refuse_unbounded(inp: RobotInput, warnings) -> None:
-    """RenderError where check found a mesh over mcar's limits (W210): mcar does not read
-    it, and RViz, which reads every mesh with its own parsers, unbounded, is not given it."""
+    """RenderError where check found a mesh over mcar's limits (W210) or a mesh or texture
+    outside the allowed folders (W215): mcar does not read it, and RViz, which reads every
+    mesh with its own parsers, unbounded, is not given it."""
     over = [warning for warning in warnings if warning.rule == "W210"]
     if over:
         meshes = "a mesh" if len(over) == 1 else f"{len(over)} meshes"
         raise RenderError(f"not opened in RViz: {meshes} over mcar's limits (W210 above), "
                           "which RViz would read unbounded", file=inp.label)
+    outside = [warning for warning in warnings if warning.rule == "W215"]
+    if outside:  # RViz resolves file:// and links itself: it would read what mcar refused
+        files = "a file" if len(outside) == 1 else f"{len(outside)} files"
+        raise RenderError(f"not opened in RViz: {files} outside the folders a robot may "
+                          "name files in (W215 above), which RViz would read",
+                          file=inp.label)
 
 
 def show(roslaunch: str, inp: RobotInput, model, options, sets, config_files) -> int:

@@ -57,7 +57,9 @@ def test_the_size_counts_meshes_in_metres_and_link_poses(cli, tmp_path):
                      f'<mesh filename="{meshes / "box_mm.dae"}"/></geometry></visual></link>'
                      '<joint name="j" type="fixed"><parent link="a"/><child link="b"/>'
                      '<origin xyz="0 0 1" rpy="0 0 1.5707963267948966"/></joint></robot>')
-    assert _json(cli, robot)["extents"] == pytest.approx([0.2, 0.4, 0.1], abs=1e-6)
+    # the meshes lie outside the robot's folder: named with --asset-path (W215 otherwise)
+    assert _json(cli, "--asset-path", meshes, robot)["extents"] == pytest.approx(
+        [0.2, 0.4, 0.1], abs=1e-6)
 
 
 BUNDLED = [*sorted((REPO / "urdf").rglob("test_*.urdf.xacro")),

@@ -71,7 +71,8 @@ def test_export_names_formats_for_the_robots_its_globs_take(tmp_path):
 
 
 @pytest.mark.parametrize("text, line, message", [
-    ("robot:\n  include: []\n", 1, "unknown key 'robot': mcar.yaml takes robots, sim, export, ci"),
+    ("robot:\n  include: []\n", 1,
+     "unknown key 'robot': mcar.yaml takes robots, sim, export, ci, assets"),
     ("robots:\n  includes: ['x']\n", 2,
      "unknown key 'robots.includes': robots takes include, exclude"),
     ("robots:\n  include: urdf/*.xacro\n", 2,
@@ -83,9 +84,10 @@ def test_export_names_formats_for_the_robots_its_globs_take(tmp_path):
     ("robots: [1]\n", 1, "robots: expected a mapping, got [1]"),
     ("export:\n  formats: [mjcf, gltf]\n", 2,
      "export.formats: unknown format 'gltf' (mcar export takes mjcf, usd, urdf, sdf)"),
-    ("- 1\n", None, "expected a mapping with robots, sim, export, ci, got [1]"),
+    ("- 1\n", None, "expected a mapping with robots, sim, export, ci, assets, got [1]"),
     ("ci:\n  strict: yes please\n", 2, "ci.strict: expected true or false, got 'yes please'"),
     ("ci:\n  strict: 1\n", 2, "ci.strict: expected true or false, got 1"),
+    ("assets:\n  paths: meshes\n", 2, "assets.paths: expected a list of folders, got 'meshes'"),
     ("robots:\n  include: []\n  include: []\n", 3, None),  # duplicate key
     ("robots: {include: [\n", 2, None),  # broken YAML
 ])

@@ -7,6 +7,7 @@ from pathlib import Path
 import pytest
 
 from mobile_car.errors import InputError, PackageNotFoundError
+from mobile_car.packages.asset_roots import OutsideRootsError
 from mobile_car.packages.bundled import description_dir
 from mobile_car.packages.search import PackageSearch
 
@@ -84,16 +85,25 @@ def test_resolve_uri_forms(tmp_path):
     package = make_package(tmp_path / "pkg", "pkg")
     search = PackageSearch(environ={"ROS_PACKAGE_PATH": str(tmp_path)})
     assert search.resolve_uri("package://pkg/meshes/a.stl") == (package / "meshes/a.stl").resolve()
-    assert search.resolve_uri("file:///abs/b.stl") == Path("/abs/b.stl")
-    assert search.resolve_uri("meshes/c.stl", base=tmp_path) == tmp_path / "meshes/c.stl"
+    assert search.resolve_uri(f"file://{package}/b.stl") == package / "b.stl"
+    assert search.resolve_uri("meshes/c.stl", base=package) == package / "meshes/c.stl"
+    # outside every allowed folder (the packages, the input's, --asset-path's): refused
+    with pytest.raises(OutsideRootsError, match="'file:///abs/b.stl' is outside the folders"):
+        search.resolve_uri("file:///abs/b.stl")
 
 
 def test_package_uri_may_not_leave_its_package(tmp_path):
     make_package(tmp_path / "pkg", "pkg")
+    make_package(tmp_path / "other", "other")
     (tmp_path / "secret.txt").write_text("x")
-    search = PackageSearch(environ={"ROS_PACKAGE_PATH": str(tmp_path / "pkg")})
+    search = PackageSearch(environ={"ROS_PACKAGE_PATH": str(tmp_path)})
+    # into another allowed package: still refused, as before
     with pytest.raises(InputError, match="leaves package 'pkg'"):
-        search.resolve_uri("package://pkg/../secret.txt")
+        search.resolve_uri("package://pkg/../other/package.xml")
+    # out of every allowed folder: refused before anything is looked at
+    with pytest.raises(OutsideRootsError):
+        PackageSearch(environ={"ROS_PACKAGE_PATH": str(tmp_path / "pkg")}).resolve_uri(
+            "package://pkg/../secret.txt")
 
 
 def _workspace_with_a_dependency(tmp_path: Path) -> Path:

@@ -78,7 +78,11 @@ def test_relative_mesh_path_and_scale():
 
 
 def test_file_uri_mesh(tmp_path):
-    mesh = (PKG / "meshes/motor.stl").resolve()
+    # an absolute file:// path, in the robot's folder (one outside every allowed folder
+    # is refused: tests/untrusted/test_outside_roots.py)
+    mesh = tmp_path / "meshes" / "motor.stl"
+    mesh.parent.mkdir()
+    mesh.write_bytes((PKG / "meshes/motor.stl").read_bytes())
     urdf = tmp_path / "file_uri.urdf"
     urdf.write_text(f'<robot name="r"><link name="a"><visual><geometry>'
                     f'<mesh filename="file://{mesh}"/></geometry></visual></link></robot>')

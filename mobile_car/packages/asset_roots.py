@@ -1,0 +1,98 @@
+"""The folders the files a robot names may lie in, and the one test every such file passes
+before mcar opens it.
+
+A description names files: meshes, textures, and through them ``.mtl`` libraries, maps and
+COLLADA images. mcar reads them, hashes them, draws them and copies them into exports,
+which CI jobs upload: a description that names ``file:///etc/shadow`` as a texture must
+not get the runner's secrets into an artefact. So every name goes through
+:meth:`~.search.PackageSearch.resolve_uri`, which confines it to the allowed roots:
+
+* the folders a package may be found in (:meth:`~.search.PackageSearch.read_roots`: the
+  input's own package, ``--package-path``, ``ROS_PACKAGE_PATH``, ``AMENT_PREFIX_PATH``'s
+  share folders, the bundled car);
+* the input's own folder (the working folder for stdin);
+* the folders the user names: ``--asset-path DIR`` (any folder: the user typed it), and
+  ``assets: {paths: [...]}`` in the input package's ``mcar.yaml`` (in CI a pull request
+  writes that file, so it may only name folders inside the repository holding it).
+
+The test is made on the real path, every symlink followed: a link inside a package that
+leads out of it is outside. A file refused is never opened, measured, hashed or copied:
+:class:`OutsideRootsError` is raised before anything reads it, and every consumer treats
+it like a missing file (check warns W215, pictures draw the magenta box, exports leave it
+out).
+
+These roots are for the files a description names, not for what a sandboxed xacro may
+read: its Landlock roots stay :meth:`~.search.PackageSearch.read_roots`.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from ..errors import EXIT_PROBLEMS, InputError
+
+_chosen: tuple[Path, ...] = ()  # --asset-path of this run
+
+
+class OutsideRootsError(InputError):
+    """A file a description names lies outside every folder mcar may read for it."""
+
+    exit_code = EXIT_PROBLEMS
+
+    def __init__(self, message: str, path: Path, roots: list[Path]):
+        super().__init__(message)
+        self.path = path
+        self.roots = roots
+
+
+def allow_asset_paths(paths) -> None:
+    """``--asset-path``: folders whose files a description may name, for this run (like
+    ``--no-sandbox``, a choice of the command line, so it is kept for the process)."""
+    global _chosen
+    _chosen = tuple(Path(os.path.realpath(p)) for p in paths)
+
+
+def chosen_asset_paths() -> tuple[Path, ...]:
+    """The folders ``--asset-path`` named in this run (real paths)."""
+    return _chosen
+
+
+def real_path(path: Path) -> Path:
+    """``path`` with every symlink followed (a loop is left as it is: it names nothing)."""
+    return Path(os.path.realpath(path))
+
+
+def within(path: Path, roots) -> bool:
+    """Whether the real ``path`` lies in one of ``roots`` (real paths themselves)."""
+    text = str(path)
+    # by text, not Path.is_relative_to: asked for every file a robot names
+    return any(text == str(root) or text.startswith(str(root).rstrip("/") + "/")
+               for root in roots)
+
+
+def confine(uri: str, path: Path, roots: list[Path]) -> Path:
+    """The real path of ``path`` when it lies in one of ``roots``; OutsideRootsError
+    otherwise, naming the file and the roots."""
+    real = real_path(path)
+    if within(real, roots):
+        return real
+    # A folder inside another one adds nothing to read in a message.
+    outer = [root for root in roots if not any(root != other and root.is_relative_to(other)
+                                               for other in roots)]
+    shown = ", ".join(str(root) for root in outer) or "none"
+    leads = "" if real == Path(os.path.abspath(path)) else f" (it leads to {real})"
+    raise OutsideRootsError(
+        f"'{uri}' is outside the folders a robot may name files in{leads}: {shown}; "
+        "--asset-path DIR (or assets.paths in the package's mcar.yaml) allows one",
+        real, roots)
+
+
+def repository_of(package_root: Path) -> Path:
+    """The repository holding a package (the nearest folder with ``.git`` at or above it),
+    or the package itself outside any: what a package's mcar.yaml may name."""
+    root = real_path(package_root)
+    for folder in [root, *root.parents]:
+        if (folder / ".git").exists():
+            return folder
+    return root

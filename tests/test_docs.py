@@ -109,3 +109,31 @@ def test_every_docs_page_the_code_names_exists():
     assert named
     missing = sorted(name for name in named if not (REPO / name).is_file())
     assert not missing, f"named but not there: {missing}"
+
+
+def _threat_table_rows() -> list[list[str]]:
+    """The rows of docs/security.md's threat-model table, each a list of its cells."""
+    page = (DOCS / "security.md").read_text(encoding="utf-8")
+    section = page.split("## The threat model in one table", 1)[1].split("\n## ", 1)[0]
+    lines = [line for line in section.splitlines() if line.startswith("| ")]
+    return [[cell.strip() for cell in line.strip("|").split(" | ")] for line in lines[1:]]
+
+
+def test_every_row_of_the_threat_model_names_tests_that_exist():
+    """A boundary without a test is a bug (docs/security.md): each row names at least one
+    test file or folder, and each one it names is there."""
+    rows = _threat_table_rows()
+    assert len(rows) >= 15, "docs/security.md's threat-model table lost its rows"
+    for row in rows:
+        assert len(row) == 5, f"docs/security.md: a row without 5 cells: {row[0]}"
+        named = re.findall(r"`(tests/[^`]+)`", row[4])
+        assert named, f"docs/security.md: the row '{row[0]}' names no test"
+        for target in named:
+            path = REPO / target.split("::")[0]
+            assert path.exists(), f"docs/security.md: the row '{row[0]}' names {target}"
+
+
+def test_the_readmes_promise_about_untrusted_input_points_at_the_threat_model():
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    section = readme.split("## Untrusted descriptions", 1)[1].split("\n## ", 1)[0]
+    assert "docs/security.md" in section

@@ -24,6 +24,7 @@ against the files the build read before using it (:func:`Origins.from_wire`).
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from xml.dom import expatbuilder
 
@@ -91,7 +92,7 @@ class Origins:
                                                            "of"}:
             raise ValueError("its origins have the wrong fields")
         files, names = value["files"], value["names"]
-        if not _strings(files, MAX_FILES) or not all(f in allowed_files for f in files):
+        if not _strings(files, MAX_FILES) or not _all_read(files, allowed_files):
             raise ValueError("its origins name a file the build did not read")
         if not _strings(names, MAX_CALLS) or any(len(n) > MAX_NAME_CHARS for n in names):
             raise ValueError("its origins' macro names are not short strings")
@@ -116,6 +117,23 @@ class Origins:
         if not all(-1 <= index < len(sites) for index in of):
             raise ValueError("its origins point at no site")
         return cls(tuple(files), tuple(names), calls, sites, of)
+
+
+def _all_read(files: list[str], allowed_files: set[str]) -> bool:
+    """Whether every file is one of ``allowed_files``, compared as files, not spellings:
+    xacro names an include as written (``./inner.xacro``, ``sub//inner.xacro``; from stdin
+    ``./inner.xacro`` for ``inner.xacro``), the list of files read may spell it otherwise.
+    A name spelt as listed is taken as it is; only the others are resolved (the child
+    shares the parent's working folder, so a relative name means the same file to both)."""
+    resolved = None
+    for name in files:
+        if name in allowed_files:
+            continue
+        if resolved is None:
+            resolved = {os.path.realpath(allowed) for allowed in allowed_files}
+        if os.path.realpath(name) not in resolved:
+            return False
+    return True
 
 
 def _strings(value, most: int) -> bool:

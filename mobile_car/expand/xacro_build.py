@@ -83,7 +83,8 @@ def _args_in(text: str) -> set[str]:
     names = set(_ARG_DECL_RE.findall(text))
     for use in _ARG_USE_RE.findall(text):
         names.update(n for n in use if n)
-    return names
+    # ``$(arg ${'v'+'ar'})``: an expression, not a name (the expansion notes what it read)
+    return {name for name in names if "$" not in name}
 
 
 def _unknown_arg_error(unknown: list[str], known: set[str], source: Path) -> UsageError:
@@ -359,26 +360,56 @@ def _check_deps_readable(deps: list[Path], roots: list[Path], source: Path) -> N
                              "given as arguments)", file=display_path(source))
 
 
+class _ReadArguments(dict):
+    """The ``NAME:=VALUE`` mappings as xacro's argument table, noting every name xacro
+    looks up in it: ``$(arg ${'v'+'ar'})`` reads ``var``, a name no regular expression
+    finds in the files, and ``<xacro:arg name="${n}">`` declares one."""
+
+    def __init__(self, mappings: dict[str, str]):
+        super().__init__(mappings)
+        self.read: set[str] = set()
+
+    def __getitem__(self, name):
+        self._note(name)
+        return super().__getitem__(name)
+
+    def __contains__(self, name):
+        self._note(name)
+        return super().__contains__(name)
+
+    def get(self, name, default=None):
+        self._note(name)
+        return super().get(name, default)
+
+    def _note(self, name) -> None:
+        if isinstance(name, str):
+            self.read.add(name)
+
+
 def _expand(source: Path, mappings: dict[str, str], search: PackageSearch,
             optional_args: frozenset[str], text: bytes | None) -> BuildResult:
     """The expansion itself (in a guarded child process where possible)."""
+    given = list(mappings)  # xacro adds the declared defaults to the table it is given
+    table = _ReadArguments(mappings)
     with _Session(search) as session:
         try:
             if text is None:
-                doc = xacro.process_file(str(source), mappings=mappings)
+                doc = xacro.process_file(str(source), mappings=table)
             else:  # as process_file does, from text; relative includes start at the cwd
                 xacro.init_stacks(None)
                 doc = xacro.parse(text.decode("utf-8", errors="replace"))
-                xacro.process_doc(doc, mappings=mappings)
+                xacro.process_doc(doc, mappings=table)
             error = None
         except (Exception, RecursionError) as exc:  # xacro raises many kinds; all become one
             error = error_from(exc, session.parsing, source, session.origins.active_calls())
         origins = session.origins.collect(doc) if error is None else None
         includes = [Path(p) for p in dict.fromkeys(xacro.all_includes)]
         deps = includes if text is not None else [source, *includes]
+    # What the files name, and what the expansion looked up (a name computed in them).
     known = known_args(deps) | (_args_in(text.decode("utf-8", errors="replace"))
                                 if text is not None else set())
-    unknown = [name for name in mappings if name not in known and name not in optional_args]
+    known |= table.read & set(given)
+    unknown = [name for name in given if name not in known and name not in optional_args]
     if unknown:
         raise _unknown_arg_error(unknown, known, source)
     files = deps if text is None else includes

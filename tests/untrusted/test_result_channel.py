@@ -122,6 +122,11 @@ def _cases(marker: Path) -> dict[str, tuple[str, str]]:
         "origins_naming_a_secret": (
             _send(_frame({**ok, "origins": {**_ORIGINS, "files": ["/etc/passwd"]}}, urdf)),
             "its origins name a file the build did not read"),
+        # Compared as files, not spellings: a name that resolves elsewhere is refused too.
+        "origins_naming_a_secret_by_another_spelling": (
+            _send(_frame({**ok, "origins": {**_ORIGINS, "files": [
+                "./" + "../" * 40 + "etc//passwd"]}}, urdf)),
+            "its origins name a file the build did not read"),
         "origins_with_a_call_loop": (
             _send(_frame({**ok, "origins": {**_ORIGINS, "calls": [0, 1, 0, 0]}}, urdf)),
             "its origins hold a call out of range"),

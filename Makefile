@@ -8,7 +8,8 @@
 # for `make bench` also time (GNU time, which measures the peak memory of each command);
 # for `make test` also chromium (the browser tests/view drives through playwright), and
 # ROS 1 from Debian (ROS_APT_PACKAGES: roslaunch, the state publishers, RViz) with xvfb,
-# catkin and ament-cmake (tests/ros: the RViz launch, catkin and ament builds);
+# catkin and ament-cmake (tests/ros: the RViz launch, catkin and ament builds), strace
+# (tests/untrusted: the system calls the confined Gazebo helper is refused);
 # for `make rviz` also ROS_APT_PACKAGES (mcar itself needs none of ROS).
 # g++ pkg-config libsdformat-dev (sdformat 12): the Gazebo helper mcar-sdformat (mcar check
 # --gazebo, build --format sdf), built beside mcar in $(BIN) whenever they are there.
@@ -73,7 +74,7 @@ demo: install system-deps gazebo-helper
 TEST_WORKERS ?= $(shell n=$$(nproc 2>/dev/null || echo 2); \
 	[ $$n -lt 2 ] && n=2; [ $$n -gt 8 ] && n=8; echo $$n)
 
-test: APT_PACKAGES += chromium $(ROS_APT_PACKAGES) xvfb catkin ament-cmake
+test: APT_PACKAGES += chromium $(ROS_APT_PACKAGES) xvfb catkin ament-cmake strace
 test: install system-deps gazebo-helper
 	$(BIN)/pytest -n $(TEST_WORKERS) --dist loadgroup
 

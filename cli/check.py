@@ -12,6 +12,7 @@ import click
 from mobile_car.check import replay
 from mobile_car.check.diagnostics import github_annotation, size_text
 from mobile_car.check.replay import ReplayedResult
+from mobile_car.check.rules import NOTE
 from mobile_car.errors import combine_exit_codes
 from mobile_car.names import json_safe, shown
 
@@ -90,7 +91,8 @@ def _emit_text(results: list, quiet: bool) -> None:
                 # check_urdf writes names byte for byte: UTF-8 whatever the locale says.
                 streams.write_lines(_tree_lines(result))
         for diagnostic in result.diagnostics:
-            print_diagnostic(diagnostic)
+            if not (quiet and diagnostic.severity == NOTE):  # -q: only problems
+                print_diagnostic(diagnostic)
         if not quiet and result.extents is not None:
             # On stderr: stdout is check_urdf's, byte for byte.
             where = f"{shown(result.file)}: " if many else ""
@@ -195,7 +197,8 @@ def overall_exit(results: list, strict: bool) -> int:
               help="Also report what Gazebo changes in the robot (libsdformat's URDF "
                    "conversion): lumped and dropped links, dangling <gazebo> references.")
 @click.option("-q", "--quiet", is_flag=True,
-              help="text format: print only problems, not check_urdf's tree.")
+              help="text format: print only problems (errors and warnings), not "
+                   "check_urdf's tree, the size or notes.")
 @robot_options
 @handle_errors
 def command(words, output_format, strict, gazebo, quiet, package_paths, sets, config_files):

@@ -47,8 +47,9 @@ the top-level robot files (built into build/variants/NAME/...). A failed build o
 skips that file's later steps; the other files go on. A summary table ends the run.
 
 Where the Gazebo helper is installed (make gazebo-helper), a robot with a <gazebo>
-block is also given to libsdformat, as `mcar check --gazebo` does: one line says what
-Gazebo simulates (links, lumped, mass); a link it drops is an error, a <gazebo>
+block is also given to libsdformat, as `mcar check --gazebo` does: with -v, one line
+says what Gazebo simulates (links, lumped, mass, libsdformat's version); a link it
+drops is an error, a <gazebo>
 reference or plugin joint left pointing at nothing a warning (--no-gazebo: not).
 
 Only vehicles are simulated: robots with wheels (two or more continuous joints moving
@@ -128,7 +129,8 @@ Exit codes:
 @click.option("-q", "--quiet", is_flag=True, help="text format: print only problems.")
 @click.option("-v", "--verbose", is_flag=True,
               help="Also list the files found beside the robots that are not robots, one "
-                   "line each with why (macro files, included files, fragments, ...).")
+                   "line each with why (macro files, included files, fragments, ...), and "
+                   "what Gazebo simulates of each robot (one line each).")
 @robot_options
 @handle_errors
 def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_gazebo, strict,
@@ -242,7 +244,7 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
             click.echo(f"mcar: skipped {display_path(file.path)}: {shown(file.reason)}",
                        err=True)
     emit(items, output_format, quiet, time.perf_counter() - started, no_render, no_sim,
-          helper is not None, 0 if verbose else len(skipped))
+          helper is not None, 0 if verbose else len(skipped), verbose)
     if revision is not None:
         changed = sum(1 for entry in compared if entry.diff is not None and entry.diff.changed
                       or entry.summary.startswith("added"))

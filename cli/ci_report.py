@@ -14,7 +14,7 @@ from .common import print_diagnostic, report, severity_label
 
 
 def emit(items, output_format: str, quiet: bool, seconds: float, no_render: bool,
-          no_sim: bool, gazebo: bool, skipped: int) -> None:
+          no_sim: bool, gazebo: bool, skipped: int, verbose: bool = False) -> None:
     if output_format == "junit":
         from mobile_car.ci.junit import junit_report
 
@@ -40,9 +40,10 @@ def emit(items, output_format: str, quiet: bool, seconds: float, no_render: bool
             for line in skip_lines(items):
                 click.echo(f"mcar: {shown(line)}", err=True)
         for item in items:
-            if not quiet:  # what Gazebo simulates, the folders exported
+            if not quiet:  # the folders exported; with -v, what Gazebo simulates
+                shown_steps = ("gazebo", "export") if verbose else ("export",)
                 for step in item.steps:
-                    if step.name in ("gazebo", "export") and step.status == "passed":
+                    if step.name in shown_steps and step.status == "passed":
                         click.echo(f"mcar: {item.label}: {shown(step.message)}", err=True)
             for line in _problems(item):
                 if isinstance(line, str):

@@ -3,8 +3,15 @@
 //   mcar-sdformat [--sdf] < robot.urdf     (a URDF, or an SDF, on stdin)
 //
 // prints one JSON document on stdout (the fields: docs/gazebo.md):
-//   interface, sdformat   this answer's format (1) and libsdformat's version;
-//   errors, warnings      what urdfdom and libsdformat said, each {where, text};
+//   interface, sdformat   this answer's format (2) and libsdformat's version (the
+//                         SDF_VERSION_FULL it was built with: sdformat 12 has no call
+//                         that tells the version at run time);
+//   errors                libsdformat's verdict: the sdf::Errors its load returned, each
+//                         {where: "error code N", text}; empty when it loaded the robot;
+//   console_errors,       what urdfdom and libsdformat printed on their consoles at the
+//   warnings              Error and Warning levels, each {where, text}: said in passing,
+//                         not part of the verdict (libsdformat prints some errors that it
+//                         then loads past, and returns none);
 //   lumped, dropped       what libsdformat says it did to links, in its own words:
 //                         lumped into their parent by a fixed joint ({link, into}), or
 //                         left out, with every link below, for want of mass ({link, text});
@@ -54,7 +61,7 @@
 
 namespace {
 
-const int kInterface = 1;  // bumped when a field changes meaning (mcar checks it)
+const int kInterface = 2;  // bumped when a field changes meaning (mcar checks it)
 const size_t kMaxInput = size_t(1) << 30;  // mcar sends at most MCAR_MAX_INPUT_MB
 // libsdformat quotes the whole robot in some errors ("Unable to read SDF string: ...").
 const size_t kMaxMessage = 2000;
@@ -452,17 +459,19 @@ int main(int argc, char **argv) {
   dup2(saved_stderr, 2);
 
   // urdfdom's words first: when it cannot read a URDF, libsdformat only says that.
-  std::vector<Message> messages = SplitUrdfdom(Captured(library_output));
-  for (const auto &message : SplitConsole(captured.str())) messages.push_back(message);
+  std::vector<Message> printed = SplitUrdfdom(Captured(library_output));
+  for (const auto &message : SplitConsole(captured.str())) printed.push_back(message);
+  std::vector<Message> verdict;
   for (const auto &error : errors) {
-    messages.push_back({"Error", "error code " +
-                        std::to_string(static_cast<int>(error.Code())), error.Message()});
+    verdict.push_back({"Error", "error code " +
+                       std::to_string(static_cast<int>(error.Code())), error.Message()});
   }
   std::string out = "{\"interface\": " + std::to_string(kInterface) +
                     ", \"sdformat\": " + Quote(SDF_VERSION_FULL) +
-                    ", \"errors\": " + MessagesJson(messages, "Error") +
-                    ", \"warnings\": " + MessagesJson(messages, "Warning") + ", " +
-                    LinkFatesJson(messages) + ", \"model\": ";
+                    ", \"errors\": " + MessagesJson(verdict, "Error") +
+                    ", \"console_errors\": " + MessagesJson(printed, "Error") +
+                    ", \"warnings\": " + MessagesJson(printed, "Warning") + ", " +
+                    LinkFatesJson(printed) + ", \"model\": ";
   const sdf::Model *model = root.Model();
   out += model ? ModelJson(*model) : "null";
   if (with_sdf) out += ", \"sdf\": " + Quote(sdf_text);

@@ -106,8 +106,9 @@ _TABLE = [
     Rule("E150", "gazebo-link-dropped", "a link Gazebo leaves out: libsdformat drops a link "
          "without mass (no `<inertial>`, or mass 0) and everything that moves below it; "
          "reported at the massless link, with each link lost and their mass", "n/a"),
-    Rule("E151", "gazebo-load-error", "libsdformat (Gazebo's URDF reader) reports an error "
-         "loading the robot, or cannot load it", "n/a"),
+    Rule("E151", "gazebo-load-error", "libsdformat (Gazebo's URDF reader) returns an error "
+         "loading the robot (in its Errors list, as its own load gives it), or makes no "
+         "model of it; named with its version", "n/a"),
     Rule("E152", "gazebo-include", "an `<include>` (in a `<gazebo>` block): libsdformat would "
          "read the file or model folder it names (a path, `file://`, `model://`) into the "
          "robot, and mcar's Gazebo helper reads no file; refused before libsdformat runs",
@@ -167,6 +168,8 @@ _TABLE = [
          "what it sets, sensors included, goes to the link it is lumped into", "n/a"),
     Rule("N403", "gazebo-mass", "the links and mass Gazebo simulates, against the URDF's",
          "n/a"),
+    Rule("N404", "gazebo-console-error", "an error libsdformat printed on its console but "
+         "did not return: it loaded the robot past it", "n/a"),
 ]
 
 RULES: dict[str, Rule] = {rule.id: rule for rule in _TABLE}

@@ -52,9 +52,12 @@ def export_sdf(loaded, folder: Path, options) -> Exported:
 
         first = report.errors[0].text.strip().splitlines()[0][:300] if report.errors \
             else "no model"
-        raise GazeboError(f"libsdformat cannot make a Gazebo model of it: {first}",
+        raise GazeboError(f"libsdformat {report.sdformat} cannot make a Gazebo model of it: "
+                          f"{first}",
                           file=loaded.label)
-    warnings += [f"libsdformat: {m.text.strip()} ({m.where})" for m in report.warnings]
+    # what it printed and loaded past (errors included: not in its verdict), once each
+    warnings += [f"libsdformat: {m.text.strip()} ({m.where})"
+                 for m in dict.fromkeys((*report.console_errors, *report.warnings))]
     notes, lost = sdf_notes(report, root)
     warnings += lost
     name = robot_file_name(root, ".sdf")

@@ -16,8 +16,15 @@ written, what it weighed, and which links lie below which. A URDF link is
 
 Then ``<gazebo reference>`` blocks (W231 when Gazebo has no such link or joint, N402 when
 the link is lumped: the block goes to the link it is lumped into), joint names in
-``<gazebo>`` plugins (W232), libsdformat's own errors and warnings (E151, W230) and the
+``<gazebo>`` plugins (W232), libsdformat's verdict and what it printed (below) and the
 total mass (N403). Masses in kg.
+
+libsdformat's verdict is its own: an error (E151) is only what its load returned in its
+Errors list, and each names the libsdformat that said it (with the known bug of that
+release it matches, :mod:`.versions`). What it printed on its console while loading is
+not a verdict: sdformat 12 prints some errors and then loads the robot anyway, returning
+none (its own tests expect none), so a printed error is a note (N404) and a printed
+warning a warning (W230).
 """
 
 from __future__ import annotations
@@ -29,6 +36,7 @@ from dataclasses import dataclass, field
 from ..check.context import Reporter
 from ..check.diagnostics import Diagnostic
 from ..check.urdf_model import parse_number
+from .versions import known_bug
 from .wire import GazeboReport
 
 MAX_NAMED = 12  # links named in one message; the rest are counted
@@ -52,14 +60,16 @@ class GazeboView:
     diagnostics: list[Diagnostic] = field(default_factory=list)
 
     def summary(self) -> str:
-        """One line: "3 links of 16 (13 lumped), 0.7056 kg as in the URDF"."""
+        """One line: "3 links of 16 (13 lumped), 0.7056 kg, as in the URDF (libsdformat
+        12.3.0)"."""
         if not self.loaded:
-            return "libsdformat could not load it"
+            return f"libsdformat {self.sdformat} could not load it"
         total = len(self.links) + len(self.lumped) + len(self.lost)
         parts = [f"{len(self.lumped)} lumped"] + (
             [f"{len(self.lost)} left out"] if self.lost else [])
         return (f"{len(self.links)} link{'s' * (len(self.links) != 1)} of {total} "
-                f"({', '.join(parts)}), {_mass_words(self.gazebo_mass, self.urdf_mass)}")
+                f"({', '.join(parts)}), {_mass_words(self.gazebo_mass, self.urdf_mass)} "
+                f"(libsdformat {self.sdformat})")
 
     def as_json(self) -> dict:
         return {"sdformat": self.sdformat, "loaded": self.loaded, "links": self.links,
@@ -73,14 +83,25 @@ def gazebo_view(result, report: GazeboReport) -> GazeboView:
     diagnostics = Reporter(result.file, result.where)
     view = GazeboView(report.sdformat, [], urdf_mass=math.fsum(_mass(link) for link in
                                                                 robot.links))
+    said = f"libsdformat {report.sdformat}"
+    hinted = set()  # a known bug is named once, at the first error it may explain
     for message in dict.fromkeys(report.errors):
-        diagnostics.add("E151", robot.element, f"libsdformat: {_first_line(message.text)} "
-                                               f"({message.where})")
+        hint = known_bug(report, message)
+        diagnostics.add("E151", robot.element, f"{said}: {_first_line(message.text)} "
+                                               f"({message.where}){'' if hint in hinted else hint}")
+        hinted.add(hint)
+    for message in dict.fromkeys(report.console_errors):
+        diagnostics.add("N404", robot.element, f"{said} printed an error it did not return, "
+                        f"and loaded the robot past it: {_first_line(message.text)} "
+                        f"({message.where})")
     for message in dict.fromkeys(report.warnings):
         diagnostics.add("W230", robot.element, f"libsdformat: {_first_line(message.text)} "
                                                f"({message.where})")
     model = report.model
     if model is None:
+        if not report.errors:  # no model is a failed load, whatever it returned
+            diagnostics.add("E151", robot.element, f"{said} made no model of the robot "
+                                                   "and returned no error")
         view.loaded = False
         view.diagnostics = diagnostics.diagnostics
         return view
@@ -101,7 +122,7 @@ def gazebo_view(result, report: GazeboReport) -> GazeboView:
     joints = {joint.name for joint in model.joints}
     _references(robot, view, links, parent_joint, joints, diagnostics)
     _plugin_joints(robot, view, parent_joint, joints, diagnostics)
-    diagnostics.add("N403", robot.element, f"Gazebo simulates {len(view.links)} "
+    diagnostics.add("N403", robot.element, f"Gazebo ({said}) simulates {len(view.links)} "
                     f"link{'s' * (len(view.links) != 1)}: "
                     f"{_mass_words(view.gazebo_mass, view.urdf_mass)}")
     view.diagnostics = sorted(set(diagnostics.diagnostics), key=Diagnostic.sort_key)

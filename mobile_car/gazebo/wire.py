@@ -15,13 +15,15 @@ Units: masses in kg, lengths in m, angles in rad, inertias in kg m^2.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 
 from ..expand.wire import strict_json
 
-INTERFACE = 1
+INTERFACE = 2  # 2: errors are libsdformat's Errors list only; console_errors added
 MAX_STRING_CHARS = 64 * 1024
 MAX_LIST_ITEMS = 100_000
+_VERSION = re.compile(r"[0-9][0-9A-Za-z.~+-]{0,63}")
 JOINT_TYPES = frozenset({"ball", "continuous", "fixed", "gearbox", "prismatic", "revolute",
                          "revolute2", "screw", "universal", "invalid"})
 
@@ -88,9 +90,10 @@ class GazeboModel:
 
 @dataclass(frozen=True)
 class GazeboReport:
-    sdformat: str                        # libsdformat's version
-    errors: tuple[Message, ...]
-    warnings: tuple[Message, ...]
+    sdformat: str                        # libsdformat's version (the helper's build)
+    errors: tuple[Message, ...]          # its verdict: the Errors list its load returned
+    console_errors: tuple[Message, ...]  # printed at Error level, not in that list
+    warnings: tuple[Message, ...]        # printed at Warning level
     lumped: tuple[tuple[str, str], ...]  # (link, the link it was lumped into), in order
     dropped: tuple[tuple[str, str], ...]  # (link, libsdformat's words) left out for no mass
     model: GazeboModel | None
@@ -110,16 +113,18 @@ def read_report(data: bytes, with_sdf: bool = False) -> GazeboReport:
         raise MalformedReport("no format number")
     if interface != INTERFACE:
         raise OtherInterface(interface)
-    fields = {"interface": int, "sdformat": str, "errors": list, "warnings": list,
-              "lumped": list, "dropped": list, "model": (dict, type(None))}
+    fields = {"interface": int, "sdformat": str, "errors": list, "console_errors": list,
+              "warnings": list, "lumped": list, "dropped": list, "model": (dict, type(None))}
     if with_sdf:
         fields["sdf"] = str
     _fields(document, "answer", fields)
-    if len(document["sdformat"]) > 64:
-        raise MalformedReport("a version string too long")
+    if not _VERSION.fullmatch(document["sdformat"]):  # it is printed in every report
+        raise MalformedReport("a libsdformat version that is not one (a digit, then at "
+                              "most 63 of letters, digits and .~+-)")
     return GazeboReport(
         sdformat=document["sdformat"],
         errors=_items(document["errors"], "errors", _message),
+        console_errors=_items(document["console_errors"], "console_errors", _message),
         warnings=_items(document["warnings"], "warnings", _message),
         lumped=_items(document["lumped"], "lumped", lambda item, where: _pair(
             item, where, "link", "into")),

@@ -122,9 +122,9 @@ def gazebo_view(result, report: GazeboReport) -> GazeboView:
     joints = {joint.name for joint in model.joints}
     _references(robot, view, links, parent_joint, joints, diagnostics)
     _plugin_joints(robot, view, parent_joint, joints, diagnostics)
-    diagnostics.add("N403", robot.element, f"Gazebo ({said}) simulates {len(view.links)} "
+    diagnostics.add("N403", robot.element, f"Gazebo simulates {len(view.links)} "
                     f"link{'s' * (len(view.links) != 1)}: "
-                    f"{_mass_words(view.gazebo_mass, view.urdf_mass)}")
+                    f"{_mass_words(view.gazebo_mass, view.urdf_mass)} ({said})")
     view.diagnostics = sorted(set(diagnostics.diagnostics), key=Diagnostic.sort_key)
     return view
 

@@ -62,7 +62,7 @@ def test_the_sdf_libsdformat_writes_loads_back_as_three_links_of_the_cars_mass(c
 
 
 def test_check_gazebo_on_the_car_reports_lumping_as_notes_at_their_source_lines(cli, gazebo):
-    result = cli("check", "-q", "--gazebo", CAR)
+    result = cli("check", "--gazebo", CAR)
     assert result.exit_code == 0, result.output
     lines = result.stderr.splitlines()
     assert not [line for line in lines if ": error:" in line or ": warning:" in line]
@@ -83,8 +83,22 @@ def test_check_gazebo_on_the_car_reports_lumping_as_notes_at_their_source_lines(
         f"urdf/mobile_robot.gazebo.xacro:{block}: note: <gazebo reference=\"caster_link\">")
     assert f"(in xacro:surface_friction called at urdf/mobile_robot.gazebo.xacro:{call}," \
         in made[0]
-    assert "note: Gazebo simulates 3 links: 0.7056 kg, as in the URDF [N403]" in result.stderr
-    assert result.stdout == ""
+    assert re.search(r"note: Gazebo simulates 3 links: 0\.7056 kg, as in the URDF "
+                     r"\(libsdformat \d+\.\d+\.\d+\) \[N403\]", result.stderr)
+    assert result.stdout.startswith("robot name is: ")  # check_urdf's tree, as without it
+
+
+def test_check_gazebo_quiet_prints_problems_only_no_notes(cli, gazebo):
+    loud = cli("check", "--gazebo", CAR)
+    assert loud.stderr.count(": note: ") > 13  # 13 lumped links, blocks, the mass
+    result = cli("check", "-q", "--gazebo", CAR)
+    assert result.exit_code == 0
+    assert result.stdout == "" and result.stderr == ""
+    # problems still show: the dropped links' error and the missing inertial's warning
+    dropping = cli("check", "-q", "--gazebo", DROPPING)
+    assert dropping.exit_code == 1
+    assert "[E150]" in dropping.stderr and "[W206]" in dropping.stderr
+    assert ": note: " not in dropping.stderr
 
 
 def test_check_gazebo_json_and_github(cli, gazebo):
@@ -190,7 +204,8 @@ def test_the_helper_make_installs_beside_mcar_is_found_from_any_folder(run_mcar,
     if not (MCAR.parent / "mcar-sdformat").is_file():
         pytest.skip("no mcar-sdformat beside mcar: `make install` builds it there where "
                     "libsdformat-dev is installed")
-    result = run_mcar("check", "-q", "--gazebo", CAR, cwd=tmp_path,
+    result = run_mcar("check", "--gazebo", CAR, cwd=tmp_path,
                       env={"MCAR_SDFORMAT": "", "PATH": "/usr/bin:/bin"})
     assert result.returncode == 0, result.stderr
-    assert "note: Gazebo simulates 3 links: 0.7056 kg, as in the URDF [N403]" in result.stderr
+    assert "note: Gazebo simulates 3 links: 0.7056 kg, as in the URDF (libsdformat " \
+        in result.stderr

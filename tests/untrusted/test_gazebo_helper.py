@@ -30,8 +30,8 @@ ROBOT = b'<robot name="r"><link name="a"><inertial><mass value="1"/><inertia ixx
 
 def answer(**changes) -> dict:
     """A well-formed answer about ROBOT, with ``changes`` applied."""
-    document = {"interface": 1, "sdformat": "12.3.0", "errors": [], "warnings": [],
-                "lumped": [], "dropped": [], "model": {
+    document = {"interface": 2, "sdformat": "12.3.0", "errors": [], "console_errors": [],
+                "warnings": [], "lumped": [], "dropped": [], "model": {
                     "name": "r", "canonical_link": "", "joints": [], "frames": [],
                     "links": [{"name": "a", "mass": 1, "centre_of_mass": [0, 0, 0],
                                "inertia": [1, 1, 1, 0, 0, 0], "pose": [0, 0, 0, 0, 0, 0],
@@ -85,6 +85,10 @@ def test_a_pickle_is_never_unpickled(tmp_path, monkeypatch):
     assert marker.exists()
 
 
+VERSION = "a libsdformat version that is not one (a digit, then at most 63 of letters, " \
+          "digits and .~+-)"
+
+
 def forged(**changes) -> bytes:
     return json.dumps(answer(**changes)).encode()
 
@@ -97,11 +101,18 @@ def forged(**changes) -> bytes:
     (b"[" * 200_000 + b"]" * 200_000, "not JSON: RecursionError"),
     (forged(extra=True), "answer has the wrong fields (extra)"),
     (forged(errors="none"), "answer: 'errors' is not of its type"),
-    (forged(sdformat="1" * 100), "a version string too long"),
+    (forged(sdformat="1" * 100), VERSION),
+    (forged(sdformat="12.3.0\x1b[2J"), VERSION),  # printed in every report: no escapes
+    (forged(sdformat=""), VERSION),
+    (forged(console_errors=[{"where": "x"}]), "console_errors[0] has the wrong fields (text)"),
+    (json.dumps({key: value for key, value in answer().items()
+                 if key != "console_errors"}).encode(),  # format 1's fields, numbered 2
+     "answer has the wrong fields (console_errors)"),
     (forged(warnings=[{"where": "x", "text": "a\0"}]),
      "warnings[0] is not a string of at most 65536 characters without NUL"),
     (forged(lumped=[{"link": "a"}]), "lumped[0] has the wrong fields (into)"),
-], ids=["bytes", "list", "nan", "twice", "deep", "extra", "type", "long", "nul", "field"])
+], ids=["bytes", "list", "nan", "twice", "deep", "extra", "type", "long", "escape",
+        "no-version", "console", "format-1-fields", "nul", "field"])
 def test_a_forged_answer_is_refused_saying_why(tmp_path, monkeypatch, data, reason):
     (tmp_path / "answer").write_bytes(data)
     message = refused(tmp_path, monkeypatch, f"out.write(open({str(tmp_path / 'answer')!r}, "
@@ -177,11 +188,17 @@ def test_the_helper_gets_data_and_an_empty_environment(tmp_path, monkeypatch):
     assert got["stdin"] == ROBOT.decode()
 
 
-def test_a_helper_of_another_format_is_an_environment_error(tmp_path, monkeypatch, cli):
+@pytest.mark.parametrize("interface", [1, 3])
+def test_a_helper_of_another_format_is_an_environment_error(tmp_path, monkeypatch, cli,
+                                                            interface):
+    """Format 1 (before issue 41) put what libsdformat printed among its errors: a helper
+    built then is refused, not half-read."""
+    old = {key: value for key, value in answer(interface=interface).items()
+           if key != "console_errors"}
     monkeypatch.setenv("MCAR_SDFORMAT", stand_in(
-        tmp_path, f"out.write({json.dumps(answer(interface=2)).encode()!r})"))
-    with pytest.raises(GazeboUnavailable, match="answers in format 2, and this mcar reads "
-                                                "format 1: rebuild it"):
+        tmp_path, f"out.write({json.dumps(old).encode()!r})"))
+    with pytest.raises(GazeboUnavailable, match=f"answers in format {interface}, and this "
+                                                "mcar reads format 2: rebuild it"):
         run_helper(ROBOT, "robot.urdf")
     result = cli("check", "--gazebo", REPO / "urdf" / "laser" / "test_laser.urdf.xacro")
     assert result.exit_code == 2
@@ -210,7 +227,10 @@ def test_the_real_helper_answers_json_only_and_writes_nothing_under_home(gazebo_
     document = json.loads(done.stdout)  # urdfdom's complaint did not land on stdout
     assert document["model"] is None
     assert {"where": "urdfdom", "text": "Failed to build tree: child link [nowhere] of joint "
-                                        "[j] not found"} in document["errors"]
+                                        "[j] not found"} in document["console_errors"]
+    # the verdict is libsdformat's Errors list only: each with its code, none printed
+    assert document["errors"] and all(error["where"].startswith("error code ")
+                                      for error in document["errors"])
     assert list(tmp_path.iterdir()) == []  # no ~/.sdformat/sdformat.log
     assert done.stderr == b""
 

@@ -57,7 +57,8 @@ output and exit code (docs/check.md).
 reports what it changes: links lumped into their parent by fixed joints (notes,
 N401), links dropped for want of mass with everything that moves below them (E150),
 <gazebo reference> blocks and plugin joint names left pointing at nothing (W231,
-W232), libsdformat's own errors and warnings, and the mass Gazebo simulates. It
+W232), the errors libsdformat's load returns (E151: its verdict, named with its
+version) and what it only printed (N404, W230), and the mass Gazebo simulates. It
 needs the helper mcar-sdformat (make gazebo-helper; without it, exit 2 saying how).
 
 {INPUT_HELP}

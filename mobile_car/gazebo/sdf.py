@@ -9,7 +9,7 @@ from .changes import MAX_NAMED, link_fates
 
 
 def sdf_of(loaded) -> tuple[bytes, list[str]]:
-    """(the SDF of a loaded robot, warnings to show): libsdformat's own warnings, and one
+    """(the SDF of a loaded robot, warnings to show): what libsdformat printed, and one
     per link it leaves out for want of mass (``mcar check --gazebo`` says what is lost).
     GazeboError (exit 1) where libsdformat cannot make a model of it; GazeboUnavailable
     (exit 2) without the helper."""
@@ -21,11 +21,16 @@ def sdf_of(loaded) -> tuple[bytes, list[str]]:
     if report.model is None or report.errors:
         first = report.errors[0].text.strip().splitlines()[0] if report.errors else \
             "no model"
-        raise GazeboError(f"libsdformat cannot make a Gazebo model of it: {first[:300]}",
-                          file=loaded.label,
+        # the rest of its verdict, then what it printed: often the reason (urdfdom's)
+        raise GazeboError(f"libsdformat {report.sdformat} cannot make a Gazebo model of "
+                          f"it: {first[:300]}", file=loaded.label,
                           details=[f"{m.where}: {m.text.strip().splitlines()[0][:300]}"
-                                   for m in report.errors[1:] if m.text.strip()])
-    warnings = [f"libsdformat: {m.text.strip()} ({m.where})" for m in report.warnings]
+                                   for m in dict.fromkeys((*report.errors[1:],
+                                                           *report.console_errors))
+                                   if m.text.strip()])
+    # what it printed and loaded past (errors included: not its verdict), once each
+    warnings = [f"libsdformat: {m.text.strip()} ({m.where})"
+                for m in dict.fromkeys((*report.console_errors, *report.warnings))]
     _lumped, lost = link_fates(_link_names(loaded.urdf), report, None)
     if lost:
         warnings.append(f"Gazebo leaves out {len(lost)} link{'s' * (len(lost) != 1)} of the "

@@ -46,3 +46,15 @@ def test_gazebo_lumps_a_shipped_robot_and_drops_nothing(cli, gazebo, tmp_path, r
     assert view["gazebo_mass"] == pytest.approx(view["urdf_mass"], rel=1e-9)
     assert view["urdf_mass"] == pytest.approx(mass, abs=0.005)
     assert not [rule for rule in rules if rule in ("W230", "W231", "W232")]
+
+
+@needs_folder
+def test_quiet_gazebo_check_of_husky_prints_no_notes(cli, gazebo):
+    husky = FOLDER / "husky_description/urdf/husky.urdf.xacro"
+    loud = cli("check", "--gazebo", "--package-path", FOLDER, husky)
+    assert loud.exit_code == 0
+    assert loud.stderr.count(": note: ") >= 12  # the control: the notes -q leaves out
+    quiet = cli("check", "-q", "--gazebo", "--package-path", FOLDER, husky)
+    assert quiet.exit_code == 0
+    assert quiet.stdout == ""
+    assert ": note: " not in quiet.stderr

@@ -113,3 +113,13 @@ def test_a_known_bug_of_the_release_is_named_once(cli, gazebo):
               "<joint> in a <gazebo> block whose parent or child is lumped away by a fixed "
               "joint keeps the lumped link's name (docs/gazebo.md)" in line]
     assert len(hinted) == 1
+
+
+@needs_suite
+def test_build_sdf_writes_a_robot_libsdformat_only_complained_about(cli, gazebo, tmp_path):
+    out = tmp_path / "robot.sdf"
+    result = cli("build", "--format", "sdf", EXTENSIONS, "-o", out)
+    assert result.exit_code == 0, result.output
+    assert out.read_text().startswith("<sdf version=")
+    printed = [line for line in result.stderr.splitlines() if "no slash in projector" in line]
+    assert len(printed) == 1 and ": warning: libsdformat: " in printed[0], printed

@@ -4,7 +4,8 @@ The helper parses a URDF that may come from an untrusted xacro with libsdformat,
 crafted file could make it answer anything. So its answer is read as data only: UTF-8, one
 JSON object (no NaN, no key twice, nesting past the stack an error), exactly the fields of
 format :data:`INTERFACE` (``helpers/mcar-sdformat.cc`` writes them; docs/gazebo.md lists
-them), each of its type: names and messages strings without NUL of at most 64 KB, lists of
+them), each of its type: libsdformat's version a version string (it is printed in every
+report), names and messages strings without NUL of at most 64 KB, lists of
 at most 100,000 items, numbers finite (or null where libsdformat's value is not), counts
 non-negative integers, joint types from libsdformat's list. Anything else is one
 :class:`MalformedReport` saying what was wrong, and nothing of it is used.

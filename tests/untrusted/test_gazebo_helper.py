@@ -204,6 +204,28 @@ def test_a_helper_of_another_format_is_an_environment_error(tmp_path, monkeypatc
     assert result.exit_code == 2
 
 
+def test_no_model_without_an_error_still_fails_the_check(tmp_path, run_mcar):
+    """A helper (or a libsdformat) that returns no error but no model either: printed
+    errors are only notes, so the missing model itself is the error."""
+    robot = tmp_path / "robot.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    silent = answer(model=None, console_errors=[{"where": "urdfdom", "text": "odd"}])
+    result = run_mcar("check", "--gazebo", robot, cwd=tmp_path, env={
+        "MCAR_SDFORMAT": stand_in(tmp_path, f"out.write({json.dumps(silent).encode()!r})")})
+    assert result.returncode == 1
+    assert result.stderr.splitlines() == [
+        "robot.urdf:1: error: libsdformat 12.3.0 made no model of the robot and returned no "
+        "error [E151]",
+        "robot.urdf:1: note: libsdformat 12.3.0 printed an error it did not return, and "
+        "loaded the robot past it: odd (urdfdom) [N404]",
+        "mcar check: 1 error, 0 warnings in 1 file"]
+    # the control: the same answer with the model passes
+    loaded = answer(console_errors=[{"where": "urdfdom", "text": "odd"}])
+    result = run_mcar("check", "-q", "--gazebo", robot, cwd=tmp_path, env={
+        "MCAR_SDFORMAT": stand_in(tmp_path, f"out.write({json.dumps(loaded).encode()!r})")})
+    assert result.returncode == 0 and result.stderr == "", result.stderr
+
+
 def test_check_gazebo_reports_a_broken_helper_as_one_located_line(tmp_path, monkeypatch,
                                                                   run_mcar):
     robot = tmp_path / "robot.urdf"

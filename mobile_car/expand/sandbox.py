@@ -13,7 +13,8 @@ first byte, in three layers:
   Each such call fails with EPERM (EACCES for the limits).
 * **Landlock** (through ``landlock``), where the kernel offers it: files are read only below
   the roots the build needs (the packages it may use, the input's folder, Python's own
-  library); reading ``/etc/passwd`` or ``~/.ssh`` fails.
+  library); reading ``/etc/passwd`` or ``~/.ssh`` fails, and so does reading a root's
+  version-control folder (``.git/config`` holds a CI job's token).
 * **an audit hook**, for the message only: Python reports ``os.system``, ``open(...,
   'w')``, ``socket`` and ``ctypes`` before they reach the kernel, and the hook refuses
   them with a :class:`SandboxViolation` that xacro reports at the expression's line.
@@ -174,11 +175,12 @@ def _restrict_reads(read_roots: list[Path]) -> None:
     ruleset = landlock.Ruleset()
     readable = landlock.FSAccess.READ_FILE | landlock.FSAccess.READ_DIR
     for root in read_roots:
-        try:
-            ruleset.allow(root, rules=readable if root.is_dir()
-                          else landlock.FSAccess.READ_FILE)
-        except OSError:
-            continue  # vanished, or not a kind of file Landlock takes: stays unreadable
+        for path, listed_only in _readable_below(root):
+            try:
+                ruleset.allow(path, rules=landlock.FSAccess.READ_DIR if listed_only
+                              else readable if path.is_dir() else landlock.FSAccess.READ_FILE)
+            except OSError:
+                continue  # vanished, or not a kind of file Landlock takes: stays unreadable
     ruleset.apply()
     # The ruleset's descriptor is not the child's to keep: it needs no handle but its pipe.
     fd = getattr(ruleset, "_fd", None)
@@ -187,6 +189,27 @@ def _restrict_reads(read_roots: list[Path]) -> None:
             os.close(fd)
         except OSError:
             pass
+
+
+# Version control's own folders, never readable: a package at the root of its repository
+# holds .git, and a CI checkout keeps the job's token in .git/config.
+_VCS_FOLDERS = (".git", ".hg", ".svn", ".bzr")
+
+
+def _readable_below(root: Path) -> list[tuple[Path, bool]]:
+    """What to allow for ``root``: (path, only listed). The root itself, or, when it holds a
+    version-control folder, the root listed only and each of its entries but that folder
+    (a rule is inherited below its folder, and Landlock has no rule that takes away).
+    An entry that is a link is left out: its target is readable only where it lies within
+    another rule (a rule given through a link would allow where it leads)."""
+    if not any(os.path.lexists(os.path.join(root, name)) for name in _VCS_FOLDERS):
+        return [(root, False)]
+    try:
+        entries = [entry for entry in os.scandir(root)
+                   if entry.name not in _VCS_FOLDERS and not entry.is_symlink()]
+    except OSError:
+        return [(root, False)]
+    return [(root, True), *((Path(entry.path), False) for entry in entries)]
 
 
 # System calls the child never needs and an attacker wants, refused with EPERM.

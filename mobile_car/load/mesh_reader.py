@@ -41,7 +41,8 @@ class BoundedResolver(trimesh.resolvers.FilePathResolver):
     """trimesh's resolver for the files a mesh names (materials, textures, buffers): in
     the mesh's folder or below, regular files within the mesh size cap, and textures
     within PIL's own pixel limit (a small PNG can stand for gigabytes of pixels), never in
-    a version-control folder; what it opened is in ``read``. A file it refuses is one trimesh does without (its colour)."""
+    a version-control folder; what it opened is in ``read``. A file it refuses is one
+    trimesh does without (its colour)."""
 
     def __init__(self, mesh: Path, read: list[Path]):
         super().__init__(str(mesh))

@@ -40,7 +40,7 @@ from pathlib import Path
 from ..errors import InputError
 from ..load.bounded import open_regular, read_text_quietly
 from ..load.inputs import input_limit_mb
-from .asset_roots import real_path, within
+from .asset_roots import in_vcs_folder, real_path, within
 from .file_shape import FileShape, file_shape, include_target
 
 # Folders of a package that hold outputs or tools, never robot files to take as inputs.
@@ -167,13 +167,19 @@ def _files(root: Path) -> list[Path]:
 
 def _links_out(files: list[Path], folder: Path) -> dict[Path, str]:
     """The files that are links (or lie below a linked folder) leading out of ``folder``
-    (the package), each with why it is skipped. A pull request commits links: one named
-    ``urdf/robot.urdf`` leading to ``/proc/self/environ`` or a key made mcar ci copy the
-    runner's file into build/robot.urdf. A file named on the command line is still read
-    wherever it leads: the user named it."""
+    (the package) or into its ``.git``, each with why it is skipped. A pull request
+    commits links: one named ``urdf/robot.urdf`` leading to ``/proc/self/environ`` or a
+    key made mcar ci copy the runner's file into build/robot.urdf. A file named on the
+    command line is still read wherever it leads: the user named it."""
     bound = real_path(folder)
-    return {path: f"a link to {real}, outside {bound}: not taken (name it to read it)"
-            for path in files if not within(real := real_path(path), [bound])}
+    found = {}
+    for path in files:
+        real = real_path(path)
+        if not within(real, [bound]):
+            found[path] = f"a link to {real}, outside {bound}: not taken (name it to read it)"
+        elif in_vcs_folder(real.relative_to(bound)):  # urdf/x.urdf -> ../.git/config
+            found[path] = f"a link to {real}, in a version-control folder: not taken"
+    return found
 
 
 def _is_candidate(path: Path) -> bool:

@@ -128,3 +128,25 @@ def test_mcar_yaml_linked_inside_its_repository_is_read(run_mcar, tmp_path):
     result = run_mcar("ci", "-v", cwd=package)
     assert result.returncode == 2, result.stdout + result.stderr
     assert "urdf/robot.urdf (left out by " in result.stderr
+
+
+def test_links_into_the_checkout_s_git_folder_are_no_inputs(run_mcar, tmp_path):
+    """Inside the package, yet the checkout's: .git/config holds a CI job's token."""
+    package = _package(tmp_path)
+    (package / ".git").mkdir()
+    (package / ".git" / "config").write_text(f"[http]\n\textraheader = basic {MARK}\n")
+    (package / "urdf" / "robot.urdf").symlink_to(package / ".git" / "config")
+    result = run_mcar("ci", cwd=package)
+    assert result.returncode == 2, result.stdout + result.stderr
+    assert result.stderr.splitlines()[-1].endswith(
+        f"urdf/robot.urdf (a link to {package}/.git/config, in a version-control folder: "
+        "not taken)")
+    (package / "urdf" / "robot.urdf").unlink()
+    (package / "urdf" / "robot.urdf").write_text(ROBOT)
+    (package / "mcar.yaml").symlink_to(package / ".git" / "config")
+    result = run_mcar("ci", cwd=package)
+    assert result.returncode == 2, result.stdout + result.stderr
+    assert result.stderr.splitlines() == [
+        f"{package / 'mcar.yaml'}: error: a link to {package}/.git/config, in a "
+        "version-control folder: not read"]
+    assert _holding_secret(package) == [".git/config"]

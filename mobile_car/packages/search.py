@@ -86,6 +86,22 @@ def _split_path_list(value: str | None) -> list[Path]:
     return [Path(os.path.abspath(p)) for p in (value or "").split(os.pathsep) if p]
 
 
+def _decoded_readings(rest: str, host: bool = False) -> set[str]:
+    """The other paths a URI's ``rest`` names to the tools mcar hands the robot to: RViz's
+    resource_retriever (curl) and urllib %-decode it (``%2e%2e`` is ``..``), and take
+    ``file://localhost/`` as ``file:///``. mcar reads the name as it is; each of these
+    must be allowed too, or ``mcar view --rviz`` would open RViz on a file mcar refused."""
+    if "%" in rest:
+        from urllib.parse import unquote
+
+        readings = {rest, unquote(rest)}
+    else:
+        readings = {rest}
+    if host:
+        readings |= {"/" + r[len("localhost/"):] for r in readings if r.startswith("localhost/")}
+    return readings - {rest}
+
+
 @dataclass
 class PackageSearch:
     """Resolves package names to directories; build one per command and reuse it."""
@@ -207,9 +223,14 @@ class PackageSearch:
             path = self.confined(uri, root / inner)
             if root != path and root not in path.parents:
                 raise InputError(f"{uri}: path leaves package '{name}' ({root})")
+            for other in _decoded_readings(inner):
+                self.confined(uri, root / other)
             return path
         if uri.startswith("file://"):
-            path = Path(uri[len("file://"):])
+            rest = uri[len("file://"):]
+            path = Path(rest)
+            for other in _decoded_readings(rest, host=True):
+                self.confined(uri, Path(other))
         else:
             path = Path(uri)
             if not path.is_absolute() and base is not None:

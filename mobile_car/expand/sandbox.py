@@ -7,10 +7,11 @@ first byte, in three layers:
 
 * **seccomp** (libseccomp through ``pyseccomp``), the kernel's guarantee: no program runs
   (execve, fork, clone), no socket opens, no file opens for writing, nothing in the file
-  system is created, renamed, removed or changed, and no call names another process: no
-  signal (queued or not) but to itself, no tracing, no reading or writing its memory, no
-  change to its priority, CPUs, scheduling or limits (nor to the child's own limits).
-  Each such call fails with EPERM (EACCES for the limits).
+  system is created, renamed, removed or changed, no System V or POSIX IPC object is made
+  or attached, and no call names another process: no signal (queued or not) but to
+  itself, no tracing, no reading or writing its memory, no change to its priority, CPUs,
+  scheduling or limits (nor to the child's own limits). Each such call fails with EPERM
+  (EACCES for the limits).
 * **Landlock** (through ``landlock``), where the kernel offers it: files are read only below
   the roots the build needs (the packages it may use, the input's folder, Python's own
   library); reading ``/etc/passwd`` or ``~/.ssh`` fails, and so does reading a root's
@@ -224,6 +225,12 @@ _DENIED = (
     "setpriority", "ioprio_set", "migrate_pages", "move_pages",
     # network
     "socket", "socketpair", "connect", "bind", "listen", "accept", "accept4",
+    # System V and POSIX IPC, which neither Landlock nor the limits see: a shared memory
+    # segment outlives the child (memory past its limit, kept after mcar ends), and
+    # attaching one reads another process's (a desktop's X11 images)
+    "shmget", "shmat", "shmctl", "msgget", "msgsnd", "msgrcv", "msgctl", "semget", "semop",
+    "semtimedop", "semctl", "ipc", "mq_open", "mq_unlink", "mq_timedsend",
+    "mq_timedreceive", "mq_notify", "mq_getsetattr",
     # changing the file system
     "creat", "rename", "renameat", "renameat2", "unlink", "unlinkat", "rmdir", "mkdir",
     "mkdirat", "link", "linkat", "symlink", "symlinkat", "chmod", "fchmod", "fchmodat",

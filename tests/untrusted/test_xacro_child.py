@@ -369,3 +369,46 @@ def test_a_xacro_that_harms_itself_ends_in_one_located_error(run_mcar, tmp_path,
     assert "Traceback" not in result.stderr and "internal error" not in result.stderr
     assert took < 2 + 15  # the limit, and a loaded machine's start-up
     assert not (tmp_path / "out.urdf").exists()
+
+
+# -- nor reach past its limits through System V IPC ------------------------------------------
+
+SHARED_MEMORY = """
+import ctypes, errno
+libc = ctypes.CDLL(None, use_errno=True)
+libc.shmat.restype = ctypes.c_void_p
+libc.shmget.argtypes = [ctypes.c_int, ctypes.c_size_t, ctypes.c_int]
+ident = libc.shmget({key}, 1 << 20, 0o1000 | 0o600)  # IPC_CREAT
+if ident < 0:
+    out = 'shmget-' + errno.errorcode[ctypes.get_errno()]
+else:
+    address = libc.shmat(ident, None, 0)
+    ctypes.memset(address, 1, 1 << 20)
+    libc.shmdt(ctypes.c_void_p(address))
+    out = 'shmget-done'
+"""
+
+
+def _segments(key: int) -> list[str]:
+    return [line for line in Path("/proc/sysvipc/shm").read_text().splitlines()[1:]
+            if line.split()[0] == str(key)]
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/sysvipc/shm"), reason="no System V IPC here")
+@pytest.mark.parametrize("sandboxed", [True, False], ids=["sandboxed", "control-unsandboxed"])
+def test_a_xacro_leaves_no_shared_memory_behind(run_mcar, tmp_path, sandboxed):
+    """A System V segment outlives the child: memory past its limit, kept once mcar has
+    ended (and shmat on another's key reads that process's memory). The control makes one
+    without the sandbox."""
+    key = 0x4D000000 | (os.getpid() & 0xFFFFFF)  # this test's own
+    (tmp_path / "z.xacro").write_text(hostile(SHARED_MEMORY.format(key=key)))
+    try:
+        result = run_mcar("build", "z.xacro", "-o", "out.urdf",
+                          *([] if sandboxed else ["--no-sandbox"]), cwd=tmp_path)
+        assert result.returncode == 0, result.stderr
+        left = _segments(key)
+    finally:
+        for line in _segments(key):
+            subprocess.run(["ipcrm", "-m", line.split()[1]], check=False)
+    outcome = _link_names(tmp_path / "out.urdf")[1]
+    assert (outcome, len(left)) == (("shmget-EPERM", 0) if sandboxed else ("shmget-done", 1))

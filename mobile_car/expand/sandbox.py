@@ -10,8 +10,8 @@ first byte, in three layers:
   system is created, renamed, removed or changed, no System V or POSIX IPC object is made
   or attached, and no call names another process: no signal (queued or not) but to
   itself, no tracing, no reading or writing its memory, no change to its priority, CPUs,
-  scheduling or limits (nor to the child's own limits). Each such call fails with EPERM
-  (EACCES for the limits).
+  scheduling or limits (nor to the child's own limits), nothing typed into a terminal
+  (``TIOCSTI``). Each such call fails with EPERM (EACCES for the limits).
 * **Landlock** (through ``landlock``), where the kernel offers it: files are read only below
   the roots the build needs (the packages it may use, the input's folder, Python's own
   library); reading ``/etc/passwd`` or ``~/.ssh`` fails, and so does reading a root's
@@ -250,6 +250,10 @@ _SIGNALS = ("kill", "tkill", "tgkill", "rt_sigqueueinfo", "rt_tgsigqueueinfo")
 # it) only.
 _SELF_ONLY = ("sched_setaffinity", "sched_setparam", "sched_setscheduler", "sched_setattr",
               "setpgid")
+# ioctls that type into a terminal: where Landlock is missing, a xacro opens /dev/tty (the
+# user's, when mcar runs in one) and pushes "curl ... | sh" into the shell's input, which
+# runs it once mcar ends. TIOCLINUX pastes a console's selection the same way.
+_TERMINAL_INPUT = ("TIOCSTI", "TIOCLINUX")
 # clone3 and openat2 take their flags in a struct seccomp cannot read: ENOSYS makes libc
 # fall back to clone and openat, whose flags it can.
 _UNSUPPORTED = ("clone3", "openat2")
@@ -273,6 +277,10 @@ def _deny_syscalls() -> None:
         _add(rules, refuse, name, sc.Arg(0, sc.NE, own))
     for name in _SELF_ONLY:
         _add(rules, refuse, name, sc.Arg(0, sc.NE, 0))
+    import termios
+
+    for request in (getattr(termios, name) for name in _TERMINAL_INPUT if hasattr(termios, name)):
+        _add(rules, refuse, "ioctl", sc.Arg(1, sc.MASKED_EQ, 0xFFFFFFFF, request))
     # Limits: the child's own are set before the filter, and are not the xacro's to
     # change (starving its own files or CPU), nor another process's. getrlimit reads
     # through prlimit64(0, resource, NULL, &old): that stays. EACCES, not EPERM: Python's

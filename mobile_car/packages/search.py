@@ -23,6 +23,7 @@ from .asset_roots import OutsideRootsError, chosen_asset_paths, confine, real_pa
 from .bundled import PACKAGE_NAME, description_dir
 
 _NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
+_URL = re.compile(r"[A-Za-z][A-Za-z0-9+.-]*:")  # a scheme: what curl takes for a URL
 # Directories never worth crawling for package.xml files.
 _SKIP_DIRS = {".git", ".hg", ".svn", "__pycache__", "node_modules", "build", "install", "log"}
 _MAX_CRAWL_DEPTH = 8
@@ -89,7 +90,7 @@ def _split_path_list(value: str | None) -> list[Path]:
 def _decoded_readings(rest: str, host: bool = False) -> set[str]:
     """The other paths a URI's ``rest`` names to the tools mcar hands the robot to: RViz's
     resource_retriever (curl) and urllib %-decode it (``%2e%2e`` is ``..``), and take
-    ``file://localhost/`` as ``file:///``. mcar reads the name as it is; each of these
+    ``file://HOST/`` as ``file:///``. mcar reads the name as it is; each of these
     must be allowed too, or ``mcar view --rviz`` would open RViz on a file mcar refused."""
     if "%" in rest:
         from urllib.parse import unquote
@@ -97,8 +98,8 @@ def _decoded_readings(rest: str, host: bool = False) -> set[str]:
         readings = {rest, unquote(rest)}
     else:
         readings = {rest}
-    if host:
-        readings |= {"/" + r[len("localhost/"):] for r in readings if r.startswith("localhost/")}
+    if host:  # curl reads file://localhost/x, file://127.0.0.1/x... as /x
+        readings |= {"/" + r.partition("/")[2] for r in readings if not r.startswith("/")}
     return readings - {rest}
 
 
@@ -231,6 +232,11 @@ class PackageSearch:
             path = Path(rest)
             for other in _decoded_readings(rest, host=True):
                 self.confined(uri, Path(other))
+        elif _URL.match(uri):
+            # file:/x, FILE:///x, http://, gopher://: mcar reads none, RViz hands each to
+            # curl, which reads the file or sends the request (to a local Redis, say)
+            raise OutsideRootsError(f"'{uri}' is a URL mcar does not read, which RViz would "
+                                    "fetch (through curl)", Path(uri), self.allowed_roots())
         else:
             path = Path(uri)
             if not path.is_absolute() and base is not None:

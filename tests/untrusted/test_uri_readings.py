@@ -2,7 +2,9 @@
 reads it.
 
 mcar reads ``file://`` and ``package://`` names as they are written; RViz's
-resource_retriever (curl) %-decodes them and takes ``file://localhost/`` as ``file:///``.
+resource_retriever (curl) %-decodes them, takes ``file://localhost/`` as ``file:///``, and
+fetches any other URL (``file:/x``, ``FILE:///x``, ``gopher://``) that mcar took for a
+relative file name.
 So ``file://PKG/meshes/%2e%2e/%2e%2e/outside/secret.stl`` was, to mcar, a missing file
 inside the package (W207, no W215), and ``mcar view --rviz`` opened RViz on it, which
 read the file outside. Each form is now W215 at its line; the control reads every one of
@@ -29,7 +31,12 @@ URIS = [
     (6, "file://{pkg}/meshes/..%2f..%2foutside/secret.stl"),
     (7, "package://atk/%2e%2e/outside/secret.stl"),
     (8, "package://atk/meshes/..%2F..%2Foutside/secret.stl"),
+    (9, "file://127.0.0.1{outside}/secret.stl"),
+    (10, "file:{outside}/secret.stl"),
+    (11, "FILE://{outside}/secret.stl"),
 ]
+# A URL of any other scheme: curl sends the request (here to a local Redis).
+GOPHER = "gopher://127.0.0.1:6379/_FLUSHALL%0d%0a.stl"
 
 
 def _robot(root: Path) -> Path:
@@ -61,6 +68,21 @@ def test_every_decoded_form_is_refused_at_its_line(run_mcar, robot):
                                  "'package://atk/%2e%2e/outside/secret.stl' is outside the "
                                  "folders a robot may name files in: ")
     assert "W207" not in result.stderr  # no longer a missing file inside
+    assert refused[-1] == (f"urdf/robot.urdf:11: warning: mesh 'FILE://{robot.parents[2]}"
+                           "/outside/secret.stl' is a URL mcar does not read, which RViz "
+                           "would fetch (through curl); not read, drawn as a magenta box "
+                           "[W215]")
+
+
+def test_a_url_of_any_other_scheme_is_refused(run_mcar, robot):
+    robot.write_text(robot.read_text().replace(
+        "  </link>", f'    <visual><geometry><mesh filename="{GOPHER}"/></geometry>'
+                     "</visual>\n  </link>"))
+    result = run_mcar("check", "urdf/robot.urdf", cwd=robot.parents[1])
+    assert result.returncode == 0, result.stderr
+    assert f"urdf/robot.urdf:12: warning: mesh '{GOPHER}' is a URL mcar does not read, " \
+        "which RViz would fetch (through curl); not read, drawn as a magenta box [W215]" \
+        in result.stderr.splitlines()
 
 
 def test_a_name_with_an_escape_inside_the_package_is_still_allowed(run_mcar, tmp_path):
@@ -81,7 +103,7 @@ def test_control_curl_reads_the_secret_through_each_form(robot, line, uri):
     package:// as file:// under the package): each form reaches the secret."""
     package = robot.parents[1]
     url = uri.format(pkg=package, outside=robot.parents[2] / "outside")
-    if url.startswith("package://atk/"):
+    if url.startswith("package://atk/"):  # resource_retriever: the package's folder
         url = f"file://{package}/" + url[len("package://atk/"):]
     read = subprocess.run(["curl", "-sS", url], capture_output=True, text=True, timeout=30)
     assert MARK in read.stdout, read.stderr
@@ -93,6 +115,6 @@ def test_rviz_is_not_opened_on_a_decoded_escape(run_mcar, robot):
     result = run_mcar("view", "--rviz", "urdf/robot.urdf", cwd=robot.parents[1])
     assert result.returncode == 1
     assert result.stderr.splitlines()[-1] == (
-        "urdf/robot.urdf: error: not opened in RViz: 5 files outside the folders a robot "
+        "urdf/robot.urdf: error: not opened in RViz: 8 files outside the folders a robot "
         "may name files in (W215 above), which RViz would read")
     assert result.stdout == ""  # roslaunch never ran

@@ -13,9 +13,8 @@ line and absent from every output; the controls name the same bytes in a folder 
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import json
+from pathlib import Path
 
 import pytest
 

@@ -150,8 +150,9 @@ _TABLE = [
          "0.05 m r² (a tenth of a solid disc)", "accepts"),
     Rule("W215", "file-outside-roots", "a mesh or `<texture>` whose file (every symlink "
          "followed) lies outside the package folders, the input's folder and the "
-         "`--asset-path`/`assets.paths` folders: never read nor exported, drawn as a "
-         "magenta box", "accepts"),
+         "`--asset-path`/`assets.paths` folders, or in a version-control folder (`.git`), "
+         "or a URL other than `package://` and `file://` (RViz would fetch it): never read "
+         "nor exported, drawn as a magenta box", "accepts"),
     Rule("W220", "xacro-warning", "xacro printed a warning while expanding a `.xacro` input",
          "n/a"),
     Rule("W230", "gazebo-warning", "libsdformat warns while loading the robot", "n/a"),

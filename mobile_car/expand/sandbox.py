@@ -7,13 +7,15 @@ first byte, in three layers:
 
 * **seccomp** (libseccomp through ``pyseccomp``), the kernel's guarantee: no program runs
   (execve, fork, clone), no socket opens, no file opens for writing, nothing in the file
-  system is created, renamed, removed or changed, and no call names another process: no
-  signal (queued or not) but to itself, no tracing, no reading or writing its memory, no
-  change to its priority, CPUs, scheduling or limits (nor to the child's own limits).
-  Each such call fails with EPERM (EACCES for the limits).
+  system is created, renamed, removed or changed, no System V or POSIX IPC object is made
+  or attached, and no call names another process: no signal (queued or not) but to
+  itself, no tracing, no reading or writing its memory, no change to its priority, CPUs,
+  scheduling or limits (nor to the child's own limits), nothing typed into a terminal
+  (``TIOCSTI``). Each such call fails with EPERM (EACCES for the limits).
 * **Landlock** (through ``landlock``), where the kernel offers it: files are read only below
   the roots the build needs (the packages it may use, the input's folder, Python's own
-  library); reading ``/etc/passwd`` or ``~/.ssh`` fails.
+  library); reading ``/etc/passwd`` or ``~/.ssh`` fails, and so does reading a root's
+  version-control folder (``.git/config`` holds a CI job's token).
 * **an audit hook**, for the message only: Python reports ``os.system``, ``open(...,
   'w')``, ``socket`` and ``ctypes`` before they reach the kernel, and the hook refuses
   them with a :class:`SandboxViolation` that xacro reports at the expression's line.
@@ -174,11 +176,12 @@ def _restrict_reads(read_roots: list[Path]) -> None:
     ruleset = landlock.Ruleset()
     readable = landlock.FSAccess.READ_FILE | landlock.FSAccess.READ_DIR
     for root in read_roots:
-        try:
-            ruleset.allow(root, rules=readable if root.is_dir()
-                          else landlock.FSAccess.READ_FILE)
-        except OSError:
-            continue  # vanished, or not a kind of file Landlock takes: stays unreadable
+        for path, listed_only in _readable_below(root):
+            try:
+                ruleset.allow(path, rules=landlock.FSAccess.READ_DIR if listed_only
+                              else readable if path.is_dir() else landlock.FSAccess.READ_FILE)
+            except OSError:
+                continue  # vanished, or not a kind of file Landlock takes: stays unreadable
     ruleset.apply()
     # The ruleset's descriptor is not the child's to keep: it needs no handle but its pipe.
     fd = getattr(ruleset, "_fd", None)
@@ -187,6 +190,27 @@ def _restrict_reads(read_roots: list[Path]) -> None:
             os.close(fd)
         except OSError:
             pass
+
+
+# Version control's own folders, never readable: a package at the root of its repository
+# holds .git, and a CI checkout keeps the job's token in .git/config.
+_VCS_FOLDERS = (".git", ".hg", ".svn", ".bzr")
+
+
+def _readable_below(root: Path) -> list[tuple[Path, bool]]:
+    """What to allow for ``root``: (path, only listed). The root itself, or, when it holds a
+    version-control folder, the root listed only and each of its entries but that folder
+    (a rule is inherited below its folder, and Landlock has no rule that takes away).
+    An entry that is a link is left out: its target is readable only where it lies within
+    another rule (a rule given through a link would allow where it leads)."""
+    if not any(os.path.lexists(os.path.join(root, name)) for name in _VCS_FOLDERS):
+        return [(root, False)]
+    try:
+        entries = [entry for entry in os.scandir(root)
+                   if entry.name not in _VCS_FOLDERS and not entry.is_symlink()]
+    except OSError:
+        return [(root, False)]
+    return [(root, True), *((Path(entry.path), False) for entry in entries)]
 
 
 # System calls the child never needs and an attacker wants, refused with EPERM.
@@ -201,6 +225,12 @@ _DENIED = (
     "setpriority", "ioprio_set", "migrate_pages", "move_pages",
     # network
     "socket", "socketpair", "connect", "bind", "listen", "accept", "accept4",
+    # System V and POSIX IPC, which neither Landlock nor the limits see: a shared memory
+    # segment outlives the child (memory past its limit, kept after mcar ends), and
+    # attaching one reads another process's (a desktop's X11 images)
+    "shmget", "shmat", "shmctl", "msgget", "msgsnd", "msgrcv", "msgctl", "semget", "semop",
+    "semtimedop", "semctl", "ipc", "mq_open", "mq_unlink", "mq_timedsend",
+    "mq_timedreceive", "mq_notify", "mq_getsetattr",
     # changing the file system
     "creat", "rename", "renameat", "renameat2", "unlink", "unlinkat", "rmdir", "mkdir",
     "mkdirat", "link", "linkat", "symlink", "symlinkat", "chmod", "fchmod", "fchmodat",
@@ -220,6 +250,10 @@ _SIGNALS = ("kill", "tkill", "tgkill", "rt_sigqueueinfo", "rt_tgsigqueueinfo")
 # it) only.
 _SELF_ONLY = ("sched_setaffinity", "sched_setparam", "sched_setscheduler", "sched_setattr",
               "setpgid")
+# ioctls that type into a terminal: where Landlock is missing, a xacro opens /dev/tty (the
+# user's, when mcar runs in one) and pushes "curl ... | sh" into the shell's input, which
+# runs it once mcar ends. TIOCLINUX pastes a console's selection the same way.
+_TERMINAL_INPUT = ("TIOCSTI", "TIOCLINUX")
 # clone3 and openat2 take their flags in a struct seccomp cannot read: ENOSYS makes libc
 # fall back to clone and openat, whose flags it can.
 _UNSUPPORTED = ("clone3", "openat2")
@@ -243,6 +277,10 @@ def _deny_syscalls() -> None:
         _add(rules, refuse, name, sc.Arg(0, sc.NE, own))
     for name in _SELF_ONLY:
         _add(rules, refuse, name, sc.Arg(0, sc.NE, 0))
+    import termios
+
+    for request in (getattr(termios, name) for name in _TERMINAL_INPUT if hasattr(termios, name)):
+        _add(rules, refuse, "ioctl", sc.Arg(1, sc.MASKED_EQ, 0xFFFFFFFF, request))
     # Limits: the child's own are set before the filter, and are not the xacro's to
     # change (starving its own files or CPU), nor another process's. getrlimit reads
     # through prlimit64(0, resource, NULL, &old): that stays. EACCES, not EPERM: Python's

@@ -22,6 +22,7 @@ from PIL import Image
 
 from ..errors import InputError
 from ..held_signals import import_held
+from ..packages.asset_roots import in_vcs_folder
 from .collada import readable_collada
 from .compressed import ZIP_FORMATS, compressed_kind, decompressed_members, max_mesh_bytes
 from .mesh_limits import MeshOverLimit, scan_bytes, scan_mesh, suffix_of
@@ -39,8 +40,9 @@ _IMAGES = (".png", ".jpg", ".jpeg", ".bmp", ".tga", ".tif", ".tiff", ".gif", ".w
 class BoundedResolver(trimesh.resolvers.FilePathResolver):
     """trimesh's resolver for the files a mesh names (materials, textures, buffers): in
     the mesh's folder or below, regular files within the mesh size cap, and textures
-    within PIL's own pixel limit (a small PNG can stand for gigabytes of pixels); what it
-    opened is in ``read``. A file it refuses is one trimesh does without (its colour)."""
+    within PIL's own pixel limit (a small PNG can stand for gigabytes of pixels), never in
+    a version-control folder; what it opened is in ``read``. A file it refuses is one
+    trimesh does without (its colour)."""
 
     def __init__(self, mesh: Path, read: list[Path]):
         super().__init__(str(mesh))
@@ -60,9 +62,14 @@ class BoundedResolver(trimesh.resolvers.FilePathResolver):
                 path = self.absolute(candidate)
             except ValueError:
                 continue
-            if path.exists():
+            # never the checkout's .git (a glTF at a repository's root naming .git/config
+            # as its buffer: its bytes became the vertices of an exported STL)
+            if path.exists() and not in_vcs_folder(path.relative_to(self._root())):
                 return self._read(path)
         raise FileNotFoundError(name)
+
+    def _root(self) -> Path:
+        return Path(self.parent).resolve()
 
     def _read(self, path: Path) -> bytes:
         with open(path, "rb", opener=_no_blocking) as handle:

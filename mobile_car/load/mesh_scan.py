@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
+from ..packages.asset_roots import in_vcs_folder
 
 
 class MeshBroken(InputError):
@@ -30,7 +31,8 @@ class MeshScan:
 
 def find_beside(folder: Path, name: str) -> Path | None:
     """The regular file trimesh's resolver would open for ``name`` in ``folder``: the
-    name, without a leading slash, or its base name; below the folder only."""
+    name, without a leading slash, or its base name; below the folder only, and never in a
+    version-control folder (an OBJ at a repository's root naming ``.git/config``)."""
     name = name.strip()
     if not name or "\0" in name:
         return None
@@ -40,7 +42,8 @@ def find_beside(folder: Path, name: str) -> Path | None:
             continue
         try:
             path = (root / candidate).resolve()
-            if path.is_relative_to(root) and path.is_file():
+            if path.is_relative_to(root) and not in_vcs_folder(path.relative_to(root)) \
+                    and path.is_file():
                 return path
         except (OSError, ValueError, RuntimeError):
             continue

@@ -16,13 +16,18 @@ not get the runner's secrets into an artefact. So every name goes through
   writes that file, so it may only name folders inside the repository holding it).
 
 The test is made on the real path, every symlink followed: a link inside a package that
-leads out of it is outside. A file refused is never opened, measured, hashed or copied:
-:class:`OutsideRootsError` is raised before anything reads it, and every consumer treats
-it like a missing file (check warns W215, pictures draw the magenta box, exports leave it
-out).
+leads out of it is outside. A version-control folder (``.git``...) is never inside, even in
+a package at the root of its repository: CI checkouts keep a token in ``.git/config``
+(``actions/checkout`` writes its ``extraheader`` there), and a texture
+``package://pkg/.git/config`` copied it into an export.
+
+A file refused is never opened, measured, hashed or copied: :class:`OutsideRootsError` is
+raised before anything reads it, and every consumer treats it like a missing file (check
+warns W215, pictures draw the magenta box, exports leave it out).
 
 These roots are for the files a description names, not for what a sandboxed xacro may
-read: its Landlock roots stay :meth:`~.search.PackageSearch.read_roots`.
+read: its Landlock roots stay :meth:`~.search.PackageSearch.read_roots` (less their
+version-control folders, :mod:`mobile_car.expand.sandbox`).
 """
 
 from __future__ import annotations
@@ -33,6 +38,9 @@ from pathlib import Path
 from ..errors import EXIT_PROBLEMS, InputError
 
 _chosen: tuple[Path, ...] = ()  # --asset-path of this run
+# Version control's own folders: what they hold is the checkout's, not the robot's (a
+# CI token in .git/config); lower case, for file systems that ignore case.
+_VCS_FOLDERS = frozenset({".git", ".hg", ".svn", ".bzr"})
 
 
 class OutsideRootsError(InputError):
@@ -63,6 +71,11 @@ def real_path(path: Path) -> Path:
     return Path(os.path.realpath(path))
 
 
+def in_vcs_folder(path: Path) -> bool:
+    """Whether ``path`` names something in a version-control folder (``.git``...)."""
+    return any(part.lower() in _VCS_FOLDERS for part in Path(path).parts)
+
+
 def within(path: Path, roots) -> bool:
     """Whether the real ``path`` lies in one of ``roots`` (real paths themselves)."""
     text = str(path)
@@ -75,6 +88,10 @@ def confine(uri: str, path: Path, roots: list[Path]) -> Path:
     """The real path of ``path`` when it lies in one of ``roots``; OutsideRootsError
     otherwise, naming the file and the roots."""
     real = real_path(path)
+    if in_vcs_folder(real):
+        raise OutsideRootsError(
+            f"'{uri}' lies in a version-control folder ({real}), which holds the "
+            "checkout's files, not the robot's", real, roots)
     if within(real, roots):
         return real
     # A folder inside another one adds nothing to read in a message.

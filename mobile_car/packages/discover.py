@@ -21,7 +21,9 @@ or skipped with the reason, which ``mcar ci -v`` lists:
 * ``X.urdf`` beside ``X.urdf.xacro``: both would be built into ``X.urdf``, and the
   ``.xacro`` is the source (Panda ships both);
 * left out by the package's ``mcar.yaml`` (``robots: include/exclude``, see
-  :mod:`.package_config`).
+  :mod:`.package_config`);
+* a link leading out of the package (every symlink followed): in CI a pull request
+  commits the links, and ``urdf/robot.urdf`` -> ``/proc/self/environ`` is no robot of its.
 
 A file that could make a link is taken even when the macros it calls make none:
 checking it then says so (E106), and ``mcar.yaml`` can leave it out; a red run names
@@ -38,6 +40,7 @@ from pathlib import Path
 from ..errors import InputError
 from ..load.bounded import open_regular, read_text_quietly
 from ..load.inputs import input_limit_mb
+from .asset_roots import in_vcs_folder, real_path, within
 from .file_shape import FileShape, file_shape, include_target
 
 # Folders of a package that hold outputs or tools, never robot files to take as inputs.
@@ -126,12 +129,15 @@ def discover(root: Path) -> Discovery:
     own = enclosing_package(root)
     config = load_package_config(own[1]) if own is not None else None
     files = _files(root)
-    shapes = {path: file_shape(path) for path in files if _is_candidate(path)}
+    links_out = _links_out(files, own[1] if own is not None else root)
+    shapes = {path: file_shape(path) for path in files
+              if _is_candidate(path) and path not in links_out}
     included = _included(shapes, own)
     found = Discovery()
     taken: list[Path] = []
     for path in files:
-        reason = _why_not_a_robot(path, shapes.get(path), included, root)
+        reason = links_out.get(path) or _why_not_a_robot(path, shapes.get(path), included,
+                                                         root)
         if reason is None:
             taken.append(path)
         else:
@@ -157,6 +163,23 @@ def _files(root: Path) -> list[Path]:
             if path.is_file():
                 files.append(path)
     return sorted(files)
+
+
+def _links_out(files: list[Path], folder: Path) -> dict[Path, str]:
+    """The files that are links (or lie below a linked folder) leading out of ``folder``
+    (the package) or into its ``.git``, each with why it is skipped. A pull request
+    commits links: one named ``urdf/robot.urdf`` leading to ``/proc/self/environ`` or a
+    key made mcar ci copy the runner's file into build/robot.urdf. A file named on the
+    command line is still read wherever it leads: the user named it."""
+    bound = real_path(folder)
+    found = {}
+    for path in files:
+        real = real_path(path)
+        if not within(real, [bound]):
+            found[path] = f"a link to {real}, outside {bound}: not taken (name it to read it)"
+        elif in_vcs_folder(real.relative_to(bound)):  # urdf/x.urdf -> ../.git/config
+            found[path] = f"a link to {real}, in a version-control folder: not taken"
+    return found
 
 
 def _is_candidate(path: Path) -> bool:

@@ -26,10 +26,11 @@ Globs are matched against the file's path relative to the package root, written 
 ``/``, by :func:`fnmatch.fnmatchcase`: ``*`` also matches across folders, so
 ``urdf/*.xacro`` takes ``urdf/wheel/test_wheel.urdf.xacro`` too.
 
-The file is read like every other input: a regular file within the input size bound, by
-the bounded YAML loader (no object tags, no alias bombs, no duplicate keys); an unknown
-key or a value of the wrong type is a one-line error naming the file and line (exit 2),
-so a typo never silently changes what ci tests.
+The file is read like every other input, and only where its real path lies inside the
+repository, like ``assets.paths`` (a link out of it is refused unread): a regular file
+within the input size bound, by the bounded YAML loader (no object tags, no alias bombs,
+no duplicate keys); an unknown key or a value of the wrong type is a one-line error naming
+the file and line (exit 2), so a typo never silently changes what ci tests.
 """
 
 from __future__ import annotations
@@ -122,8 +123,17 @@ def _parse(root: Path, path: Path) -> PackageConfig:
 
     from ..config.bounded_yaml import DuplicateKey, TooLarge, compose_and_load, short_repr
     from ..load.bounded import read_input
+    from .asset_roots import in_vcs_folder, real_path, repository_of, within
 
     shown = str(path)
+    # A link out of the repository is refused before it is read: a pull request commits
+    # mcar.yaml -> a token file, and the error quoting its first value printed the token.
+    repository, real = repository_of(root), real_path(path)
+    if not within(real, [repository]):
+        raise UsageError(f"a link to {real}, outside {repository}: not read", file=shown)
+    if in_vcs_folder(real.relative_to(repository)):
+        raise UsageError(f"a link to {real}, in a version-control folder: not read",
+                         file=shown)
     try:
         node, data = compose_and_load(read_input(path, shown).decode("utf-8"))
     except (OSError, UnicodeDecodeError) as error:

@@ -23,6 +23,7 @@ from .asset_roots import OutsideRootsError, chosen_asset_paths, confine, real_pa
 from .bundled import PACKAGE_NAME, description_dir
 
 _NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
+_URL = re.compile(r"[A-Za-z][A-Za-z0-9+.-]*:")  # a scheme: what curl takes for a URL
 # Directories never worth crawling for package.xml files.
 _SKIP_DIRS = {".git", ".hg", ".svn", "__pycache__", "node_modules", "build", "install", "log"}
 _MAX_CRAWL_DEPTH = 8
@@ -84,6 +85,22 @@ def _split_path_list(value: str | None) -> list[Path]:
     one found a package whose relative path xacro then took from the including file's
     folder (``$(find husky)/...`` inside ``husky/urdf/``)."""
     return [Path(os.path.abspath(p)) for p in (value or "").split(os.pathsep) if p]
+
+
+def _decoded_readings(rest: str, host: bool = False) -> set[str]:
+    """The other paths a URI's ``rest`` names to the tools mcar hands the robot to: RViz's
+    resource_retriever (curl) and urllib %-decode it (``%2e%2e`` is ``..``), and take
+    ``file://HOST/`` as ``file:///``. mcar reads the name as it is; each of these
+    must be allowed too, or ``mcar view --rviz`` would open RViz on a file mcar refused."""
+    if "%" in rest:
+        from urllib.parse import unquote
+
+        readings = {rest, unquote(rest)}
+    else:
+        readings = {rest}
+    if host:  # curl reads file://localhost/x, file://127.0.0.1/x... as /x
+        readings |= {"/" + r.partition("/")[2] for r in readings if not r.startswith("/")}
+    return readings - {rest}
 
 
 @dataclass
@@ -207,9 +224,19 @@ class PackageSearch:
             path = self.confined(uri, root / inner)
             if root != path and root not in path.parents:
                 raise InputError(f"{uri}: path leaves package '{name}' ({root})")
+            for other in _decoded_readings(inner):
+                self.confined(uri, root / other)
             return path
         if uri.startswith("file://"):
-            path = Path(uri[len("file://"):])
+            rest = uri[len("file://"):]
+            path = Path(rest)
+            for other in _decoded_readings(rest, host=True):
+                self.confined(uri, Path(other))
+        elif _URL.match(uri):
+            # file:/x, FILE:///x, http://, gopher://: mcar reads none, RViz hands each to
+            # curl, which reads the file or sends the request (to a local Redis, say)
+            raise OutsideRootsError(f"'{uri}' is a URL mcar does not read, which RViz would "
+                                    "fetch (through curl)", Path(uri), self.allowed_roots())
         else:
             path = Path(uri)
             if not path.is_absolute() and base is not None:

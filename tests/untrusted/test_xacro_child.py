@@ -12,6 +12,10 @@ A xacro is code, run in a child forked from mcar. Two attacks found on main:
   hook, Python's, is switched off from Python. Every attack here switches it off first,
   as an attacker would: what stops them is the kernel.
 
+Two more found after issue 39 was merged: the child made System V shared memory that
+outlived it (past its memory limit, until reboot), and, where Landlock is missing, typed a
+command into the user's terminal with TIOCSTI.
+
 The hostile code is Python run with ``exec`` from one ``${...}`` (reached through a
 comprehension, which xacro's ``__`` guard does not see); it reports what happened in the
 name of a link, or in the error it raises.
@@ -23,6 +27,7 @@ import os
 import secrets
 import signal
 import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -369,3 +374,86 @@ def test_a_xacro_that_harms_itself_ends_in_one_located_error(run_mcar, tmp_path,
     assert "Traceback" not in result.stderr and "internal error" not in result.stderr
     assert took < 2 + 15  # the limit, and a loaded machine's start-up
     assert not (tmp_path / "out.urdf").exists()
+
+
+# -- nor reach past its limits through System V IPC ------------------------------------------
+
+SHARED_MEMORY = """
+import ctypes, errno
+libc = ctypes.CDLL(None, use_errno=True)
+libc.shmat.restype = ctypes.c_void_p
+libc.shmget.argtypes = [ctypes.c_int, ctypes.c_size_t, ctypes.c_int]
+ident = libc.shmget({key}, 1 << 20, 0o1000 | 0o600)  # IPC_CREAT
+if ident < 0:
+    out = 'shmget-' + errno.errorcode[ctypes.get_errno()]
+else:
+    address = libc.shmat(ident, None, 0)
+    ctypes.memset(address, 1, 1 << 20)
+    libc.shmdt(ctypes.c_void_p(address))
+    out = 'shmget-done'
+"""
+
+
+def _segments(key: int) -> list[str]:
+    return [line for line in Path("/proc/sysvipc/shm").read_text().splitlines()[1:]
+            if line.split()[0] == str(key)]
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/sysvipc/shm"), reason="no System V IPC here")
+@pytest.mark.parametrize("sandboxed", [True, False], ids=["sandboxed", "control-unsandboxed"])
+def test_a_xacro_leaves_no_shared_memory_behind(run_mcar, tmp_path, sandboxed):
+    """A System V segment outlives the child: memory past its limit, kept once mcar has
+    ended (and shmat on another's key reads that process's memory). The control makes one
+    without the sandbox."""
+    key = 0x4D000000 | (os.getpid() & 0xFFFFFF)  # this test's own
+    (tmp_path / "z.xacro").write_text(hostile(SHARED_MEMORY.format(key=key)))
+    try:
+        result = run_mcar("build", "z.xacro", "-o", "out.urdf",
+                          *([] if sandboxed else ["--no-sandbox"]), cwd=tmp_path)
+        assert result.returncode == 0, result.stderr
+        left = _segments(key)
+    finally:
+        for line in _segments(key):
+            subprocess.run(["ipcrm", "-m", line.split()[1]], check=False)
+    outcome = _link_names(tmp_path / "out.urdf")[1]
+    assert (outcome, len(left)) == (("shmget-EPERM", 0) if sandboxed else ("shmget-done", 1))
+
+
+# -- nor type into the user's terminal ---------------------------------------------------
+
+TYPE_INTO_TERMINAL = """
+import errno, fcntl, os, sys, termios
+from mobile_car.expand import sandbox
+master, terminal = os.openpty()
+os.setsid()
+fcntl.ioctl(terminal, termios.TIOCSCTTY, 0)  # mcar run in a terminal: the child's too
+if sys.argv[1] == "sandboxed":
+    sandbox._deny_syscalls()
+tty = os.open("/dev/tty", os.O_RDONLY | os.O_NOCTTY)
+try:
+    for byte in b"id\\n":
+        fcntl.ioctl(tty, termios.TIOCSTI, bytes([byte]))
+    print("typed", os.read(terminal, 16))
+except OSError as error:
+    print("refused", errno.errorcode[error.errno])
+"""
+
+
+def _legacy_tiocsti() -> bool:
+    path = Path("/proc/sys/dev/tty/legacy_tiocsti")
+    return not path.exists() or path.read_text().strip() == "1"
+
+
+@pytest.mark.skipif(not _legacy_tiocsti(), reason="this kernel refuses TIOCSTI to everyone")
+@pytest.mark.parametrize("sandboxed", [True, False], ids=["sandboxed", "control-unsandboxed"])
+def test_seccomp_alone_stops_typing_into_the_terminal(sandboxed):
+    """Where the kernel has no Landlock, a xacro can open /dev/tty (its controlling
+    terminal is the user's shell's) and push a command into the shell's input with
+    TIOCSTI, which the shell runs once mcar ends. Landlock stops the open here, so the
+    seccomp layer is tried on its own, as on such a kernel: the same child's filter,
+    applied to a process that holds a terminal. The control types without it."""
+    result = subprocess.run([sys.executable, "-c", TYPE_INTO_TERMINAL,
+                             "sandboxed" if sandboxed else "control"],
+                            capture_output=True, text=True, timeout=60, env=clean_environ())
+    assert result.returncode == 0, result.stderr
+    assert result.stdout == ("refused EPERM\n" if sandboxed else "typed b'id\\n'\n")

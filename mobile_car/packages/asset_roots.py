@@ -92,6 +92,11 @@ def confine(uri: str, path: Path, roots: list[Path]) -> Path:
         raise OutsideRootsError(
             f"'{uri}' lies in a version-control folder ({real}), which holds the "
             "checkout's files, not the robot's", real, roots)
+    cache = _cache_folder()
+    if within(real, [cache]):
+        raise OutsideRootsError(
+            f"'{uri}' lies in mcar's own cache folder ({cache}), which holds the key that "
+            "seals its records, not the robot's files", real, roots)
     if within(real, roots):
         return real
     # A folder inside another one adds nothing to read in a message.
@@ -103,6 +108,22 @@ def confine(uri: str, path: Path, roots: list[Path]) -> Path:
         f"'{uri}' is outside the folders a robot may name files in{leads}: {shown}; "
         "--asset-path DIR (or assets.paths in the package's mcar.yaml) allows one",
         real, roots)
+
+
+_cache_real: dict[Path, Path] = {}
+
+
+def _cache_folder() -> Path:
+    """The real path of mcar's cache folder (``MCAR_CACHE_DIR``, ``XDG_CACHE_HOME``): a CI
+    job that restores a cache into its workspace puts the record key inside the package,
+    and a texture naming it copied the key into an export. Resolved once per folder (every
+    file a robot names passes here)."""
+    from ..record_seal import cache_dir
+
+    named = cache_dir()
+    if named not in _cache_real:
+        _cache_real[named] = real_path(named)
+    return _cache_real[named]
 
 
 def repository_of(package_root: Path) -> Path:

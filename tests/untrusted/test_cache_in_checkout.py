@@ -13,10 +13,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-PACKAGE_XML = """<package format="2"><name>atk</name><version>0.0.0</version>
-<description>x</description><maintainer email="a@b.c">a</maintainer><license>MIT</license>
-</package>
-"""
+from hostile import PACKAGE_XML
+
 ROBOT = """<?xml version="1.0"?>
 <robot name="atk">
   <link name="foot"/>

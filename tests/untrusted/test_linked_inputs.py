@@ -18,12 +18,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from hostile import PACKAGE_XML
 
 MARK = "MCAR-SECRET-1c4e77"
-PACKAGE_XML = """<package format="2"><name>atk</name><version>0.0.0</version>
-<description>x</description><maintainer email="a@b.c">a</maintainer><license>MIT</license>
-</package>
-"""
 ROBOT = """<?xml version="1.0"?>
 <robot name="ok"><link name="base"/></robot>
 """

@@ -19,12 +19,9 @@ import struct
 from pathlib import Path
 
 import pytest
+from hostile import PACKAGE_XML
 
 MARK = b"MCAR-SECRET-7f3a9c"  # in every secret file: what must never reach an output
-PACKAGE_XML = """<package format="2"><name>atk</name><version>0.0.0</version>
-<description>x</description><maintainer email="a@b.c">a</maintainer><license>MIT</license>
-</package>
-"""
 
 
 def _binary_stl(header: bytes, size: float) -> bytes:

@@ -18,12 +18,9 @@ import subprocess
 from pathlib import Path
 
 import pytest
+from hostile import PACKAGE_XML
 
 MARK = "MCAR-SECRET-93b0d2"
-PACKAGE_XML = """<package format="2"><name>atk</name><version>0.0.0</version>
-<description>x</description><maintainer email="a@b.c">a</maintainer><license>MIT</license>
-</package>
-"""
 # (line in the robot, URI): {pkg} the package, {outside} the folder beside it.
 URIS = [
     (4, "file://localhost{outside}/secret.stl"),

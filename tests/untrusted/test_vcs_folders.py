@@ -17,12 +17,9 @@ import json
 from pathlib import Path
 
 import pytest
+from hostile import PACKAGE_XML
 
 MARK = b"MCAR-TOKEN-5d1e0b"  # the "token": what must never reach an output
-PACKAGE_XML = """<package format="2"><name>atk</name><version>0.0.0</version>
-<description>x</description><maintainer email="a@b.c">a</maintainer><license>MIT</license>
-</package>
-"""
 ROBOT = """<?xml version="1.0"?>
 <robot name="atk">
   <link name="foot"/>

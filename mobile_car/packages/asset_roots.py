@@ -126,11 +126,30 @@ def _cache_folder() -> Path:
     return _cache_real[named]
 
 
+# Where CI services put the checkout a job works in (GitHub Actions, GitLab, Bitbucket,
+# Azure Pipelines): mcar.yaml is the pull request's, so what it may name stops there.
+_CI_WORKSPACES = ("GITHUB_WORKSPACE", "CI_PROJECT_DIR", "BITBUCKET_CLONE_DIR",
+                  "BUILD_SOURCESDIRECTORY")
+
+
 def repository_of(package_root: Path) -> Path:
     """The repository holding a package (the nearest folder with ``.git`` at or above it),
-    or the package itself outside any: what a package's mcar.yaml may name."""
+    or the package itself outside any: what a package's mcar.yaml may name. Never above
+    the CI job's workspace that holds the package: a checkout without a ``.git`` of its own
+    (a downloaded archive) inside a folder kept in git would otherwise take that folder."""
     root = real_path(package_root)
+    ceiling = _workspace_holding(root)
     for folder in [root, *root.parents]:
-        if (folder / ".git").exists():
+        if (folder / ".git").exists() or folder == ceiling:
             return folder
     return root
+
+
+def _workspace_holding(root: Path) -> Path | None:
+    for name in _CI_WORKSPACES:
+        named = os.environ.get(name, "").strip()
+        if named and os.path.isabs(named):
+            workspace = real_path(Path(named))
+            if within(root, [workspace]):
+                return workspace
+    return None

@@ -289,6 +289,25 @@ def test_mcar_yaml_may_not_allow_a_folder_outside(run_mcar, tmp_path, named, why
     assert _holding_secret(package) == []
 
 
+@pytest.mark.parametrize("workspace", [True, False], ids=["in-ci", "control"])
+def test_a_git_folder_above_the_ci_workspace_does_not_widen_mcar_yaml(run_mcar, tmp_path,
+                                                                      workspace):
+    """A checkout without a .git of its own (a downloaded archive) inside a folder kept in
+    git: the repository mcar.yaml may name stops at the CI job's workspace. The control
+    shows that without the workspace variable the parent repository is taken."""
+    (tmp_path / ".git").mkdir()
+    package = _ci_package(tmp_path / "work" / "checkout", "assets:\n  paths: [../../outside]\n")
+    env = {"GITHUB_WORKSPACE": str(package.parent)} if workspace else {}
+    result = run_mcar("check", "urdf/robot.urdf", cwd=package, env=env)
+    if workspace:
+        assert result.returncode == 2, result.stderr
+        assert (f"{package / 'mcar.yaml'}:2: error: assets.paths: '../../outside' leads to "
+                f"{tmp_path / 'work' / 'outside'}, outside {package.parent} (--asset-path "
+                "names any folder)") in result.stderr.splitlines()
+    else:
+        assert result.returncode == 0, result.stderr
+
+
 def test_a_urdf_on_stdin_is_held_to_the_working_folder_s_roots(run_mcar, robot):
     """Relative names start at the working folder (here in the package): the same W215s."""
     result = run_mcar("check", "-", input=robot.read_text(), cwd=robot.parent)

@@ -36,8 +36,9 @@ PART_HELP = f"""Add a part: a macro file and a test file that builds the part al
                                      its box; its link is arm_NAME_link
   -> urdf/arm/test_arm.urdf.xacro    a left and a right arm on a base link
 
-Include the macro from the robot file and call it once per use, each with its own
-name: <xacro:arm name="left" reflect="1" parent="base_link"> with an <origin>, and
+It prints the include line and a macro call to paste into the package's robot file
+(urdf/PACKAGE.urdf.xacro). Include the macro from the robot file and call it once per
+use, each with its own name: <xacro:arm name="left" reflect="1" parent="base_link"> with an <origin>, and
 name="right" reflect="-1" for its mirror image. Nothing is overwritten, and the two
 files are written both or neither. NAME may not be one of xacro's own elements
 (include, macro, property, arg, if, ...) nor give a macro, or a link or joint of its
@@ -59,6 +60,7 @@ def command():
 def part(name, package_dir):
     from mobile_car.packages.search import enclosing_package
     from mobile_car.scaffold import add_part
+    from mobile_car.scaffold.part_usage import part_usage
 
     start = Path(package_dir) if package_dir else Path.cwd()
     own = enclosing_package(start)
@@ -68,3 +70,13 @@ def part(name, package_dir):
     written = add_part(own[1], own[0], name)
     for file in written:
         click.echo(f"created {display_path(file)}", err=True)
+    # What to paste where, on stdout: the part is not in the robot until it is included
+    # and called there.
+    usage = part_usage(own[1], own[0], name)
+    robot = display_path(usage.robot) if usage.robot else "your robot's .urdf.xacro file"
+    click.echo(f"to use it, paste into {robot}, after its other includes:")
+    click.echo(f"  {usage.include}")
+    click.echo("and before its </robot>, once per use (a name each; reflect=\"-1\" mirrors "
+               "it; the origin: where on base_link):")
+    for line in usage.call:
+        click.echo(f"  {line}")

@@ -37,12 +37,12 @@ PART_HELP = f"""Add a part: a macro file and a test file that builds the part al
   -> urdf/arm/test_arm.urdf.xacro    a left and a right arm on a base link
 
 It prints the include line and a macro call to paste into the package's robot file
-(urdf/PACKAGE.urdf.xacro). Include the macro from the robot file and call it once per
-use, each with its own name: <xacro:arm name="left" reflect="1" parent="base_link"> with an <origin>, and
-name="right" reflect="-1" for its mirror image. Nothing is overwritten, and the two
-files are written both or neither. NAME may not be one of xacro's own elements
-(include, macro, property, arg, if, ...) nor give a macro, or a link or joint of its
-test file, that the package already has.
+(urdf/PACKAGE.urdf.xacro): include the macro from the robot file and call it once per
+use, each with its own name: <xacro:arm name="left" reflect="1" parent="base_link">
+with an <origin>, and name="right" reflect="-1" for its mirror image. Nothing is
+overwritten, and the two files are written both or neither. NAME may not be one of
+xacro's own elements (include, macro, property, arg, if, ...) nor give a macro, or a
+link or joint of its test file, that the package already has.
 
 {EXIT_CODES}"""
 

@@ -17,6 +17,7 @@ import yaml
 
 from mobile_car.scaffold.install_source import PLACEHOLDER, install_source, source_of
 
+
 @pytest.mark.parametrize("record, requirement", [
     ({"url": "https://github.com/acme/mcar.git",
       "vcs_info": {"vcs": "git", "commit_id": "0123abc", "requested_revision": "main"}},
@@ -82,10 +83,11 @@ def test_the_workflows_own_steps_pass_in_the_new_package(run_mcar, tmp_path):
     made = run_mcar("init", "demo_description", cwd=tmp_path)
     assert made.returncode == 0, made.stderr
     package = tmp_path / "demo_description"
-    if shutil.which("git"):
-        git = ["git", "-c", "user.name=t", "-c", "user.email=t@example.org"]
-        for args in (["init", "-q"], ["add", "-A"], ["commit", "-qm", "first"]):
-            subprocess.run([*git, *args], cwd=package, check=True, capture_output=True)
+    if shutil.which("git") is None:
+        pytest.skip("git is not installed (the checkout CI runs in is a git one)")
+    git = ["git", "-c", "user.name=t", "-c", "user.email=t@example.org"]
+    for args in (["init", "-q"], ["add", "-A"], ["commit", "-qm", "first"]):
+        subprocess.run([*git, *args], cwd=package, check=True, capture_output=True)
     runs = [step["run"] for step in _workflow_steps(package)
             if "run" in step and step.get("name") != "Install mcar"]
     assert runs == ["mcar ci . --format github --junit-xml mcar-junit.xml"]

@@ -33,6 +33,10 @@ It follows the mobile car's layout (the seed's method):
   meshes/, .gitignore
   .github/workflows/mcar.yml         CI: mcar ci on this package
   .pre-commit-config.yaml            a hook running mcar ci on this package
+The workflow installs mcar from where this mcar was installed from (a git repository at
+its commit, or an https URL); from a folder on this machine, or a package index (mcar is
+not on PyPI), it names 'mcar @ git+https://github.com/YOUR-ORG/mcar', and init prints
+FILE:LINE of that one line to change before the first push.
 Then `mcar new part NAME` inside it adds a part folder. Nothing is overwritten: if a
 file it would write exists, nothing is written; the package is written whole or not at
 all (a name too long for the file system is refused before anything is written).
@@ -60,13 +64,19 @@ Exit codes:
 @handle_errors
 def command(path, name, drive):
     from mobile_car.scaffold import create_package
-    from mobile_car.scaffold.install_source import install_source
+    from mobile_car.scaffold.install_source import WORKFLOW, install_source, placeholder_line
 
     source = install_source()
     written = create_package(Path(path), name, source.requirement, drive)
     for file in written:
         click.echo(f"created {display_path(file)}", err=True)
     if source.note:
-        click.echo(f"mcar: note: {source.note}", err=True)
+        # The one line a first push needs changed, on stdout in the FILE:LINE: form editors
+        # jump to: without it the workflow's first run fails installing mcar.
+        workflow = Path(path) / WORKFLOW
+        line = placeholder_line(workflow.read_text(encoding="utf-8"))
+        click.echo(f"{display_path(workflow)}:{line}: replace '{source.requirement}' with "
+                   f"where your CI installs mcar from ({source.note}), or CI fails "
+                   "installing it")
     click.echo(f"next: cd {display_path(Path(path))} && mcar sim && mcar ci   "
                "(then `mcar new part NAME` to add a part)", err=True)

@@ -5,9 +5,11 @@ workflow works as written whenever that place can be reached from CI.
 * installed from a git repository (``pip install "mcar @ git+https://..."``): the same
   repository at the same commit;
 * installed from an archive URL: that URL;
-* installed from an index (no record): ``mcar==VERSION``;
 * installed from a folder or file on this machine (``pip install .``, ``make install``):
-  nothing CI could reach, so a marked placeholder, and a note that says what to replace.
+  nothing CI could reach, so a marked placeholder, and a note that says what to replace;
+* no record (installed from an index) or a damaged one: the placeholder too, never
+  ``mcar==VERSION``: mcar is not published on PyPI, whose name ``mcar`` may belong to
+  another project, so that line would fail in CI or install someone else's code.
 """
 
 from __future__ import annotations
@@ -16,12 +18,13 @@ import json
 from dataclasses import dataclass
 
 PLACEHOLDER = "mcar @ git+https://github.com/YOUR-ORG/mcar"
+WORKFLOW = ".github/workflows/mcar.yml"  # in the new package: the file that names it
 
 
 @dataclass(frozen=True)
 class InstallSource:
     requirement: str       # what the workflow gives pip
-    note: str | None = None  # what the user must do, when the requirement is a placeholder
+    note: str | None = None  # why the requirement is a placeholder, which the user replaces
 
 
 def install_source() -> InstallSource:
@@ -34,17 +37,20 @@ def install_source() -> InstallSource:
         return _placeholder("mcar is not installed as a package here")
     text = distribution.read_text("direct_url.json")
     if not text:
-        return InstallSource(f"mcar=={distribution.version}")
-    return source_of(text, distribution.version)
+        return _placeholder("mcar has no record of where it was installed from (a package "
+                            "index: mcar is not published on PyPI)")
+    return source_of(text)
 
 
-def source_of(direct_url: str, version: str) -> InstallSource:
+def source_of(direct_url: str) -> InstallSource:
     """The requirement for a PEP 610 record (``direct_url.json``'s text)."""
     try:
         record = json.loads(direct_url)
         url = record["url"]
+        if not isinstance(url, str):
+            raise TypeError
     except (ValueError, KeyError, TypeError):
-        return InstallSource(f"mcar=={version}")
+        return _placeholder("mcar's record of where it was installed from is damaged")
     vcs = record.get("vcs_info")
     if isinstance(vcs, dict) and vcs.get("vcs") == "git" and not url.startswith("file:"):
         commit = vcs.get("commit_id")
@@ -55,5 +61,12 @@ def source_of(direct_url: str, version: str) -> InstallSource:
 
 
 def _placeholder(why: str) -> InstallSource:
-    return InstallSource(PLACEHOLDER, f"{why}: in .github/workflows/mcar.yml, replace "
-                                      f"'{PLACEHOLDER}' with where your CI installs mcar from")
+    return InstallSource(PLACEHOLDER, why)
+
+
+def placeholder_line(workflow: str) -> int | None:
+    """The number (from 1) of the workflow's line that names the placeholder."""
+    for number, line in enumerate(workflow.splitlines(), 1):
+        if PLACEHOLDER in line:
+            return number
+    return None

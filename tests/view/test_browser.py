@@ -26,7 +26,10 @@ ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftsha
 VIEWPORT = {"width": 900, "height": 600}
 # Where a person looks at the picture the README shows (MCAR_SCREENSHOT_DIR=docs).
 SCREENSHOT_DIR = os.environ.get("MCAR_SCREENSHOT_DIR")
-SECONDS = 60  # every wait below is bounded by this
+# Every wait below is bounded by this, playwright's own included: its default (30 s for a
+# screenshot, a click, a fill) is a fixed wait that a loaded machine overran, taking a
+# software-GL screenshot while other tests ran.
+SECONDS = 60
 
 
 @pytest.fixture(scope="module")
@@ -48,16 +51,18 @@ def browser():
 def page(browser):
     """A page of its own (a new browser context: no cookies, storage or cache shared)."""
     context = browser.new_context(viewport=VIEWPORT)
+    context.set_default_timeout(SECONDS * 1000)
     try:
         yield context.new_page()
     finally:
         context.close()
 
 
-def _picture(page) -> np.ndarray:
+def _picture(page, seconds: float = SECONDS) -> np.ndarray:
     from PIL import Image
 
-    with Image.open(io.BytesIO(page.screenshot())) as image:
+    shot = page.screenshot(timeout=max(seconds, 1) * 1000)
+    with Image.open(io.BytesIO(shot)) as image:
         return np.asarray(image.convert("RGB")).astype(int)
 
 
@@ -69,20 +74,22 @@ def _red(picture: np.ndarray) -> int:
 
 
 def _until(condition, what: str) -> None:
+    """Poll ``condition`` (given the seconds left) until it holds, for SECONDS at most."""
     deadline = time.monotonic() + SECONDS
-    while time.monotonic() < deadline:
-        if condition():
+    while (left := deadline - time.monotonic()) > 0:
+        if condition(left):
             return
         time.sleep(0.25)
     pytest.fail(f"within {SECONDS} s: {what}")
 
 
 def _picture_when(page, condition, what: str) -> np.ndarray:
-    """The first screenshot for which ``condition`` holds, within SECONDS."""
+    """The first screenshot for which ``condition`` holds, within SECONDS: each screenshot
+    may take what is left of them, not playwright's own fixed 30 s."""
     pictures = []
 
-    def taken():
-        pictures.append(_picture(page))
+    def taken(left):
+        pictures.append(_picture(page, left))
         return condition(pictures[-1])
 
     _until(taken, what)
@@ -96,7 +103,7 @@ def test_the_page_draws_the_robot_and_a_slider_moves_it(served, page):
     # ... and the canvas shows the red arm once WebGL has drawn the meshes.
     robot = _picture_when(page, lambda p: _red(p) > 1500, "the red arm appears on the page")
     if SCREENSHOT_DIR:
-        page.screenshot(path=str(Path(SCREENSHOT_DIR) / "view.png"))
+        page.screenshot(path=str(Path(SCREENSHOT_DIR) / "view.png"), timeout=SECONDS * 1000)
     # Without the visual geometry the same view is an empty scene: the robot made the
     # difference.
     served.show_visual.value = False
@@ -110,7 +117,7 @@ def test_the_page_draws_the_robot_and_a_slider_moves_it(served, page):
     box = page.locator(".mantine-NumberInput-input").first
     box.fill("0.75")
     box.press("Enter")
-    _until(lambda: abs(served.joint_values()["shoulder"] - 0.75) < 1e-9,
+    _until(lambda _: abs(served.joint_values()["shoulder"] - 0.75) < 1e-9,
            "the server sees shoulder = 0.75 from the page")
     assert served.joint_values()["wrist"] == 0.0
     # The link moved on the server, which is what every page then draws.
@@ -118,7 +125,6 @@ def test_the_page_draws_the_robot_and_a_slider_moves_it(served, page):
 
     turned = SO3(np.asarray(served.frames["upper_arm"].wxyz)).as_matrix()
     assert np.isclose(turned[0, 0], np.cos(0.75)) and np.isclose(turned[0, 2], np.sin(0.75))
-
 
 
 def test_a_dimension_typed_on_the_page_rebuilds_the_robot_and_its_yaml_shows(car, page):
@@ -132,10 +138,10 @@ def test_a_dimension_typed_on_the_page_rebuilds_the_robot_and_its_yaml_shows(car
     box.press("Enter")
     # (The overrides are taken once the car is built, and the car is shown just after: a
     # loaded machine can be read between the two.)
-    _until(lambda: car.dimensions.values == {"wheel_radius": 0.04}
+    _until(lambda _: car.dimensions.values == {"wheel_radius": 0.04}
            and car.model.urdf.joint_map["base_joint"].origin[2, 3] == 0.04,
            "the server rebuilds and shows the car with wheel_radius = 0.04 from the page")
     page.get_by_text("Copy overrides as --config YAML").click()
     area = page.locator("textarea").first
-    _until(lambda: area.is_visible() and area.input_value() == "wheel_radius: 0.04\n",
+    _until(lambda _: area.is_visible() and area.input_value() == "wheel_radius: 0.04\n",
            "the page shows the overrides as YAML")

@@ -16,7 +16,7 @@ import xacro
 
 from ..errors import BuildError, McarError
 from ..load.bounded import NotRegularFile, read_text_quietly
-from ..load.inputs import display_path
+from ..load.inputs import STDIN_LABEL, display_path
 
 _QUOTED_RE = re.compile(r"'([^']+)'")
 _COMMENT_RE = re.compile(r"<!--.*?-->", re.S)
@@ -220,6 +220,8 @@ def _nesting_error(path: str, exc, message: str) -> tuple[str, int] | None:
     it at a later end tag, often the file's last line); a misspelt end tag at its own."""
     from .unclosed import find_unclosed
 
+    if path == STDIN_LABEL:  # read once, from the pipe: a file of that name is another
+        return None
     found = find_unclosed(path, exc)
     if found is None:
         return None

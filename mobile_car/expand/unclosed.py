@@ -43,6 +43,9 @@ def find_unclosed(path: str, exc: xml.parsers.expat.ExpatError) -> Unclosed | No
         return None
     stack: list[tuple[str, int]] = []
     parser = xml.parsers.expat.ParserCreate()
+    # A default handler keeps internal entities unexpanded: this second reading must not
+    # be the one a "billion laughs" file blows up in (external ones are never fetched).
+    parser.DefaultHandler = lambda _data: None
     parser.StartElementHandler = lambda name, _attrs: stack.append(
         (name, parser.CurrentLineNumber))
     parser.EndElementHandler = lambda _name: stack.pop()

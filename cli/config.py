@@ -53,7 +53,8 @@ def _text(table: dict) -> str:
         rows += _columns([_cells(name, item) for name, item in entries.items()])
         rows.append("")
     if any(item.get("overridden") for item in table["dimensions"].values()):
-        rows.append("* overridden: its meaning was written for the default value")
+        rows.append("* overridden by --set or --config: its description is of the default "
+                    "value")
     rows.append(f"Defined in {display_path(table['config'])}")
     return "\n".join(rows)
 
@@ -62,7 +63,8 @@ def _cells(name: str, item: dict) -> list[str]:
     """One row: mark and name, value, unit, source, range, where defined, meaning."""
     note = item["meaning"]
     if item.get("overridden"):  # the meaning describes the default, not this value
-        note += f" [stale: said of the default {item['default']:.6g}]"
+        unit = "" if item["unit"] in ("1", "count") else f" {item['unit']}"
+        note += f" (this describes the default, {item['default']:.6g}{unit})"
     if "expression" in item:
         note += f"  = {item['expression']}"
     path, _, line = item["defined"].rpartition(":")

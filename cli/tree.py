@@ -8,8 +8,9 @@ import click
 
 from mobile_car.check.checker import check_input
 from mobile_car.check.graphviz import write_graph
-from mobile_car.check.tree import graphviz_dot, rich_lines
-from mobile_car.errors import EXIT_PROBLEMS
+from mobile_car.check.tree import rich_lines
+from mobile_car.check.tree_dot import graphviz_dot
+from mobile_car.errors import EXIT_PROBLEMS, UsageError
 
 from . import streams
 from .common import (
@@ -29,11 +30,16 @@ HELP = f"""Print the kinematic tree of one robot (a URDF or xacro file), with it
   mcar tree robot.urdf
   mcar tree robot.urdf.xacro [NAME:=VALUE]...
   mcar tree robot.urdf --graphviz tree.svg     also draw it (.dot, .gv, .svg, .png, .pdf)
+  mcar tree robot.urdf --graphviz tree.svg --fold-fixed
+                                               ...only the moving joints between boxes
 
 Each link is shown under its parent with the joint that carries it: name, type,
 origin (xyz, rpy), axis and limits. Children are in check_urdf's order (by joint
 name). Drawing .svg, .png or .pdf needs Graphviz's `dot` (Debian package graphviz);
-a .dot file needs nothing. Only the tree is checked here; `mcar check` checks the rest.
+a .dot file needs nothing. In the drawing, fixed joints are dashed and grey, moving
+ones solid and bold; --fold-fixed draws each group of links held together by fixed joints
+as one box (named after its top link, listing the others), so that the degrees of freedom
+are what remains. Only the tree is checked here; `mcar check` checks the rest.
 One robot at a time: with no INPUT (or a folder) it is the package's complete robot
 (its one robot file directly in urdf/, not the parts' test files); with several, each
 is listed: name one.
@@ -55,10 +61,15 @@ Exit codes:
 @click.option("--graphviz", "graph_output", metavar="OUT",
               help="Also write the tree as Graphviz: OUT.dot/.gv (text) or OUT.svg/.png/.pdf "
                    "(drawn by `dot`).")
+@click.option("--fold-fixed", is_flag=True,
+              help="With --graphviz: one box per group of links joined by fixed joints; "
+                   "only moving joints are drawn.")
 @click.option("-q", "--quiet", is_flag=True, help="Do not print the tree (with --graphviz).")
 @robot_options
 @handle_errors
-def command(words, graph_output, quiet, package_paths, sets, config_files):
+def command(words, graph_output, fold_fixed, quiet, package_paths, sets, config_files):
+    if fold_fixed and not graph_output:
+        raise UsageError("--fold-fixed folds the --graphviz drawing: give --graphviz OUT too")
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
         inp = chosen_robot(selection, "mcar tree")
         result = check_input(inp, options, stdin=stdin_for(selection), structure_only=True)
@@ -75,5 +86,6 @@ def command(words, graph_output, quiet, package_paths, sets, config_files):
         # Written as it is made: a deep chain's text is hundreds of megabytes.
         streams.write_lines(rich_lines(result.tree))
     if graph_output:
-        written = write_graph(graphviz_dot(result.robot.name, result.tree), graph_output)
+        written = write_graph(graphviz_dot(result.robot.name, result.tree, fold_fixed),
+                              graph_output)
         click.echo(f"wrote {written}", err=True)

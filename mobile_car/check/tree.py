@@ -5,11 +5,11 @@ Children are ordered as urdfdom orders them: by joint name (urdfdom keeps joints
 by their order in the file. Every walk here is iterative: a 100,000-link chain or a
 cycle can neither overflow the stack nor loop.
 
-Three views of a sound tree: :func:`check_urdf_text` (byte for byte what ``check_urdf``
-prints), :func:`rich_text` (joints with type, origin, axis, limits) and :func:`graphviz_dot`.
-The first two grow with the square of a chain's depth (its indentation), so each is also
-a generator of lines, :func:`check_urdf_lines` and :func:`rich_lines`, that the command
-writes as they come: the whole text is never held.
+Two views of a sound tree: :func:`check_urdf_text` (byte for byte what ``check_urdf``
+prints) and :func:`rich_text` (joints with type, origin, axis, limits); the Graphviz
+diagram is :mod:`.tree_dot`'s. Both grow with the square of a chain's depth (its
+indentation), so each is also a generator of lines, :func:`check_urdf_lines` and
+:func:`rich_lines`, that the command writes as they come: the whole text is never held.
 """
 
 from __future__ import annotations
@@ -252,26 +252,3 @@ def rich_lines(tree: KinematicTree) -> Iterator[bytes]:
             stack.pop()
             if cuts:
                 del prefix[cuts.pop():]
-
-
-def _dot_id(text: str) -> str:
-    """A double-quoted Graphviz ID; line breaks become Graphviz's own escape."""
-    escaped = text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n")
-    return f'"{escaped}"'
-
-
-def graphviz_dot(robot_name: str, tree: KinematicTree) -> str:
-    """A Graphviz digraph: links as boxes, joints as labelled edges, in tree order."""
-    lines = [f"digraph {_dot_id(shown(robot_name))} {{",
-             "  rankdir=TB;",
-             '  node [shape=box, style="rounded", fontname="Helvetica"];',
-             '  edge [fontname="Helvetica", fontsize=10];']
-    for link in tree.subtree(tree.root):
-        lines.append(f"  {_dot_id(shown(link))};")
-    for link in tree.subtree(tree.root):
-        for joint in tree.children.get(link, ()):
-            label = joint_summary(joint).replace(", ", "\n")
-            lines.append(f"  {_dot_id(shown(link))} -> {_dot_id(shown(joint.child))} "
-                         f"[label={_dot_id(label)}];")
-    lines.append("}")
-    return "\n".join(lines) + "\n"

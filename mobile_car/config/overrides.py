@@ -130,6 +130,7 @@ def evaluate(spec: ConfigSpec, mappings: dict[str, str],
         try:
             result = build_file(probe, mappings, probe_search)
         except BuildError as error:
+            _hide_probe(error, probe, spec.path)
             if mappings and error.message.startswith("config:"):
                 raise UsageError(f"the dimensions do not fit together: "
                                  f"{error.message[len('config:'):].strip()}") from None
@@ -139,6 +140,15 @@ def evaluate(spec: ConfigSpec, mappings: dict[str, str],
     _refuse_non_finite(spec, values, bool(mappings))
     return {name: int(value) if spec.dimensions[name].unit == "count" and value.is_integer()
             else value for name, value in values.items()}
+
+
+def _hide_probe(error: BuildError, probe: Path, config: Path) -> None:
+    """The probe is mcar's own temporary file: an error in config.xacro names only the
+    user's files (the probe's "included from" line would show a path that no longer exists)."""
+    if error.file is not None and Path(error.file).name == probe.name:
+        error.file, error.line = str(config), None
+    error.details = [line for line in error.details
+                     if not line.endswith(probe.name) and str(probe.parent) not in line]
 
 
 def _refuse_non_finite(spec: ConfigSpec, values: dict[str, float], overridden: bool) -> None:

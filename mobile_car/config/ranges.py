@@ -80,12 +80,28 @@ def unit_hint(raw, unit: str, plausible: Range) -> str:
     return f"; did you mean {str(raw).strip()}{candidate}?" if candidate else ""
 
 
+def _just_outside(value: float, plausible: Range) -> bool:
+    """A value less than twice past an end of the range was meant as written and is a bit
+    too big or small (a 0.6 m wheel for at most 0.5 m), not a unit slip: a number in mm,
+    cm, g, deg or rpm read as SI is 10 to 1000 times off, so a slip lands far outside.
+    Ranges reaching zero or below are only judged at their far ends."""
+    if value > plausible.high:
+        return plausible.high > 0 and value <= 2 * plausible.high
+    if value < plausible.low:
+        if plausible.low > 0:
+            return value >= plausible.low / 2
+        return plausible.low < 0 and value >= 2 * plausible.low
+    return False
+
+
 def meant_unit(raw, unit: str, plausible: Range) -> str | None:
     """The first common unit (mm, g, deg...) that, read for a bare number, brings it inside
     the range; None for a number with a unit, or when none does."""
     if not is_bare_number(raw):
         return None
     number = str(raw).strip()
+    if _just_outside(float(number), plausible):
+        return None
     for candidate in _HINT_UNITS.get(unit, ()):
         try:
             if parse_quantity(f"{number}{candidate}", unit, "hint") in plausible:

@@ -54,12 +54,19 @@ def delta(change: Change) -> str:
         return ""
     scale, unit = _scale_unit(change.kind)
     parts = " ".join(("+" if d > 0 else "") + number(d * scale, change.kind) for d in deltas)
-    if change.kind == "length" and len(deltas) == 3:
+    # A position's change is a distance; a size's is not (two boxes 11 mm longer and
+    # 11 mm taller are not "15.6 mm" bigger): its numbers, axis by axis, say it all.
+    if change.kind == "length" and len(deltas) == 3 and not _is_size(change.field):
         parts += f"; {number(math.hypot(*deltas) * scale, 'length')} {unit}"
     elif change.kind == "angle" and len(deltas) == 3:
         turned = angle_between(rpy_matrix(change.old.data), rpy_matrix(change.new.data))
         parts += f"; turned {number(math.degrees(turned), 'angle')} deg"
     return parts
+
+
+def _is_size(field: str) -> bool:
+    """A box's ``size`` and the robot's overall ``size`` are extents, not positions."""
+    return field == "size" or field.endswith(" size")
 
 
 def counted(count: int, noun: str) -> str:

@@ -16,7 +16,7 @@ import xacro
 
 from ..errors import BuildError, McarError
 from ..load.bounded import NotRegularFile, read_text_quietly
-from ..load.inputs import display_path
+from ..load.inputs import STDIN_LABEL, display_path
 
 _QUOTED_RE = re.compile(r"'([^']+)'")
 _COMMENT_RE = re.compile(r"<!--.*?-->", re.S)
@@ -58,6 +58,10 @@ def error_from(exc: BaseException, parsing: list, source: Path,
             return BuildError(encoding[0], file=display_path(bad), line=encoding[1],
                               details=_stack_details(calls))
         message = xml.parsers.expat.ErrorString(exc.code) if exc.code else str(exc)
+        nesting = _nesting_error(bad, exc, message)
+        if nesting is not None:
+            return BuildError(nesting[0], file=display_path(bad), line=nesting[1],
+                              details=_stack_details(calls))
         return BuildError(f"XML parse error: {message} (column {exc.offset + 1})",
                           file=display_path(bad), line=exc.lineno, details=_stack_details(calls))
     if isinstance(exc, RecursionError):
@@ -209,3 +213,21 @@ def _encoding_error(path: str, exc) -> tuple[str, int] | None:
         return None  # a declared encoding: expat decoded it as declared
     start = first_bad_offset(data)
     return None if start is None else not_utf8(data, start)
+
+
+def _nesting_error(path: str, exc, message: str) -> tuple[str, int] | None:
+    """A tag left open is said at the line it opened, where the mistake is (expat notices
+    it at a later end tag, often the file's last line); a misspelt end tag at its own."""
+    from .unclosed import find_unclosed
+
+    if path == STDIN_LABEL:  # read once, from the pipe: a file of that name is another
+        return None
+    found = find_unclosed(path, exc)
+    if found is None:
+        return None
+    if found.stray_end is not None:
+        return (f"XML parse error: </{found.stray_end}> closes no open element (expected "
+                f"</{found.name}>, opened at line {found.line}; {message}, column "
+                f"{exc.offset + 1})", exc.lineno)
+    return (f"XML parse error: <{found.name}> opened here is never closed (the parser "
+            f"noticed at line {exc.lineno}: {message})", found.line)

@@ -14,8 +14,10 @@ and inertia, collision APIs, and joints with their limits. What it lacks is adde
   wants) and its effort limit (:mod:`mobile_car.sim.servos`, found on MuJoCo's model);
 * a massless frame link (the car's ``base_link``) gets no rigid body from the converter:
   its children are re-hung on the nearest massed link fixed to it first (:mod:`.massless`);
-* ``--base floating``: the converter welds a root that has no mass of its own to the stage
-  (Husky's ``root_joint``); that joint is deactivated.
+* ``--base floating``: a fixed joint holds the robot to the stage, either the converter's
+  own ``root_joint`` (a root link with something in it, Husky's) or the URDF's fixed joint
+  from an empty root link, which the converter ties to the stage in that link's place
+  (Jackal's ``base_link_joint``); that joint is deactivated, and the note says which.
 
 Masses in kg, lengths in m.
 """
@@ -71,7 +73,7 @@ def export_usd(loaded, folder: Path, options) -> Exported:
                      for a in prepared.assets.by_uri.values() if a.converted]
     path = Path(str(asset.path))
     stage = Usd.Stage.Open(str(path))
-    notes = rehung + _complete(stage, drive, options.base)
+    notes = rehung + _complete(stage, drive, options.base, _fixed_joint_parents(root))
     stage.Save()
     return Exported(
         robot_file=path.relative_to(folder).as_posix(), urdf_mass=urdf_mass(root),
@@ -103,7 +105,17 @@ def _drive(loaded, prepared) -> dict | None:
     return drive_summary(drive)
 
 
-def _complete(stage, drive: dict | None, base: str) -> list[str]:
+def _fixed_joint_parents(root) -> dict[str, str]:
+    """The URDF's fixed joints: name -> parent link (what a note about one names)."""
+    parents = {}
+    for joint in root.iter("joint"):
+        parent = joint.find("parent")
+        if joint.get("type") == "fixed" and parent is not None:
+            parents[joint.get("name")] = parent.get("link")
+    return parents
+
+
+def _complete(stage, drive: dict | None, base: str, urdf_fixed: dict[str, str]) -> list[str]:
     from pxr import UsdPhysics
 
     notes = []
@@ -112,7 +124,7 @@ def _complete(stage, drive: dict | None, base: str) -> list[str]:
         for name, prim in joints.items():
             if _welds_to_stage(stage, prim):
                 prim.SetActive(False)
-                notes.append(f"joint {name} (the converter's weld to the stage) "
+                notes.append(f"joint {name} ({_weld_origin(prim, name, urdf_fixed)}) "
                              "deactivated: the base floats")
     for joint, motor in ((drive or {}).get("motors") or {}).items():
         prim = joints.get(joint)
@@ -126,6 +138,19 @@ def _complete(stage, drive: dict | None, base: str) -> list[str]:
         if motor.get("effort") is not None:
             api.CreateMaxForceAttr(float(motor["effort"]))
     return notes
+
+
+def _weld_origin(prim, name: str, urdf_fixed: dict[str, str]) -> str:
+    """Whose joint holds the robot to the stage: a joint the URDF has is the robot's own,
+    tied to the stage because its parent link is empty (the converter makes no body of
+    it); any other is the converter's. The prim's name may be a USD-safe spelling of the
+    URDF's, which the converter then keeps as its display name."""
+    urdf_name = prim.GetMetadata("displayName") or name
+    parent = urdf_fixed.get(urdf_name)
+    if parent is None:
+        return "the converter's weld of the root link to the stage"
+    return (f"the URDF's fixed joint from {parent}, a link with nothing in it, which the "
+            f"converter ties to the stage")
 
 
 def _welds_to_stage(stage, prim) -> bool:

@@ -62,8 +62,8 @@ def test_graphviz_dot_file(cli, tmp_path):
     assert result.stderr == f"wrote {out}\n"
     text = out.read_text()
     assert text.startswith('digraph "every_joint_type" {\n')
-    assert '  "sliding" -> "bolted" [label="fixed_joint: fixed\\nxyz 0 0 -0.05\\nrpy 0 0 0"];' \
-        in text.splitlines()
+    assert ('  "sliding" -> "bolted" [label="fixed_joint: fixed\\nxyz 0 0 -0.05\\nrpy 0 0 0", '
+            'style=dashed, color="grey50", fontcolor="grey40"];') in text.splitlines()
     assert text.count(" -> ") == 6
     assert text.count(";\n") == 3 + 7 + 6  # settings, links, joints
 
@@ -144,3 +144,64 @@ def test_cycle_path_and_roots():
     assert tree.root == "base"  # the root of the bigger tree
     assert set(tree.two_parents) == {"a"}
     assert not tree.is_sound
+
+
+def test_graphviz_draws_fixed_joints_apart_from_moving_ones(cli, tmp_path):
+    out = tmp_path / "tree.dot"
+    assert cli("tree", "-q", EVERY_JOINT, "--graphviz", out).exit_code == 0
+    edges = [line for line in out.read_text().splitlines() if " -> " in line]
+    fixed = [edge for edge in edges if ": fixed\\n" in edge]
+    assert fixed == ['  "sliding" -> "bolted" [label="fixed_joint: fixed\\nxyz 0 0 -0.05'
+                     '\\nrpy 0 0 0", style=dashed, color="grey50", fontcolor="grey40"];']
+    moving = [edge for edge in edges if edge not in fixed]
+    assert len(moving) == 5 and all(edge.endswith(", style=solid, penwidth=2];")
+                                    for edge in moving)
+
+
+def _chain_urdf(tmp_path: Path, joints: list[tuple[str, str, str]]) -> Path:
+    """A URDF of ``joints`` (parent, child, type), each link defined once."""
+    links = dict.fromkeys(name for parent, child, _ in joints for name in (parent, child))
+    body = "".join(f'<link name="{name}"/>' for name in links)
+    for parent, child, kind in joints:
+        limit = '<limit lower="-1" upper="1" effort="1" velocity="1"/>' \
+            if kind == "revolute" else ""
+        body += (f'<joint name="{child}_joint" type="{kind}"><parent link="{parent}"/>'
+                 f'<child link="{child}"/>{limit}</joint>')
+    path = tmp_path / "chain.urdf"
+    path.write_text(f'<robot name="chain">{body}</robot>')
+    return path
+
+
+def test_fold_fixed_leaves_one_box_per_rigid_group_and_only_moving_joints(cli, tmp_path):
+    robot = _chain_urdf(tmp_path, [("base", "plate", "fixed"), ("plate", "sensor", "fixed"),
+                                   ("base", "arm", "revolute"), ("arm", "tool", "fixed"),
+                                   ("tool", "finger", "revolute")])
+    out = tmp_path / "folded.dot"
+    result = cli("tree", "-q", robot, "--graphviz", out, "--fold-fixed")
+    assert (result.exit_code, result.stderr) == (0, f"wrote {out}\n")
+    lines = out.read_text().splitlines()
+    assert [line for line in lines if line.startswith('  "') and " -> " not in line] == [
+        '  "base" [label="base\\n+ plate\\n+ sensor"];',
+        '  "arm" [label="arm\\n+ tool"];',
+        '  "finger";']
+    # The moving joint below a folded link starts at the box holding it.
+    assert [line.split(" [")[0] for line in lines if " -> " in line] == [
+        '  "base" -> "arm"', '  "arm" -> "finger"']
+    assert "fixed" not in out.read_text()
+
+
+def test_fold_fixed_says_how_many_more_a_big_group_holds(cli, tmp_path):
+    # Children come in urdfdom's order, by joint name: letters keep it the counting order.
+    robot = _chain_urdf(tmp_path, [("base", f"frame_{chr(97 + i)}", "fixed")
+                                   for i in range(12)])
+    out = tmp_path / "folded.dot"
+    assert cli("tree", "-q", robot, "--graphviz", out, "--fold-fixed").exit_code == 0
+    label = "\\n".join(["base"] + [f"+ frame_{chr(97 + i)}" for i in range(7)] + ["+ ... 5 more"])
+    assert f'  "base" [label="{label}"];' in out.read_text().splitlines()
+
+
+def test_fold_fixed_without_graphviz_is_a_usage_error(cli):
+    result = cli("tree", EVERY_JOINT, "--fold-fixed")
+    assert result.exit_code == 2 and result.stdout == ""
+    assert result.stderr == ("mcar: error: --fold-fixed folds the --graphviz drawing: give "
+                             "--graphviz OUT too\n")

@@ -51,13 +51,14 @@ def test_config_text_table_marks_overrides(run_mcar):
     assert result.returncode == 0, result.stderr
     rows = {line.split()[0]: line for line in result.stdout.splitlines() if line.strip()}
     assert rows["*wheel_radius"].split()[1:3] == ["0.04", "m"]
-    # The meaning was written for the default: "65 mm diameter wheel" is marked stale.
+    # The meaning was written for the default: "65 mm diameter wheel" says so, in words.
     assert rows["*wheel_radius"].endswith(
-        "65 mm diameter wheel [stale: said of the default 0.0325]")
+        "65 mm diameter wheel (this describes the default, 0.0325 m)")
     assert "config.xacro:" in rows["*wheel_radius"]
     assert rows["axle_height"].split()[1] == "0.04"  # derived follows the override
     assert [line for line in result.stdout.splitlines() if line.startswith("*")] == \
-        [rows["*wheel_radius"], "* overridden: its meaning was written for the default value"]
+        [rows["*wheel_radius"],
+         "* overridden by --set or --config: its description is of the default value"]
     assert result.stdout.rstrip().endswith("Defined in urdf/config.xacro")
 
 
@@ -65,7 +66,7 @@ def test_config_text_table_without_overrides_has_no_legend(run_mcar):
     result = run_mcar("config")
     assert result.returncode == 0, result.stderr
     assert not [line for line in result.stdout.splitlines() if line.startswith("*")]
-    assert "stale" not in result.stdout
+    assert "describes the default" not in result.stdout
     assert result.stdout.rstrip().splitlines()[-1] == "Defined in urdf/config.xacro"
 
 
@@ -168,6 +169,18 @@ def test_bad_overrides_exit_2_naming_the_dimension(run_mcar, tmp_path, args, mes
     assert message in result.stderr
     assert len(result.stderr.splitlines()) == 1 and "Traceback" not in result.stderr
     assert not out.exists(), "nothing is built when the numbers are refused"
+
+
+@pytest.mark.parametrize("value, hint", [
+    ("0.6", ""),  # 0.6cm would fit, but 0.6 m is just too big: no guessed unit
+    ("32.5", "; did you mean 32.5mm?"),  # a thousand times off: a unit slip
+])
+def test_a_unit_is_suggested_only_for_a_slip(run_mcar, tmp_path, value, hint):
+    result = run_mcar("build", ROBOT, "-o", tmp_path / "robot.urdf", "--set",
+                      f"wheel_radius={value}")
+    assert result.returncode == 2
+    assert result.stderr == (f"mcar: error: --set wheel_radius={value}: wheel_radius = "
+                             f"{value} m is outside 5 mm..0.5 m{hint}\n")
 
 
 @pytest.mark.parametrize("content, message", [

@@ -49,6 +49,12 @@ def test_a_bad_range_says_what_is_wrong(text, unit, message):
     ("40", "m", "5mm..0.5m", "r = 40 m is outside 5 mm..0.5 m; did you mean 40mm?"),
     ("400", "m", "5mm..0.5m", "r = 400 m is outside 5 mm..0.5 m; did you mean 400mm?"),
     ("4000", "m", "5mm..0.5m", "r = 4000 m is outside 5 mm..0.5 m"),  # 4 m, 40 m: no unit fits
+    # Just past an end: meant as written, a bit too big or small; 0.6cm would fit, but
+    # a unit slip is 10-1000 times off, so it is not offered.
+    ("0.6", "m", "5mm..0.5m", "r = 0.6 m is outside 5 mm..0.5 m"),
+    ("0.003", "m", "5mm..0.5m", "r = 0.003 m is outside 5 mm..0.5 m"),
+    ("1.1", "m", "-0.5m..0.5m", "r = 1.1 m is outside -0.5 m..0.5 m; did you mean 1.1mm?"),
+    ("-0.7", "m", "-0.5m..0.5m", "r = -0.7 m is outside -0.5 m..0.5 m"),
     (40, "kg", "1g..5kg", "r = 40 kg is outside 1 g..5 kg; did you mean 40g?"),
     ("40furlongs", "m", "5mm..0.5m", "r = 40furlongs (8046.74 m) is outside 5 mm..0.5 m"),
     ("1e308", "m", "5mm..0.5m", "r = 1e+308 m is outside 5 mm..0.5 m"),
@@ -96,7 +102,8 @@ def test_a_range_that_cannot_hold_is_refused_where_it_is_written(tmp_path, prop,
 
 
 @pytest.mark.parametrize("value, hint", [
-    ("0.9", "; did you mean 0.9 cm (written 0.009)?"),
+    ("0.9", ""),  # less than twice the top: too big as written, not cm (see unit hints)
+    ("4", "; did you mean 4 cm (written 0.04)?"),
     ("40", "; did you mean 40 mm (written 0.04)?"),
     ("0.001", ""),  # no common unit brings it inside: no guess
 ])

@@ -307,3 +307,15 @@ def test_a_robot_file_on_neither_side_is_an_error(run_mcar, two_commits):
     assert result.returncode == 2
     assert result.stderr == ("urdf/nothere.xacro: error: no such file at HEAD~1 nor at "
                              "working tree\n")
+
+
+def test_a_size_change_is_said_per_axis_not_as_a_distance(cli, tmp_path):
+    old = write(tmp_path, "old.urdf", SMALL)
+    new = write(tmp_path, "new.urdf", SMALL.replace('<box size="0.4 0.3 0.1"/>',
+                                                    '<box size="0.411 0.3 0.111"/>'))
+    lines = [line.strip() for line in cli("diff", old, new).stdout.splitlines()]
+    assert "visual size (mm)           400 300 100  ->  411 300 111   (+11 0 +11)" in lines
+    assert "size (mm)                    400 300 190  ->  411 300 195.5   (+11 0 +5.5)" in lines
+    # A corner of the bounding box is a position: its move is still a distance too.
+    assert ("bounding box min (mm)        -200 -150 -50  ->  -205.5 -150 -55.5   "
+            "(-5.5 0 -5.5; 7.7782 mm)") in lines

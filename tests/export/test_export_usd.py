@@ -68,6 +68,22 @@ def test_a_real_robot_opens_in_pxr_with_its_packages_gone(usd_exports, robot):
                if p.HasAPI(UsdPhysics.ArticulationRootAPI))
 
 
+@needs_folder
+@pytest.mark.parametrize("robot, note", [
+    # Jackal's own URDF joint from its empty base_link: not the converter's.
+    ("jackal", "joint base_link_joint (the URDF's fixed joint from base_link, a link with "
+               "nothing in it, which the converter ties to the stage)"),
+    # Husky's base_link has a body: the converter adds root_joint of its own.
+    ("husky", "joint root_joint (the converter's weld of the root link to the stage)"),
+])
+def test_the_joint_freed_for_a_floating_base_is_said_to_be_whose_it_is(usd_exports, robot,
+                                                                       note):
+    code, stderr, *_ = usd_exports[robot]
+    assert code == 0, stderr
+    assert [line for line in stderr.splitlines() if "deactivated" in line] == [
+        f"mcar export: {note} deactivated: the base floats"]
+
+
 @pytest.fixture(scope="module")
 def car_usd(tmp_path_factory):
     """The bundled car exported to USD with --verify from a copy of its package, the

@@ -64,7 +64,9 @@ def _cells(name: str, item: dict) -> list[str]:
     note = item["meaning"]
     if item.get("overridden"):  # the meaning describes the default, not this value
         unit = "" if item["unit"] in ("1", "count") else f" {item['unit']}"
-        note += f" (this describes the default, {item['default']:.6g}{unit})"
+        default = item["default"]
+        shown = f"{default:.6g}{unit}" if isinstance(default, float) else default
+        note += f" (this describes the default, {shown})"
     if "expression" in item:
         note += f"  = {item['expression']}"
     path, _, line = item["defined"].rpartition(":")

@@ -175,6 +175,15 @@ def resolve_overrides(search: PackageSearch, sets, files
         return spec, overrides, evaluate(spec, mappings, search)
 
 
+def _default_of(dimension: Dimension) -> float | str:
+    """A dimension's default as config.xacro writes it: its number, or the expression a
+    dimension with a range may hold (``${...}``: the default is that text)."""
+    try:
+        return float(dimension.expression)
+    except ValueError:
+        return dimension.expression.strip()
+
+
 def config_table(spec: ConfigSpec, values: dict[str, float],
                  overrides: dict[str, float]) -> dict:
     """The effective configuration as plain data (for JSON/YAML, and the text table).
@@ -190,10 +199,10 @@ def config_table(spec: ConfigSpec, values: dict[str, float],
             item["range_text"] = dimension.range.text
         if dimension.derived:
             item["expression"] = dimension.expression.strip()[2:-1]
-        elif overrides.get(dimension.name, float(dimension.expression)) != \
-                float(dimension.expression):
+        elif dimension.name in overrides and \
+                overrides[dimension.name] != _default_of(dimension):
             item["overridden"] = True
-            item["default"] = float(dimension.expression)
+            item["default"] = _default_of(dimension)
         return item
 
     return {"config": str(spec.path),

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import re
+import shutil
 
 import pytest
 import yaml
@@ -229,3 +230,26 @@ def test_check_takes_the_same_overrides(run_mcar):
                      "--set", "wheel_radius=0.04")
     assert plain.returncode == 2
     assert "apply to .xacro inputs" in plain.stderr
+
+
+def test_a_dimension_whose_default_is_an_expression_is_shown_not_a_crash(run_mcar, tmp_path):
+    """config.xacro may give a dimension with a range an expression for its default: the
+    table shows it, and an override says the description is of that expression (it ended
+    in 'internal error: ValueError: could not convert string to float')."""
+    for name in ("urdf", "meshes", "package.xml"):
+        copy = shutil.copytree if (REPO / name).is_dir() else shutil.copy
+        copy(REPO / name, tmp_path / name)
+    config = tmp_path / "urdf" / "config.xacro"
+    text = config.read_text()
+    assert '<xacro:property name="plate_length" value="0.200"/>' in text
+    config.write_text(text.replace('<xacro:property name="plate_length" value="0.200"/>',
+                                   '<xacro:property name="plate_length" value="${0.1 * 2}"/>'))
+    plain = run_mcar("config", cwd=tmp_path)
+    assert plain.returncode == 0, plain.stderr
+    row = next(line for line in plain.stdout.splitlines() if line.startswith(" plate_length"))
+    assert row.split()[1:3] == ["0.2", "m"]
+    changed = run_mcar("config", "--set", "plate_length=25cm", cwd=tmp_path)
+    assert changed.returncode == 0, changed.stderr
+    row = next(line for line in changed.stdout.splitlines() if line.startswith("*plate_length"))
+    assert row.split()[1:3] == ["0.25", "m"]
+    assert row.endswith("(this describes the default, ${0.1 * 2})")

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from hostile import PACKAGE_XML
+from hostile import PACKAGE_XML, files_holding
 
 ROBOT = """<?xml version="1.0"?>
 <robot name="atk">
@@ -41,11 +41,6 @@ def _package(root: Path, folder: str) -> Path:
     return root
 
 
-def _holding_key(folder: Path) -> list[str]:
-    return sorted(str(p.relative_to(folder)) for p in folder.rglob("*")
-                  if p.is_file() and KEY in p.read_bytes())
-
-
 def test_a_texture_naming_the_cache_folder_is_refused_and_not_exported(run_mcar, tmp_path):
     package = _package(tmp_path / "repo", "cache/mcar")
     cache = {"MCAR_CACHE_DIR": str(package / "cache" / "mcar")}
@@ -58,7 +53,7 @@ def test_a_texture_naming_the_cache_folder_is_refused_and_not_exported(run_mcar,
     lenient = run_mcar("ci", "--no-render", "--no-sim", cwd=package, env=cache)
     assert lenient.returncode == 0, lenient.stdout + lenient.stderr
     assert (package / "build" / "exports").is_dir()
-    assert _holding_key(package / "build") == []
+    assert files_holding(package / "build", KEY) == []
 
 
 def test_control_the_same_bytes_elsewhere_in_the_package_are_exported(run_mcar, tmp_path):
@@ -66,4 +61,4 @@ def test_control_the_same_bytes_elsewhere_in_the_package_are_exported(run_mcar, 
     result = run_mcar("ci", "--strict", "--no-render", "--no-sim", cwd=package,
                       env={"MCAR_CACHE_DIR": str(tmp_path / "cache")})
     assert result.returncode == 0, result.stdout + result.stderr
-    assert _holding_key(package / "build") != []
+    assert files_holding(package / "build", KEY) != []

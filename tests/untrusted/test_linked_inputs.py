@@ -18,7 +18,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from hostile import PACKAGE_XML
+from hostile import PACKAGE_XML, files_holding
 
 MARK = "MCAR-SECRET-1c4e77"
 ROBOT = """<?xml version="1.0"?>
@@ -35,11 +35,6 @@ def _package(root: Path) -> Path:
     (root / "outside" / "token").write_text(f"ghp_{MARK}\n")
     (root / "outside" / "robot.urdf").write_text(ROBOT.replace("ok", MARK))
     return root / "pkg"
-
-
-def _holding_secret(folder: Path) -> list[str]:
-    return sorted(str(p.relative_to(folder)) for p in folder.rglob("*")
-                  if p.is_file() and not p.is_symlink() and MARK.encode() in p.read_bytes())
 
 
 @pytest.mark.parametrize("target", ["secret", "robot.urdf", "/proc/self/environ"])
@@ -59,7 +54,7 @@ def test_ci_does_not_take_a_robot_file_linked_out_of_the_package(run_mcar, tmp_p
     if real is not None:
         assert f"(a link to {real}, outside" in line
     assert MARK not in result.stdout + result.stderr
-    assert _holding_secret(package) == []
+    assert files_holding(package, MARK.encode()) == []
 
 
 def test_a_robot_folder_linked_out_of_the_package_is_not_searched(run_mcar, tmp_path):
@@ -71,7 +66,7 @@ def test_a_robot_folder_linked_out_of_the_package_is_not_searched(run_mcar, tmp_
     assert "skipped 3 files that are not robots: urdf/robot.urdf (a link to " \
         f"{tmp_path / 'outside' / 'robot.urdf'}, outside {package}: not taken" in result.stderr
     assert MARK not in result.stdout + result.stderr
-    assert _holding_secret(package) == []
+    assert files_holding(package, MARK.encode()) == []
 
 
 def test_control_the_same_bytes_in_the_package_reach_build(run_mcar, tmp_path):
@@ -82,7 +77,7 @@ def test_control_the_same_bytes_in_the_package_reach_build(run_mcar, tmp_path):
     (package / "urdf" / "robot.urdf").write_bytes(secret)
     result = run_mcar("ci", cwd=package)
     assert result.returncode == 1, result.stdout + result.stderr
-    assert _holding_secret(package / "build") == ["robot.urdf"]
+    assert files_holding(package / "build", MARK.encode()) == ["robot.urdf"]
 
 
 def test_a_link_inside_the_package_is_still_a_robot(run_mcar, tmp_path):
@@ -146,4 +141,4 @@ def test_links_into_the_checkout_s_git_folder_are_no_inputs(run_mcar, tmp_path):
     assert result.stderr.splitlines() == [
         f"{package / 'mcar.yaml'}: error: a link to {package}/.git/config, in a "
         "version-control folder: not read"]
-    assert _holding_secret(package) == [".git/config"]
+    assert files_holding(package, MARK.encode()) == [".git/config"]

@@ -19,7 +19,7 @@ import struct
 from pathlib import Path
 
 import pytest
-from hostile import PACKAGE_XML
+from hostile import PACKAGE_XML, files_holding
 
 MARK = b"MCAR-SECRET-7f3a9c"  # in every secret file: what must never reach an output
 
@@ -107,12 +107,6 @@ def _attack(root: Path) -> Path:
     return robot
 
 
-def _holding_secret(folder: Path) -> list[str]:
-    """The files under ``folder`` that hold a secret's bytes (not the planted links)."""
-    return sorted(str(path.relative_to(folder)) for path in folder.rglob("*")
-                  if path.is_file() and not path.is_symlink() and MARK in path.read_bytes())
-
-
 @pytest.fixture
 def robot(tmp_path) -> Path:
     return _attack(tmp_path)
@@ -163,7 +157,7 @@ def test_no_export_holds_a_byte_of_a_file_outside(run_mcar, robot, to):
     result = run_mcar("export", "urdf/robot.urdf", "--to", to, "-o", "out", cwd=package)
     assert result.returncode == 0, result.stderr
     assert (package / "out" / "mcar-export.json").is_file()
-    assert _holding_secret(package / "out") == []
+    assert files_holding(package / "out", MARK) == []
     assert "is outside the folders a robot may name files in" in result.stderr
     # the copy of the OBJ and its .mtl name only what the folder holds
     copied = {p.name: p.read_text() for p in (package / "out").rglob("*")
@@ -181,7 +175,7 @@ def test_control_an_allowed_folder_is_exported(run_mcar, robot):
     result = run_mcar("export", "urdf/robot.urdf", "--to", "urdf", "-o", "out",
                       "--asset-path", "../outside", cwd=package)
     assert result.returncode == 0, result.stderr
-    assert _holding_secret(package / "out")
+    assert files_holding(package / "out", MARK)
 
 
 def test_a_picture_draws_a_refused_mesh_as_a_missing_one(run_mcar, robot):
@@ -210,7 +204,7 @@ def test_a_picture_draws_a_refused_mesh_as_a_missing_one(run_mcar, robot):
     stamped = [entry[0] for entry in record["outputs"][picture]["files"]]
     assert stamped and not [name for name in stamped if str(outside) in name]
     assert all(name.startswith(str(package)) for name in stamped)
-    assert _holding_secret(package / "refused") == []
+    assert files_holding(package / "refused", MARK) == []
 
 
 def _ci_package(root: Path, yaml: str) -> Path:
@@ -244,15 +238,15 @@ def test_ci_with_export_fails_strict_and_copies_nothing(run_mcar, tmp_path):
     assert [line.split(":")[1] for line in strict.stderr.splitlines()
             if line.endswith("[W215]")] == ["4", "5", "8"]
     assert "FAILED (check)" in strict.stdout
-    assert _holding_secret(package) == []
+    assert files_holding(package, MARK) == []
     lenient = run_mcar("ci", cwd=package)  # warnings pass: exported, without the secret
     assert lenient.returncode == 0, lenient.stdout + lenient.stderr
     assert list((package / "build").rglob("mcar-export.json"))
-    assert _holding_secret(package) == []
+    assert files_holding(package, MARK) == []
     # the control: the same folders allowed, the export holds the secret
     allowed = run_mcar("ci", "--strict", "--asset-path", "..", cwd=package)
     assert allowed.returncode == 0, allowed.stdout + allowed.stderr
-    assert _holding_secret(package / "build")
+    assert files_holding(package / "build", MARK)
 
 
 def test_mcar_yaml_may_allow_a_folder_inside_its_repository(run_mcar, tmp_path):
@@ -286,7 +280,7 @@ def test_mcar_yaml_may_not_allow_a_folder_outside(run_mcar, tmp_path, named, why
         message = why.format(outside=outside, package=package)
         assert f"{package / 'mcar.yaml'}:4: error: assets.paths: {message} " \
                "(--asset-path names any folder)" in result.stderr.splitlines()
-    assert _holding_secret(package) == []
+    assert files_holding(package, MARK) == []
 
 
 @pytest.mark.parametrize("workspace", [True, False], ids=["in-ci", "control"])

@@ -17,7 +17,7 @@ import json
 from pathlib import Path
 
 import pytest
-from hostile import PACKAGE_XML
+from hostile import PACKAGE_XML, files_holding
 
 MARK = b"MCAR-TOKEN-5d1e0b"  # the "token": what must never reach an output
 ROBOT = """<?xml version="1.0"?>
@@ -64,11 +64,6 @@ def _checkout(root: Path, vcs: str) -> Path:
     return root
 
 
-def _holding_token(folder: Path) -> list[str]:
-    return sorted(str(path.relative_to(folder)) for path in folder.rglob("*")
-                  if path.is_file() and MARK in path.read_bytes())
-
-
 def test_ci_strict_refuses_the_checkout_s_git_folder(run_mcar, tmp_path):
     package = _checkout(tmp_path / "repo", ".git")
     strict = run_mcar("ci", "--strict", cwd=package)
@@ -85,7 +80,7 @@ def test_ci_strict_refuses_the_checkout_s_git_folder(run_mcar, tmp_path):
     assert lenient.returncode == 0, lenient.stdout + lenient.stderr
     exported = package / "build" / "exports" / "robot" / "urdf"
     assert (exported / "mcar-export.json").is_file()
-    assert [p for p in _holding_token(package) if not p.startswith(".git/")] == []
+    assert [p for p in files_holding(package, MARK) if not p.startswith(".git/")] == []
     # the OBJ and its .mtl are copied naming only what the folder holds
     copied = {p.name: p.read_text() for p in exported.rglob("*") if p.suffix in (".obj", ".mtl")}
     assert ".git" not in copied["quad.obj"] and "mtllib local.mtl" in copied["quad.obj"]
@@ -98,7 +93,7 @@ def test_control_the_same_bytes_outside_a_git_folder_are_exported(run_mcar, tmp_
     package = _checkout(tmp_path / "repo", "git")
     result = run_mcar("ci", "--strict", cwd=package)
     assert result.returncode == 0, result.stdout + result.stderr
-    assert len([p for p in _holding_token(package / "build") if "config" in p]) == 3
+    assert len([p for p in files_holding(package / "build", MARK) if "config" in p]) == 3
 
 
 @pytest.mark.parametrize("name", [".git", ".GIT", ".hg", ".svn"])
@@ -143,9 +138,9 @@ def test_a_gltf_buffer_in_the_git_folder_is_not_read(run_mcar, tmp_path, vcs):
     result = run_mcar("export", "urdf/robot.urdf", "--to", "urdf", "-o", "out", cwd=package)
     assert result.returncode == 0, result.stderr
     if vcs == "git":
-        assert _holding_token(package / "out") == ["meshes/atk/buffer.gltf.stl"]
+        assert files_holding(package / "out", MARK) == ["meshes/atk/buffer.gltf.stl"]
         return
-    assert _holding_token(package / "out") == []
+    assert files_holding(package / "out", MARK) == []
     assert "urdf/robot.urdf: warning: link base: visual left out: mesh " \
         "package://atk/buffer.gltf: cannot be read: .git/config" in result.stderr.splitlines()
 

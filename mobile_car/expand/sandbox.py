@@ -38,6 +38,8 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
+from ..packages.asset_roots import VCS_FOLDERS
+
 _trusted = False
 _unconfined_runs: list[str] = []  # why a run went unconfined, for one notice per process
 
@@ -192,22 +194,19 @@ def _restrict_reads(read_roots: list[Path]) -> None:
             pass
 
 
-# Version control's own folders, never readable: a package at the root of its repository
-# holds .git, and a CI checkout keeps the job's token in .git/config.
-_VCS_FOLDERS = (".git", ".hg", ".svn", ".bzr")
-
-
 def _readable_below(root: Path) -> list[tuple[Path, bool]]:
     """What to allow for ``root``: (path, only listed). The root itself, or, when it holds a
-    version-control folder, the root listed only and each of its entries but that folder
-    (a rule is inherited below its folder, and Landlock has no rule that takes away).
+    version-control folder (a package at the root of its repository holds .git, and a CI
+    checkout keeps the job's token in .git/config), the root listed only and each of its
+    entries but that folder (a rule is inherited below its folder, and Landlock has no rule
+    that takes away).
     An entry that is a link is left out: its target is readable only where it lies within
     another rule (a rule given through a link would allow where it leads)."""
-    if not any(os.path.lexists(os.path.join(root, name)) for name in _VCS_FOLDERS):
+    if not any(os.path.lexists(os.path.join(root, name)) for name in VCS_FOLDERS):
         return [(root, False)]
     try:
         entries = [entry for entry in os.scandir(root)
-                   if entry.name not in _VCS_FOLDERS and not entry.is_symlink()]
+                   if entry.name not in VCS_FOLDERS and not entry.is_symlink()]
     except OSError:
         return [(root, False)]
     return [(root, True), *((Path(entry.path), False) for entry in entries)]

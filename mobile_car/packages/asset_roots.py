@@ -39,8 +39,9 @@ from ..errors import EXIT_PROBLEMS, InputError
 
 _chosen: tuple[Path, ...] = ()  # --asset-path of this run
 # Version control's own folders: what they hold is the checkout's, not the robot's (a
-# CI token in .git/config); lower case, for file systems that ignore case.
-_VCS_FOLDERS = frozenset({".git", ".hg", ".svn", ".bzr"})
+# CI token in .git/config); lower case, for file systems that ignore case. The xacro
+# sandbox keeps its Landlock rules off the same folders.
+VCS_FOLDERS = frozenset({".git", ".hg", ".svn", ".bzr"})
 
 
 class OutsideRootsError(InputError):
@@ -73,7 +74,20 @@ def real_path(path: Path) -> Path:
 
 def in_vcs_folder(path: Path) -> bool:
     """Whether ``path`` names something in a version-control folder (``.git``...)."""
-    return any(part.lower() in _VCS_FOLDERS for part in Path(path).parts)
+    return any(part.lower() in VCS_FOLDERS for part in Path(path).parts)
+
+
+def link_out_of(path: Path, folder: Path) -> str | None:
+    """Why ``path``, every link followed, is not a file of ``folder`` (a real path): it
+    leads out of it, or into its version-control folder; None where it stays inside. A
+    pull request commits links (``urdf/robot.urdf`` -> ``/proc/self/environ``, ``mcar.yaml``
+    -> ``../.git/config``): discovery and mcar.yaml both ask this before reading."""
+    real = real_path(path)
+    if not within(real, [folder]):
+        return f"a link to {real}, outside {folder}"
+    if in_vcs_folder(real.relative_to(folder)):
+        return f"a link to {real}, in a version-control folder"
+    return None
 
 
 def within(path: Path, roots) -> bool:

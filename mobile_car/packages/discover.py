@@ -40,7 +40,7 @@ from pathlib import Path
 from ..errors import InputError
 from ..load.bounded import open_regular, read_text_quietly
 from ..load.inputs import input_limit_mb
-from .asset_roots import in_vcs_folder, real_path, within
+from .asset_roots import link_out_of, real_path
 from .file_shape import FileShape, file_shape, include_target
 
 # Folders of a package that hold outputs or tools, never robot files to take as inputs.
@@ -174,11 +174,10 @@ def _links_out(files: list[Path], folder: Path) -> dict[Path, str]:
     bound = real_path(folder)
     found = {}
     for path in files:
-        real = real_path(path)
-        if not within(real, [bound]):
-            found[path] = f"a link to {real}, outside {bound}: not taken (name it to read it)"
-        elif in_vcs_folder(real.relative_to(bound)):  # urdf/x.urdf -> ../.git/config
-            found[path] = f"a link to {real}, in a version-control folder: not taken"
+        why = link_out_of(path, bound)
+        if why is not None:  # one named on the command line is read: "name it to read it"
+            named = " (name it to read it)" if why.endswith(f"outside {bound}") else ""
+            found[path] = f"{why}: not taken{named}"
     return found
 
 

@@ -123,17 +123,14 @@ def _parse(root: Path, path: Path) -> PackageConfig:
 
     from ..config.bounded_yaml import DuplicateKey, TooLarge, compose_and_load, short_repr
     from ..load.bounded import read_input
-    from .asset_roots import in_vcs_folder, real_path, repository_of, within
+    from .asset_roots import link_out_of, repository_of
 
     shown = str(path)
     # A link out of the repository is refused before it is read: a pull request commits
     # mcar.yaml -> a token file, and the error quoting its first value printed the token.
-    repository, real = repository_of(root), real_path(path)
-    if not within(real, [repository]):
-        raise UsageError(f"a link to {real}, outside {repository}: not read", file=shown)
-    if in_vcs_folder(real.relative_to(repository)):
-        raise UsageError(f"a link to {real}, in a version-control folder: not read",
-                         file=shown)
+    why = link_out_of(path, repository_of(root))
+    if why is not None:
+        raise UsageError(f"{why}: not read", file=shown)
     try:
         node, data = compose_and_load(read_input(path, shown).decode("utf-8"))
     except (OSError, UnicodeDecodeError) as error:

@@ -22,7 +22,6 @@ from pathlib import Path
 import pytest
 import xacro
 import xacro.cli
-
 from conftest import REPO, mcar_process
 
 SUITE = REPO.parent / "shared" / "upstream-suites" / "xacro" / "test"

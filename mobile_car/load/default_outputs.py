@@ -28,6 +28,7 @@ from pathlib import Path
 
 from ..errors import UsageError
 from ..names import shown
+from ..packages.asset_roots import within
 from .input_limit import display_path
 
 # Default output folders of this run, resolved -> (the output root they must stay in, the
@@ -61,7 +62,7 @@ def placed(path: str | os.PathLike) -> tuple[Path, bool]:
         return Path(path), False
     absolute = os.path.abspath(path)
     for folder, (checkout, option) in _folders.items():
-        if absolute != folder and not absolute.startswith(folder.rstrip(os.sep) + os.sep):
+        if not _inside(absolute, folder):
             continue
         parent = os.path.realpath(os.path.dirname(absolute))
         if not _inside(parent, checkout):
@@ -74,7 +75,7 @@ def placed(path: str | os.PathLike) -> tuple[Path, bool]:
 
 
 def _inside(path: str, folder: str) -> bool:
-    return path == folder or path.startswith(folder.rstrip(os.sep) + os.sep)
+    return within(path, [folder])
 
 
 def _refuse(checkout: str, path: str, option: str) -> None:

@@ -86,6 +86,7 @@ def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = Fal
     (an importer that does not read them must not trip on them); its ``<texture>``s
     copied too with ``copy_textures``, else taken out (MuJoCo reads none): the tool given
     the URDF never reads a file the export did not measure and allow."""
+    from ..check.colours import drop_unusable_colours
     from ..sim.drives import actuated_joints
     from ..sim.model import gazebo_friction
     from ..sim.servos import DriveSources
@@ -98,7 +99,9 @@ def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = Fal
         for element in list(root.iter("gazebo", "transmission", "ros2_control")):
             element.getparent().remove(element)
     assets = Assets(folder, readable, binary_stl_only)
-    warnings = place_meshes(root, assets, loaded)
+    # As urdfdom does (W217): MuJoCo and urdf-usd-converter refuse an rgba of 3 numbers.
+    warnings = drop_unusable_colours(root)
+    warnings += place_meshes(root, assets, loaded)
     warnings += place_textures(root, assets, loaded, copy_textures)
     return Prepared(root, joints, sources, assets, warnings)
 

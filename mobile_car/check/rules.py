@@ -76,6 +76,12 @@ _TABLE = [
          "an inertia moment beyond 1e18 kg m² (nan, inf, 1e999: E114)", "accepts"),
     Rule("E118", "mass-negative", "a negative mass, on any link (a fixed link's mass counts "
          "in the robot's total; a massless frame has 0)", "accepts"),
+    Rule("E119", "mass-implausible", "a mass no built robot has: a wheel (a link a "
+         "continuous joint turns) over 5 times the robot without its wheels, or a link denser than "
+         "25 000 kg/m³ (osmium: 22 590) or, over 1 g, lighter than 1 kg/m³ (air: 1.2) in the "
+         "volume of its collision shapes (its visuals' if none; a mesh by its box; shapes "
+         "that fit in a 2 cm cube are a placeholder, not judged)",
+         "accepts"),
     # Joints
     Rule("E120", "joint-type", "a joint without a type, or of an unknown type", "rejects"),
     Rule("E121", "joint-link-missing", "a joint without `<parent link>` or `<child link>`",

@@ -232,3 +232,20 @@ def arm(links: int = 3) -> str:
         parent = f"arm_{number}_link"
     parts.append("\n</robot>\n")
     return "".join(parts)
+
+
+def heavy_wheels(wheel_mass: float = 1000.0) -> str:
+    """two_wheeler() whose wheels weigh ``wheel_mass`` kg each, their inertia scaled with
+    it (a TurtleBot3 burger's 28 g wheel typed as 1000 kg: every tensor stays physical)."""
+    import re
+
+    text = two_wheeler()
+
+    def scaled(link):
+        old = float(re.search(r'<mass value="([^"]+)"', link.group(0)).group(1))
+        return re.sub(r'(mass value|ixx|iyy|izz)="([^"]+)"',
+                      lambda m: f'{m.group(1)}="{float(m.group(2)) * wheel_mass / old:.6g}"',
+                      link.group(0))
+
+    return re.sub(r'<link name="wheel_(left|right)_link">.*?</link>', scaled, text,
+                  flags=re.DOTALL)

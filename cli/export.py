@@ -55,9 +55,11 @@ the body fixed to it, in the same place (the converter makes no body of a frame)
 --to sdf: the SDF libsdformat writes from that URDF (the Gazebo helper, `make
 gazebo-helper`), mesh URIs relative to it; fixed joints lumped, as Gazebo does.
 
-Inertias MuJoCo refuses (principal moments that break A + B >= C, a moving link
-without mass) are named link by link (exit 1); --fix-inertia applies MuJoCo's own
-fixes instead, one warning per link.
+Inertias MuJoCo refuses (a tensor not positive definite, principal moments that
+break A + B >= C, a moving link without mass) are named link by link, with the line
+that writes each (exit 1); --fix-inertia makes them physical instead, one warning per
+link: the nearest physical tensor, a token mass for a frame without geometry, MuJoCo's
+own fixes for the rest (balanceinertia, inertia from geometry).
 
 --verify loads the export back from its folder with the target's engine: every
 file inside the folder, the total mass within 0.1% of the description's, the same
@@ -99,8 +101,10 @@ Exit codes:
               help="mjcf: add a floor, the robot standing on it (default: with a floating "
                    "base).")
 @click.option("--fix-inertia", is_flag=True,
-              help="Apply MuJoCo's fixes to inertias it refuses (balanceinertia, inertia "
-                   "from geometry), warning per link, instead of failing.")
+              help="Make the inertias MuJoCo refuses physical, warning per link, instead "
+                   "of failing: the nearest physical tensor for one not positive definite, "
+                   "a token mass for a moving frame without mass or geometry, MuJoCo's own "
+                   "fixes otherwise (balanceinertia, inertia from geometry).")
 @click.option("--verify", is_flag=True,
               help="Load the export back with its engine and hold it to the description.")
 @click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
@@ -109,6 +113,7 @@ Exit codes:
 def command(words, to, output, base, floor, fix_inertia, verify, quiet, package_paths, sets,
             config_files):
     from mobile_car.check.checker import check_input
+    from mobile_car.check.mujoco_inertia import places
     from mobile_car.export.mjcf import MjcfOptions
     from mobile_car.export.run import export_robot
 
@@ -128,7 +133,7 @@ def command(words, to, output, base, floor, fix_inertia, verify, quiet, package_
                 print_diagnostic(diagnostic)
             sys.exit(EXIT_PROBLEMS)
         report = export_robot(checked.loaded, Path(output), to,
-                              MjcfOptions(base, floor, fix_inertia), verify)
+                              MjcfOptions(base, floor, fix_inertia, places(checked)), verify)
     _print(report, checked.loaded.label, quiet)
 
 

@@ -124,10 +124,14 @@ def scenario_list(ctx, param, value):
               help="The drive motors' effort limit where the description gives none.")
 @click.option("--speed", type=click.FloatRange(min=0, min_open=True), metavar="RAD/S",
               help="The drive motors' speed limit where the description gives none.")
+@click.option("--fix-inertia", is_flag=True,
+              help="Make the inertias MuJoCo refuses physical (the nearest tensor that "
+                   "satisfies the triangle inequality; a token mass for a moving link "
+                   "without one), saying what changed, instead of failing (E305, E310).")
 @robot_options
 @handle_errors
 def command(words, scenarios, output_format, record, left, right, kind, steering_angle, effort,
-            speed, package_paths, sets, config_files):
+            speed, fix_inertia, package_paths, sets, config_files):
     if record:
         from mobile_car.sim.record import require_format
 
@@ -160,7 +164,7 @@ def command(words, scenarios, output_format, record, left, right, kind, steering
                 continue
             result = simulate(checked, scenarios, left, right, record=bool(record),
                               only_if_drives=not explicit, effort=effort, speed=speed,
-                              kind=kind, steering=steering)
+                              kind=kind, steering=steering, fix_inertia=fix_inertia)
             if not result.simulated:
                 skipped.append((result.file, result.not_a_vehicle))
                 continue

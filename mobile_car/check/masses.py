@@ -2,8 +2,8 @@
 
 A URDF parser reads any mass; a typo of units or a digit (1000 kg for a 28 g TurtleBot3
 wheel) makes a robot that drives in simulation and nowhere else. Two tests, each wide
-enough that no released robot comes near it (the figures of the robots tried are in the
-report of mcar issue 40):
+enough that no released robot comes near it (the figures of the 24 robots tried are in
+docs/rules.md):
 
 * a part a continuous joint turns (a wheel) weighing over WHEEL_OVER_REST times the rest
   of the robot (all of it but such parts): the heaviest wheels built weigh about as much

@@ -31,6 +31,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from ..check.mujoco_inertia import TOKEN_MASS, bare_massless, make_physical, refusals
 from ..check.urdf_model import parse_number
 from ..errors import McarError
 from . import ExportError
@@ -47,6 +48,7 @@ class MjcfOptions:
     base: str = "floating"          # or "fixed"
     floor: bool | None = None       # None: a floor under a floating base
     fix_inertia: bool = False
+    place: object = None            # link name -> "FILE:LINE" of its inertia, or None
 
 
 @dataclass
@@ -131,19 +133,34 @@ def export_mjcf(loaded, folder: Path, options: MjcfOptions) -> Exported:
 
     mj = mujoco()
     prepared = prepare(loaded, folder)
+    # What MuJoCo cannot mend itself, found and mended in the URDF first (then MuJoCo
+    # reads the robot, and names the rest: refused_links).
+    found = before_mujoco(prepared.root)
+    mended = make_physical(prepared.root, found)
     spec = mujoco_spec(mj, prepared, loaded.label)
-    return _complete(mj, spec, prepared.root, prepared.joints, prepared.sources,
-                     prepared.assets, loaded, options, prepared.warnings)
+    return _complete(mj, spec, prepared, loaded, options, (found, mended))
 
 
-def _complete(mj, spec, root, joints, sources, assets, loaded, options, warnings):
+def before_mujoco(root) -> list:
+    """The inertias MuJoCo stops at without a fix of its own: a tensor that is not
+    positive definite, a moving link without mass nor collision geometry to take one
+    from (:mod:`mobile_car.check.mujoco_inertia`)."""
+    tensors = [r for r in refusals(root, massless=False) if r.problem == "not-positive"]
+    return tensors + bare_massless(root)
+
+
+def _complete(mj, spec, prepared, loaded, options, mended_first):
     from ..sim.model import TIMESTEP, add_floor, lowest_points
     from ..sim.servos import add_motors, fit_drive
     from .inertia import apply_fixes, fix_warnings, refuse, refused_links
 
+    root, joints, sources = prepared.root, prepared.joints, prepared.sources
+    assets, warnings = prepared.assets, prepared.warnings
+    found, mended = mended_first
     refused = refused_links(mj, spec)
     if not options.fix_inertia:
-        refuse(refused, loaded.label)
+        refuse(found + refused, loaded.label, options.place)
+    warnings += mended
     apply_fixes(mj, spec, refused, loaded.label)
     _add_missing_mimics(spec, root, mj)
     for geom in spec.geoms:
@@ -180,12 +197,14 @@ def _complete(mj, spec, root, joints, sources, assets, loaded, options, warnings
     (Path(spec.modelfiledir) / name).write_text(spec.to_xml(), encoding="utf-8")
     warnings += fix_warnings(model, refused)
     added = sum(float(model.body(r.link).mass[0]) for r in refused if r.problem == "massless")
+    tokens = TOKEN_MASS * sum(r.problem == "massless" for r in found)
     return Exported(
-        robot_file=name, urdf_mass=urdf_mass(root), model_mass=float(model.body_mass.sum()),
+        robot_file=name, urdf_mass=urdf_mass(root) - tokens,
+        model_mass=float(model.body_mass.sum()),
         moving_joints=moving_joints(root), meshes=sorted(assets.taken),
         converted=[f"{a.uri} -> {a.relative}" for a in assets.by_uri.values() if a.converted],
         warnings=warnings, notes=[f"no drive actuators: {why}"] if drive is None and why else [],
-        drive=drive_summary(drive), base=options.base, floor=floor, added_mass=added)
+        drive=drive_summary(drive), base=options.base, floor=floor, added_mass=added + tokens)
 
 
 def parse_robot(urdf: bytes, label: str):

@@ -10,7 +10,14 @@ from xml.etree import ElementTree as ET
 
 from ..errors import EXIT_OK, EXIT_PROBLEMS
 from .junit import junit_case, junit_document
-from .lint import SimDiagnostic, lint, moving_links_without_mass
+from .lint import (
+    SimDiagnostic,
+    lint,
+    moving_links_without_mass,
+    physical_urdf,
+    refused_error,
+    refused_inertias,
+)
 from .scenarios import (
     ScenarioResult,
     command_speed,
@@ -53,7 +60,7 @@ class SimReport:
 def simulate(checked, names=None, left=None, right=None, record: bool = False,
              only_if_drives: bool = False, effort: float | None = None,
              speed: float | None = None, kind: str | None = None,
-             steering: float | None = None) -> SimReport:
+             steering: float | None = None, fix_inertia: bool = False) -> SimReport:
     """Lint and run ``names`` (default: the drive kind's scenarios) on a robot that passed
     ``mcar check`` (a CheckResult); ``left``/``right``: the driven joints of each side,
     ``kind``: the drive kind (:mod:`.drives`; both else found from the tree); ``record``:
@@ -79,17 +86,24 @@ def simulate(checked, names=None, left=None, right=None, record: bool = False,
                             ScenarioResult(name, skipped=report.why_no_drive)
                             for name in (names or ("drop", "drive", "spin"))]
         return report
-    report.diagnostics = moving_links_without_mass(checked)
+    urdf, fixed = loaded.urdf, []
+    massless = moving_links_without_mass(checked)
+    if fix_inertia:  # (a robot whose root has no mass is not one a token mass mends)
+        report.diagnostics = [d for d in massless if d.message.startswith("root link")]
+        if not report.diagnostics:
+            urdf, fixed = physical_urdf(urdf)
+    else:
+        report.diagnostics = refused_inertias(checked) + massless
     if report.diagnostics:
-        report.error = "a link MuJoCo must move has no mass (E305 above)"
+        report.error = refused_error(report.diagnostics)
         return report
     try:
-        sim = build_model(loaded.urdf, checked.file, loaded.base, loaded.search, left, right,
+        sim = build_model(urdf, checked.file, loaded.base, loaded.search, left, right,
                           effort, speed, kind)
     except SimModelError as error:
         report.error = error.message
         return report
-    report.notes = list(sim.notes)
+    report.notes = [f"--fix-inertia: {line}" for line in fixed] + list(sim.notes)
     report.held = list(sim.held)
     report.diagnostics = lint(checked, sim)
     report.why_no_drive = str(why_not) if why_not else sim.why_no_drive

@@ -4,11 +4,7 @@ bounds are in mobile_car/check/masses.py; the corpus has a case per bound."""
 
 from __future__ import annotations
 
-import sys
-from pathlib import Path
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "sim"))
-from robot_makers import heavy_wheels, two_wheeler  # noqa: E402
+from sim.robot_makers import heavy_wheels, two_wheeler
 
 MESSAGE = ("small.urdf:15: error: link 'wheel_left_link' turns on a continuous joint (a "
            "wheel) and weighs 1000 kg, 1701 times the 0.588 kg of the robot without its "

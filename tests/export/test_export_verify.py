@@ -167,9 +167,9 @@ def test_inertias_that_break_the_triangle_inequality_are_named(run_mcar, tmp_pat
         "pr2ish.urdf: error: MuJoCo refuses the inertia of 2 links (arm_link, hand_link); "
         "--fix-inertia applies MuJoCo's own fixes (balanceinertia, inertia from geometry)",
         "  link arm_link: principal moments 0.001, 0.002, 0.01 kg m² break A + B >= C "
-        "(0.001 + 0.002 < 0.01)",
+        "(0.001 + 0.002 < 0.01) (pr2ish.urdf:39)",  # where each <inertia> is written
         "  link hand_link: principal moments 0.0001, 0.0001, 0.0003 kg m² break A + B >= C "
-        "(0.0001 + 0.0001 < 0.0003)"]
+        "(0.0001 + 0.0001 < 0.0003) (pr2ish.urdf:48)"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["pr2ish.urdf"]
 
 

@@ -249,3 +249,36 @@ def heavy_wheels(wheel_mass: float = 1000.0) -> str:
 
     return re.sub(r'<link name="wheel_(left|right)_link">.*?</link>', scaled, text,
                   flags=re.DOTALL)
+
+
+# PMB2's antenna inertia as released (pmb2_description urdf/objects/antenna.urdf.xacro):
+# principal moments -3.5e-8, 3.5e-8, 9.1e-8 kg m², not positive definite.
+_ANTENNA = """
+  <joint name="antenna_joint" type="fixed">
+    <parent link="base_link"/><child link="antenna_link"/><origin xyz="-0.05 0 0.08"/>
+  </joint>
+  <link name="antenna_link">
+    <inertial><mass value="0.001"/>
+      <inertia ixx="2.371e-08" ixy="6.119e-08" ixz="1.179e-08" iyy="2.833e-08"
+        iyz="7.74e-09" izz="3.849e-08"/>
+    </inertial>
+  </link>"""
+
+# PR2's gripper gap (pr2_description urdf/gripper_v0/gripper.urdf.xacro): a frame with no
+# mass and no geometry at the end of a prismatic joint.
+_FINGER_FRAME = """
+  <joint name="gap_joint" type="prismatic">
+    <parent link="base_link"/><child link="gap_frame"/><origin xyz="0.05 0 0.08"/>
+    <axis xyz="0 1 0"/><limit effort="10" lower="0" upper="0.09" velocity="0.2"/>
+  </joint>
+  <link name="gap_frame"/>"""
+
+
+def non_positive_antenna() -> str:
+    """two_wheeler() carrying PMB2's antenna, whose tensor MuJoCo refuses."""
+    return two_wheeler(extra=_ANTENNA)
+
+
+def massless_frame() -> str:
+    """two_wheeler() carrying PR2's gripper-gap frame, moving without mass."""
+    return two_wheeler(extra=_FINGER_FRAME)

@@ -14,7 +14,9 @@ found at once, so that ``mcar sim`` and ``mcar export`` name every one of them, 
   on the edge (MuJoCo wants them strictly positive);
 * a moving link without mass and nothing fixed to it that has one: a token mass,
   TOKEN_MASS kg with the inertia of a solid sphere of TOKEN_RADIUS, small beside any part
-  and enough for MuJoCo to move it.
+  and enough for MuJoCo to move it;
+* a moving link with a mass but a tensor of zeros (and nothing fixed to it with one):
+  the inertia of a solid sphere of its mass and TOKEN_RADIUS.
 
 A tensor of all zeros is a massless frame's, which MuJoCo accepts on a link that does not
 move. Masses in kg, moments in kg m², lengths in m.
@@ -35,13 +37,16 @@ _INSIDE = 1e-3  # how far towards the mean a projected tensor is moved off the e
 @dataclass
 class Refusal:
     link: str
-    problem: str  # "not-positive", "triangle" or "massless"
+    problem: str  # "not-positive", "triangle", "no-inertia" or "massless"
     element: object  # the <inertia> (a tensor), or the <link> (no mass)
     moments: tuple[float, ...] = ()
 
     def describe(self) -> str:
         if self.problem == "massless":
             return f"link {self.link}: moves but has no mass (MuJoCo needs one)"
+        if self.problem == "no-inertia":
+            return (f"link {self.link}: moves with a mass but an inertia of zeros (MuJoCo "
+                    "needs it positive)")
         shown = ", ".join(_g(m) for m in self.moments)
         if self.problem == "not-positive":
             return (f"link {self.link}: inertia is not positive definite (principal moments "
@@ -64,21 +69,27 @@ def refusals(root, massless: bool = True) -> list[Refusal]:
         moments = principal_moments(*values)
         a, b, c = moments
         scale = max(-a, c) or 1.0
+        # MuJoCo compares its moments exactly (c a trillionth over a + b is refused): a
+        # diagonal tensor's are exact here too, others carry the rounding of their
+        # eigenvalues (check's W205 allows a millionth, a rounding in the file)
+        diagonal = values[1] == values[2] == values[4] == 0
         if a <= 1e-12 * scale:
             found.append(Refusal(link.get("name"), "not-positive", inertia, moments))
-        elif a + b < c * (1 - 1e-6):
+        elif a + b < (c if diagonal else c * (1 - 1e-9)):
             found.append(Refusal(link.get("name"), "triangle", inertia, moments))
-    if massless:
-        found += [Refusal(name, "massless", element) for name, element in
-                  _massless_moving(root)]
+    for name, link, problem in _moving_without(root):
+        if problem == "no-inertia":
+            found.append(Refusal(name, problem, link.find("inertial/inertia")))
+        elif massless:
+            found.append(Refusal(name, problem, link))
     return found
 
 
 def bare_massless(root) -> list[Refusal]:
     """The moving links without mass that have no collision geometry either: MuJoCo has
     nothing to take a mass from (PR2's finger-tip frames)."""
-    return [Refusal(name, "massless", element) for name, element in _massless_moving(root)
-            if element.find("collision") is None]
+    return [Refusal(name, problem, element) for name, element, problem in _moving_without(root)
+            if problem == "massless" and element.find("collision") is None]
 
 
 def make_physical(root, found: list[Refusal]) -> list[str]:
@@ -97,6 +108,18 @@ def make_physical(root, found: list[Refusal]) -> list[str]:
                          "solid sphere), as MuJoCo needs a mass to move it")
             continue
         inertia = link.find("inertial/inertia")
+        if item.problem == "no-inertia":
+            element = link.find("inertial/mass")
+            # (its mass may be on a link fixed below it: a token's then, all the same)
+            mass = (parse_number(element.get("value")) if element is not None else 0) or 0.0
+            mass = mass if mass > 0 else TOKEN_MASS
+            moment = 0.4 * mass * TOKEN_RADIUS ** 2
+            for name in INERTIA:
+                inertia.set(name, f"{moment:.9g}" if name in ("ixx", "iyy", "izz") else "0")
+            lines.append(f"link {item.link}: moves with {mass:g} kg but an inertia of zeros; "
+                         f"given that of a {TOKEN_RADIUS * 100:g} cm solid sphere of its mass "
+                         f"({moment:.4g} kg m² about each axis)")
+            continue
         values = _tensor(inertia)
         if values is None:
             continue
@@ -171,9 +194,10 @@ def places(checked):
     return place
 
 
-def _massless_moving(root):
-    """(name, <link>) of each link a non-fixed joint moves whose mass, with that of the
-    links fixed below it, is 0 (MuJoCo adds those up)."""
+def _moving_without(root):
+    """(name, <link>, "massless" or "no-inertia") of each link a non-fixed joint moves
+    whose mass, with that of the links fixed below it, is 0, or whose tensors there are
+    all zeros (MuJoCo adds those up)."""
     links = {link.get("name"): link for link in root.iterchildren("link")}
     joints = list(root.iterchildren("joint"))
     fixed_children: dict[str, list[str]] = {}
@@ -187,12 +211,19 @@ def _massless_moving(root):
         elif joint.get("type") is not None:
             moved.append(child.get("link"))
     for name in moved:
-        if name in links and _fixed_mass(name, links, fixed_children) <= 0:
-            yield name, links[name]
+        if name not in links:
+            continue
+        mass, inertia = _fixed_mass(name, links, fixed_children)
+        if mass <= 0:
+            yield name, links[name], "massless"
+        elif not inertia and links[name].find("inertial/inertia") is not None:
+            yield name, links[name], "no-inertia"
 
 
-def _fixed_mass(name: str, links: dict, fixed_children: dict) -> float:
-    total, todo, seen = 0.0, [name], set()
+def _fixed_mass(name: str, links: dict, fixed_children: dict) -> tuple[float, bool]:
+    """The mass of ``name`` and the links fixed below it, and whether any of them has a
+    tensor that is not all zeros."""
+    total, inertia, todo, seen = 0.0, False, [name], set()
     while todo:
         current = todo.pop()
         if current in seen:
@@ -200,8 +231,10 @@ def _fixed_mass(name: str, links: dict, fixed_children: dict) -> float:
         seen.add(current)
         mass = links[current].find("inertial/mass") if current in links else None
         total += (parse_number(mass.get("value")) or 0.0) if mass is not None else 0.0
+        tensor = _tensor(links[current].find("inertial/inertia")) if current in links else None
+        inertia = inertia or bool(tensor and any(tensor))
         todo += fixed_children.get(current, [])
-    return total
+    return total, inertia
 
 
 def _give_token_mass(link) -> None:

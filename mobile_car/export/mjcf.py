@@ -145,7 +145,8 @@ def before_mujoco(root) -> list:
     """The inertias MuJoCo stops at without a fix of its own: a tensor that is not
     positive definite, a moving link without mass nor collision geometry to take one
     from (:mod:`mobile_car.check.mujoco_inertia`)."""
-    tensors = [r for r in refusals(root, massless=False) if r.problem == "not-positive"]
+    tensors = [r for r in refusals(root, massless=False)
+               if r.problem in ("not-positive", "no-inertia")]
     return tensors + bare_massless(root)
 
 

@@ -77,11 +77,13 @@ def moving_links_without_mass(checked) -> list[SimDiagnostic]:
 
 def refused_inertias(checked) -> list[SimDiagnostic]:
     """E310 for each inertia tensor MuJoCo refuses (not positive definite, or breaking the
-    triangle inequality; check only warns, W204 and W205), at its <inertia>: run before
-    the engine, which would stop at the first without naming its link."""
+    triangle inequality: check only warns, W204 and W205; all zeros on a moving link with
+    a mass), at its <inertia>: run before the engine, which would stop at the first
+    without naming its link."""
     locate = Locator(checked)
     return [_at(locate, "E310", item.element, f"{item.describe()}: MuJoCo refuses it; "
-                "--fix-inertia puts the nearest physical tensor in its place")
+                + ("--fix-inertia gives it a small sphere's" if item.problem == "no-inertia"
+                   else "--fix-inertia puts the nearest physical tensor in its place"))
             for item in refusals(checked.robot.element, massless=False)]
 
 

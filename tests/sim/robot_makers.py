@@ -282,3 +282,20 @@ def non_positive_antenna() -> str:
 def massless_frame() -> str:
     """two_wheeler() carrying PR2's gripper-gap frame, moving without mass."""
     return two_wheeler(extra=_FINGER_FRAME)
+
+
+# A swivel with a mass and an inertia of zeros, which MuJoCo refuses on a moving body.
+_ZERO_TENSOR = """
+  <joint name="swivel_joint" type="continuous">
+    <parent link="base_link"/><child link="swivel_link"/><origin xyz="0 0 0.09"/>
+    <axis xyz="0 0 1"/>
+  </joint>
+  <link name="swivel_link">
+    <inertial><mass value="0.01"/>
+      <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial>
+  </link>"""
+
+
+def zero_tensor_swivel() -> str:
+    """two_wheeler() with a swivel of 10 g whose inertia is all zeros."""
+    return two_wheeler(extra=_ZERO_TENSOR)

@@ -8,7 +8,7 @@ from __future__ import annotations
 import re
 
 import pytest
-from sim.robot_makers import massless_frame, non_positive_antenna
+from sim.robot_makers import massless_frame, non_positive_antenna, zero_tensor_swivel
 
 from mobile_car.sim.engine import mujoco as engine
 
@@ -24,6 +24,7 @@ def robots(tmp_path_factory):
     folder = tmp_path_factory.mktemp("inertia")
     (folder / "antenna.urdf").write_text(non_positive_antenna())
     (folder / "frame.urdf").write_text(massless_frame())
+    (folder / "swivel.urdf").write_text(zero_tensor_swivel())
     return folder
 
 
@@ -86,3 +87,17 @@ def test_a_massless_moving_frame_gets_a_token_mass(run_mcar, robots, tmp_path):
     assert f"frame.urdf: warning: {token}" in exported.stderr
     assert ("verified: mass 0.701 kg, the description's 0.7 kg + 0.001 kg given to "
             "massless links") in exported.stderr
+
+
+def test_a_moving_link_with_mass_and_no_inertia_is_named_and_given_one(run_mcar, robots):
+    line = line_of(zero_tensor_swivel(), 'ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"')
+    refused = run_mcar("sim", "swivel.urdf", "--scenario", "drop", cwd=robots)
+    assert refused.returncode == 1
+    assert (f"swivel.urdf:{line}: error: link swivel_link: moves with a mass but an inertia "
+            "of zeros (MuJoCo needs it positive): MuJoCo refuses it; --fix-inertia gives it "
+            "a small sphere's [E310]") in refused.stderr
+    fixed = run_mcar("sim", "swivel.urdf", "--scenario", "drop", "--fix-inertia", cwd=robots)
+    assert fixed.returncode == 0, fixed.stderr
+    assert ("--fix-inertia: link swivel_link: moves with 0.01 kg but an inertia of zeros; "
+            "given that of a 1 cm solid sphere of its mass (4e-07 kg m² about each axis)"
+            ) in fixed.stderr

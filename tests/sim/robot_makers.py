@@ -299,3 +299,8 @@ _ZERO_TENSOR = """
 def zero_tensor_swivel() -> str:
     """two_wheeler() with a swivel of 10 g whose inertia is all zeros."""
     return two_wheeler(extra=_ZERO_TENSOR)
+
+
+def pr2_like_inertias() -> str:
+    """two_wheeler() with both of the above: PMB2's antenna and PR2's gripper-gap frame."""
+    return two_wheeler(extra=_ANTENNA + _FINGER_FRAME)

@@ -5,10 +5,16 @@ massless gripper frames stopped both even with --fix-inertia)."""
 
 from __future__ import annotations
 
+import math
 import re
 
 import pytest
-from sim.robot_makers import massless_frame, non_positive_antenna, zero_tensor_swivel
+from sim.robot_makers import (
+    massless_frame,
+    non_positive_antenna,
+    pr2_like_inertias,
+    zero_tensor_swivel,
+)
 
 from mobile_car.sim.engine import mujoco as engine
 
@@ -101,3 +107,19 @@ def test_a_moving_link_with_mass_and_no_inertia_is_named_and_given_one(run_mcar,
     assert ("--fix-inertia: link swivel_link: moves with 0.01 kg but an inertia of zeros; "
             "given that of a 1 cm solid sphere of its mass (4e-07 kg m² about each axis)"
             ) in fixed.stderr
+
+
+def test_the_mended_mjcf_loads_in_mujoco_and_stands(run_mcar, tmp_path):
+    (tmp_path / "both.urdf").write_text(pr2_like_inertias())
+    result = run_mcar("export", "both.urdf", "--to", "mjcf", "-o", "out", "--fix-inertia",
+                      cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    mujoco = engine()
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "out/two_wheeler.xml"))
+    data = mujoco.MjData(model)
+    mujoco.mj_step(model, data, nstep=round(1 / model.opt.timestep))  # 1 s, motors at 0
+    free = next(j for j in range(model.njnt) if model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE)
+    w = data.qpos[model.jnt_qposadr[free] + 3]  # the quaternion's w: cos(tilt / 2)
+    assert abs(w) > math.cos(math.radians(1) / 2)  # upright within 1°
+    start = model.jnt_dofadr[free]
+    assert abs(data.qvel[start:start + 3]).max() < 0.002  # at rest: under 2 mm/s

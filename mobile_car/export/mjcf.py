@@ -11,7 +11,9 @@ description only (``inertiafromgeom`` off). Then, the choices of an export for p
   (URDF's and Gazebo's default); a converted mesh without a URDF material keeps its
   own colour;
 * friction from the description's ``<gazebo reference><mu1>``, with a contact priority
-  so that the part's own value wins;
+  so that the part's own value wins; on a vehicle, sim's castor friction where none is
+  given and each wheel's collision cylinder a sphere of its radius (a round tyre), as
+  ``mcar sim`` has them, so that ``--verify`` judges the model sim judged;
 * ``--base floating`` (a free joint ``floating_base`` on the root link) or ``fixed``
   (welded to the world, as the importer leaves it);
 * ``--floor``: sim's floor and light, the robot standing on it (its lowest collision
@@ -134,7 +136,13 @@ def export_mjcf(loaded, folder: Path, options: MjcfOptions) -> Exported:
 
 
 def _complete(mj, spec, root, joints, sources, assets, loaded, options, warnings):
-    from ..sim.model import TIMESTEP, add_floor, lowest_points
+    from ..sim.model import (
+        TIMESTEP,
+        add_floor,
+        lowest_points,
+        resting_parts,
+        rolling_contacts,
+    )
     from ..sim.servos import add_motors, fit_drive
     from .inertia import apply_fixes, fix_warnings, refuse, refused_links
 
@@ -165,9 +173,13 @@ def _complete(mj, spec, root, joints, sources, assets, loaded, options, warnings
     drive, why = fit_drive(mj, shape, data, joints, sources)
     mass = float(shape.body_mass.sum())
     add_motors(mj, spec, drive, mass)
+    points = lowest_points(mj, shape, data)
+    if drive is not None:  # sim's castor friction and round tyres: what --verify judges
+        rolling_contacts(mj, spec, drive, resting_parts(shape, points, drive.wheels)[1],
+                         sources.friction)
     floor = options.floor if options.floor is not None else options.base == "floating"
     if floor:
-        lowest = [z for g, z in lowest_points(mj, shape, data).items()
+        lowest = [z for g, z in points.items()
                   if shape.geom_contype[g] or shape.geom_conaffinity[g]]
         if lowest:
             root_body.pos = [root_body.pos[0], root_body.pos[1], root_body.pos[2] - min(lowest)]

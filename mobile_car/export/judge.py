@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from lxml import etree
 
+from ..errors import UsageError
 from . import ExportError
 
 JUDGE_FREE_JOINT = "mcar_free"  # the free joint's name sim's runs look for
@@ -34,13 +35,21 @@ def sim_model_of(mj, path, exported, label: str):
     free.name = JUDGE_FREE_JOINT
     if not exported.floor:
         add_floor(spec, mj)
-    model = spec.compile()
+    try:
+        model = spec.compile()
+    except ValueError as error:
+        raise ExportError(f"MuJoCo cannot compile the export on a floor: {error}",
+                          file=label) from None
     data = mj.MjData(model)
     mj.mj_kinematics(model, data)
     joints = _joint_elements(mj, model)
     summary = exported.drive
-    drive, _ = choose_drive(find_tree(mj, model, data, joints), set(), summary["left"],
-                            summary["right"], summary["kind"])
+    try:
+        drive, _ = choose_drive(find_tree(mj, model, data, joints), set(), summary["left"],
+                                summary["right"], summary["kind"])
+    except UsageError as error:  # worded for --left/--right: the manifest named them
+        raise ExportError(f"the manifest's drive does not fit the model: {error.message}",
+                          file=label) from None
     drive.chosen = "the export's manifest"
     for wheel in drive.driven:
         actuator = _actuator(model, f"mcar_motor_{wheel.joint}", wheel.joint, label)

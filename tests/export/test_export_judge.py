@@ -96,3 +96,8 @@ def test_an_export_whose_motors_were_taken_out_fails_verify(tmp_path):
     with pytest.raises(McarError, match="drive joint wheel_left_joint has no actuator "
                                         "mcar_motor_wheel_left_joint"):
         verify_mjcf(tmp_path / "out", exported)
+    exported.drive["left"] = ["nope_joint"]
+    with pytest.raises(McarError, match="the manifest's drive does not fit the model: "
+                                        "--left/--right nope_joint: the robot has no joint "
+                                        "of that name"):
+        verify_mjcf(tmp_path / "out", exported)

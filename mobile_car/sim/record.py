@@ -27,7 +27,8 @@ from .engine import mujoco
 
 FPS = 15
 SIZE = (640, 480)  # pixels, width x height: a wheel of a small robot is tens of pixels
-LARGEST = 1920  # pixels a side --record-size allows (a frame is kept in memory per state)
+LARGEST = 1280  # pixels a side --record-size allows: a frame (a byte a pixel) is kept per
+# state, 1.6 MB each at most, about 200 MB for the ~130 of drop, drive and spin
 FORMATS = (".gif",)
 AZIMUTH, ELEVATION = -70.0, -35.0  # degrees; a short path (drop, spin) is seen so
 SIDE_ANGLE = 25.0  # degrees off the side of a long path (drive, turn)
@@ -107,21 +108,26 @@ class Recorder:
 
     def frames(self) -> list[np.ndarray]:
         """Every kept state drawn, each segment from a camera that follows the robot."""
+        return [self._draw(*shot) for shot in self._shots()]
+
+    def _shots(self) -> list[tuple]:
+        """(data, camera, qpos, ctrl, fastest command) for every kept state, in order."""
         data = self.mj.MjData(self.model)
         fastest = max((abs(float(c[a])) for states in self.segments for _, c in states
                        for a, _ in self.motors), default=0.0)
-        pictures = []
-        for states in self.segments:
-            camera = self.camera_for(np.array([q[self.free:self.free + 3] for q, _ in states]))
-            for qpos, ctrl in states:
-                data.qpos[:] = qpos
-                self.mj.mj_kinematics(self.model, data)
-                camera.lookat[:] = [*data.xpos[self.root][:2], self.height / 2]
-                self.renderer.update_scene(data, camera=camera)
-                self._add_sun()
-                self._add_arrows(data, ctrl, fastest)
-                pictures.append(self.renderer.render().copy())
-        return pictures
+        return [(data, camera, qpos, ctrl, fastest) for states in self.segments
+                for camera in [self.camera_for(np.array([q[self.free:self.free + 3]
+                                                         for q, _ in states]))]
+                for qpos, ctrl in states]
+
+    def _draw(self, data, camera, qpos, ctrl, fastest: float) -> np.ndarray:
+        data.qpos[:] = qpos
+        self.mj.mj_kinematics(self.model, data)
+        camera.lookat[:] = [*data.xpos[self.root][:2], self.height / 2]
+        self.renderer.update_scene(data, camera=camera)
+        self._add_sun()
+        self._add_arrows(data, ctrl, fastest)
+        return self.renderer.render().copy()
 
     def camera_for(self, path: np.ndarray):
         """A camera for the segment whose root moved along ``path`` (N x 3): from the side
@@ -190,12 +196,16 @@ class Recorder:
     def gif(self) -> bytes:
         from PIL import Image
 
-        images = [Image.fromarray(frame) for frame in self.frames()]
-        if not images:
+        shots = self._shots()
+        if not shots:
             raise UsageError("nothing was simulated to record")
-        # One palette for the whole animation: the floor's squares do not flicker.
-        palette = images[len(images) // 2].quantize(colors=255)
-        frames = [image.quantize(palette=palette, dither=Image.Dither.NONE) for image in images]
+        # One palette for the whole animation (the middle picture's): the floor's squares
+        # do not flicker; each picture is reduced to it as it is drawn, one byte a pixel
+        # kept instead of three.
+        palette = Image.fromarray(self._draw(*shots[len(shots) // 2])).quantize(colors=255)
+        frames = [Image.fromarray(self._draw(*shot)).quantize(palette=palette,
+                                                              dither=Image.Dither.NONE)
+                  for shot in shots]
         out = io.BytesIO()
         frames[0].save(out, format="GIF", save_all=True, append_images=frames[1:],
                        duration=round(1000 / FPS), loop=0)

@@ -42,7 +42,7 @@ def sim_model_of(mj, path, exported, label: str):
                           file=label) from None
     data = mj.MjData(model)
     mj.mj_kinematics(model, data)
-    joints = _joint_elements(mj, model)
+    joints = _joint_elements(mj, model, getattr(exported, "joint_types", None) or {})
     summary = exported.drive
     try:
         drive, _ = choose_drive(find_tree(mj, model, data, joints), set(), summary["left"],
@@ -96,9 +96,10 @@ def _actuator(model, name: str, joint: str, label: str):
         raise ExportError(f"drive joint {joint} has no actuator {name}", file=label) from None
 
 
-def _joint_elements(mj, model) -> dict:
-    """The model's joints as the URDF elements sim's drive finder reads: a hinge without
-    a range is ``continuous``, with one ``revolute``; a slide is ``prismatic``."""
+def _joint_elements(mj, model, types: dict[str, str]) -> dict:
+    """The model's joints as the URDF elements sim's drive finder reads: the type the
+    description gave (``types``, the manifest's), else a hinge without a range is
+    ``continuous``, with one ``revolute``, and a slide ``prismatic``."""
     joints = {}
     for j in range(model.njnt):
         kind = model.jnt_type[j]
@@ -108,6 +109,7 @@ def _joint_elements(mj, model) -> dict:
             name = "prismatic"
         else:
             continue
+        name = types.get(model.joint(j).name, name)
         element = etree.Element("joint", name=model.joint(j).name, type=name)
         if model.jnt_limited[j]:
             low, high = model.jnt_range[j]

@@ -67,6 +67,10 @@ class Exported:
     base: str = "floating"
     floor: bool = False
     added_mass: float = 0.0         # kg MuJoCo gave massless moving links (--fix-inertia)
+    # moving joint -> its URDF type (mjcf): MuJoCo's hinge does not say whether it was a
+    # revolute joint that --verify's drive finder must not take for a wheel (Hunter 2's
+    # steering, limits 0 to 0, is a hinge without a range)
+    joint_types: dict[str, str] = field(default_factory=dict)
 
 
 @dataclass
@@ -194,7 +198,9 @@ def _complete(mj, spec, root, joints, sources, assets, loaded, options, warnings
         moving_joints=moving_joints(root), meshes=sorted(assets.taken),
         converted=[f"{a.uri} -> {a.relative}" for a in assets.by_uri.values() if a.converted],
         warnings=warnings, notes=[f"no drive actuators: {why}"] if drive is None and why else [],
-        drive=drive_summary(drive), base=options.base, floor=floor, added_mass=added)
+        drive=drive_summary(drive), base=options.base, floor=floor, added_mass=added,
+        joint_types={j.get("name"): j.get("type") for j in root.iterchildren("joint")
+                     if j.get("type") != "fixed"})
 
 
 def parse_robot(urdf: bytes, label: str):

@@ -101,3 +101,25 @@ def test_an_export_whose_motors_were_taken_out_fails_verify(tmp_path):
                                         "--left/--right nope_joint: the robot has no joint "
                                         "of that name"):
         verify_mjcf(tmp_path / "out", exported)
+
+
+def test_a_steering_joint_with_equal_limits_is_judged_as_the_revolute_joint_it_is(run_mcar,
+                                                                                  tmp_path):
+    """Hunter 2 steers on revolute joints limited 0 to 0, which MuJoCo reads as hinges
+    without a range: the manifest's joint types keep them steering joints, not wheels."""
+    from sim.robot_makers import ackermann
+
+    from mobile_car.errors import McarError
+    from mobile_car.export.mjcf import Exported
+    from mobile_car.export.verify import verify_mjcf
+
+    result = _export(run_mcar, tmp_path, ackermann(steer_limit=0.0))
+    assert result.returncode == 0, result.stderr
+    assert "mcar export: verified: turn passed as mcar sim judges it: " in result.stderr
+    document = json.loads((tmp_path / "out/mcar-export.json").read_text())
+    assert document["joint_types"]["front_left_steering_joint"] == "revolute"
+    exported = Exported(**{k: document[k] for k in Exported.__dataclass_fields__})
+    exported.joint_types = {}  # read from MuJoCo's hinges alone: no steering joint found
+    with pytest.raises(McarError, match="the manifest's drive does not fit the model: "
+                                        "--drive ackermann: no steering joints"):
+        verify_mjcf(tmp_path / "out", exported)

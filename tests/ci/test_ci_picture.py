@@ -19,5 +19,6 @@ def test_a_robot_that_fails_sim_keeps_its_picture(run_mcar, tmp_path):
     picture = tmp_path / "renders" / "belly.png"
     assert picture.is_file(), sorted(p.name for p in (tmp_path / "renders").rglob("*"))
     with Image.open(picture) as image:
-        assert image.size[0] >= 320 and len(set(image.convert("L").getdata())) > 10
+        low, high = image.convert("L").getextrema()
+        assert image.size[0] >= 320 and high - low > 50  # a drawing, not a blank
     assert (tmp_path / "renders" / "index.png").is_file()  # the contact sheet too

@@ -40,7 +40,8 @@ its packages: the robot file and every mesh it uses, paths relative to it.
 meshes/: visual geometry (geom group 2, touching nothing) and collision geometry
 (group 3), the description's masses, <mimic> as equality constraints, friction
 from <gazebo><mu1>, and on a vehicle the velocity servos `mcar sim` drives with
-(actuators mcar_motor_JOINT: data.ctrl is each drive wheel's speed, rad/s).
+(actuators mcar_motor_JOINT: data.ctrl is each drive wheel's speed, rad/s),
+sim's round tyres and castor friction.
 --base floating (a free joint, the default) or fixed; --floor (the default under
 a floating base) adds a floor with the robot standing on it. Meshes MuJoCo cannot
 read (COLLADA, PLY, ...) are converted to STL in metres, each listed.
@@ -63,10 +64,11 @@ own fixes for the rest (balanceinertia, inertia from geometry).
 
 --verify loads the export back from its folder with the target's engine: every
 file inside the folder, the total mass within 0.1% of the description's, the same
-moving joints; in MuJoCo a vehicle settles on a floor and drives forward under its
-actuators; a URDF loads in yourdfpy (meshes too) and urdfdom's check_urdf where
-installed; an SDF in libsdformat without errors. A mismatch is an error naming
-what differs, and nothing is written.
+moving joints; in MuJoCo a vehicle passes `mcar sim`'s own scenarios with sim's
+bounds (drop, drive, spin or turn), judged as sim judges the description; a USD
+weighs more than 0 kg; a URDF loads in yourdfpy (meshes too) and urdfdom's
+check_urdf where installed; an SDF in libsdformat without errors. A mismatch is an
+error naming what differs, and nothing is written.
 
 The robot is checked first, as by `mcar check`; one with errors is not exported.
 The folder is written whole or not at all (staged beside it, renamed into place);

@@ -11,7 +11,9 @@ description only (``inertiafromgeom`` off). Then, the choices of an export for p
   (URDF's and Gazebo's default); a converted mesh without a URDF material keeps its
   own colour;
 * friction from the description's ``<gazebo reference><mu1>``, with a contact priority
-  so that the part's own value wins;
+  so that the part's own value wins; on a vehicle, sim's castor friction where none is
+  given and each wheel's collision cylinder a sphere of its radius (a round tyre), as
+  ``mcar sim`` has them, so that ``--verify`` judges the model sim judged;
 * ``--base floating`` (a free joint ``floating_base`` on the root link) or ``fixed``
   (welded to the world, as the importer leaves it);
 * ``--floor``: sim's floor and light, the robot standing on it (its lowest collision
@@ -67,6 +69,10 @@ class Exported:
     base: str = "floating"
     floor: bool = False
     added_mass: float = 0.0         # kg MuJoCo gave massless moving links (--fix-inertia)
+    # moving joint -> its URDF type (mjcf): MuJoCo's hinge does not say whether it was a
+    # revolute joint that --verify's drive finder must not take for a wheel (Hunter 2's
+    # steering, limits 0 to 0, is a hinge without a range)
+    joint_types: dict[str, str] = field(default_factory=dict)
 
 
 @dataclass
@@ -151,7 +157,13 @@ def before_mujoco(root) -> list:
 
 
 def _complete(mj, spec, prepared, loaded, options, mended_first):
-    from ..sim.model import TIMESTEP, add_floor, lowest_points
+    from ..sim.model import (
+        TIMESTEP,
+        add_floor,
+        lowest_points,
+        resting_parts,
+        rolling_contacts,
+    )
     from ..sim.servos import add_motors, fit_drive
     from .inertia import apply_fixes, fix_warnings, refuse, refused_links
 
@@ -186,9 +198,13 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
     drive, why = fit_drive(mj, shape, data, joints, sources)
     mass = float(shape.body_mass.sum())
     add_motors(mj, spec, drive, mass)
+    points = lowest_points(mj, shape, data)
+    if drive is not None:  # sim's castor friction and round tyres: what --verify judges
+        rolling_contacts(mj, spec, drive, resting_parts(shape, points, drive.wheels)[1],
+                         sources.friction)
     floor = options.floor if options.floor is not None else options.base == "floating"
     if floor:
-        lowest = [z for g, z in lowest_points(mj, shape, data).items()
+        lowest = [z for g, z in points.items()
                   if shape.geom_contype[g] or shape.geom_conaffinity[g]]
         if lowest:
             root_body.pos = [root_body.pos[0], root_body.pos[1], root_body.pos[2] - min(lowest)]
@@ -205,7 +221,9 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
         moving_joints=moving_joints(root), meshes=sorted(assets.taken),
         converted=[f"{a.uri} -> {a.relative}" for a in assets.by_uri.values() if a.converted],
         warnings=warnings, notes=[f"no drive actuators: {why}"] if drive is None and why else [],
-        drive=drive_summary(drive), base=options.base, floor=floor, added_mass=added + tokens)
+        drive=drive_summary(drive), base=options.base, floor=floor, added_mass=added + tokens,
+        joint_types={j.get("name"): j.get("type") for j in root.iterchildren("joint")
+                     if j.get("type") != "fixed"})
 
 
 def parse_robot(urdf: bytes, label: str):

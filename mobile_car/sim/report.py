@@ -57,14 +57,16 @@ class SimReport:
         return EXIT_OK
 
 
-def simulate(checked, names=None, left=None, right=None, record: bool = False,
+def simulate(checked, names=None, left=None, right=None,
+             record: bool | tuple[int, int] = False,
              only_if_drives: bool = False, effort: float | None = None,
              speed: float | None = None, kind: str | None = None,
              steering: float | None = None, fix_inertia: bool = False) -> SimReport:
     """Lint and run ``names`` (default: the drive kind's scenarios) on a robot that passed
     ``mcar check`` (a CheckResult); ``left``/``right``: the driven joints of each side,
     ``kind``: the drive kind (:mod:`.drives`; both else found from the tree); ``record``:
-    keep a GIF of the runs; ``only_if_drives``: a robot that is not a vehicle
+    keep a GIF of the runs (True, or its size in pixels, width x height);
+    ``only_if_drives``: a robot that is not a vehicle
     (:func:`.vehicle.not_a_vehicle`) is not simulated (``simulated`` False), as for the
     files of a package and in ``mcar ci``; ``effort``, ``speed``: the drive motors'
     figures where the description gives none (:mod:`.motors`); ``steering``: the turn's
@@ -126,7 +128,8 @@ def simulate(checked, names=None, left=None, right=None, record: bool = False,
     if record:
         from .record import Recorder
 
-        recorder = Recorder(sim, scenarios_for(sim, names))
+        recorder = Recorder(sim, scenarios_for(sim, names),
+                            record if isinstance(record, tuple) else None)
     try:
         report.scenarios = run_scenarios(sim, names, recorder, delta)
         if recorder is not None:

@@ -304,3 +304,36 @@ def zero_tensor_swivel() -> str:
 def pr2_like_inertias() -> str:
     """two_wheeler() with both of the above: PMB2's antenna and PR2's gripper-gap frame."""
     return two_wheeler(extra=_ANTENNA + _FINGER_FRAME)
+
+
+def skid_plate(sag: float = 0.004) -> str:
+    """The two-wheeler with a skid plate fixed under its body just ahead of the axle, its
+    bottom ``sag`` m below the wheels' (negative: above them): a body lower than the
+    wheels rests on its belly."""
+    r = 0.033
+    size = (0.06, 0.08, 0.01)
+    plate = f"""
+  <joint name="plate_joint" type="fixed">
+    <parent link="base_link"/><child link="plate_link"/>
+    <origin xyz="0.05 0 {-r - sag + size[2] / 2:.6g}"/>
+  </joint>
+  <link name="plate_link">
+    <collision><geometry><box size="{size[0]:.6g} {size[1]:.6g} {size[2]:.6g}"/></geometry>
+    </collision>
+    <inertial><mass value="0.02"/>{box_inertia(0.02, *size)}</inertial>
+  </link>"""
+    return two_wheeler(extra=plate)
+
+
+def weak_motors(effort: float = 0.004) -> str:
+    """The two-wheeler whose wheel joints allow ``effort`` N·m (and 20 rad/s): too little
+    to turn its wheels at 10 rad/s against its own inertia in time."""
+    return two_wheeler(limit=f'<limit effort="{effort:g}" velocity="20"/>')
+
+
+def massless(robot: str) -> str:
+    """``robot`` with every <inertial> taken out: a visual-only description (as
+    urdf_tutorial's 06-flexible.urdf), which weighs nothing."""
+    import re
+
+    return re.sub(r"<inertial>.*?</inertial>", "", robot, flags=re.S)

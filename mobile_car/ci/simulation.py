@@ -6,7 +6,8 @@ with its drive kind's scenarios. Then:
 * a robot that is not a vehicle (no wheels, one wheel, nothing but its wheels to stand
   on: :func:`mobile_car.sim.vehicle.not_a_vehicle`) is skipped, saying so;
 * a vehicle sim cannot drive (mecanum rollers, wheels on one side, a steering layout
-  that is no Ackermann pair) *fails*, with the reason, unless its package opts it out:
+  that is no Ackermann pair) *fails*, with the reason, as in ``mcar sim``
+  (:func:`mobile_car.sim.report.undriven`), unless its package opts it out:
   ``sim: skip: {GLOB: REASON}`` in the package's ``mcar.yaml``
   (:mod:`mobile_car.packages.package_config`), whose reason ci prints;
 * any other vehicle fails on any failed scenario or sim rule.
@@ -91,12 +92,13 @@ def sim_step(item: CiItem, skip: str | None = None) -> None:
         return
     cases, problems, code = junit_cases(result), failure_lines(result), result.exit_code
     if result.drive is None and not result.error:  # a vehicle that only stood
+        # (sim failed its drive scenarios already, as mcar sim does: one line says why)
         why = (f"cannot drive this vehicle: {result.why_no_drive}; only drop ran ({OPT_OUT} "
                "that is not meant to drive)")
         for case in cases[1:]:
             if case["status"] == "skipped":
                 case.update(status="failed", message=why)
-        problems.append(why)
+        problems = [p for p in problems if "cannot drive this vehicle: " not in p] + [why]
         code = code or EXIT_PROBLEMS
     failed = [case["name"] for case in cases if case["status"] == "failed"]
     ran = ", ".join(case["name"] for case in cases[1:])

@@ -316,8 +316,8 @@ def _from_declaration(tree: Tree, declaration) -> tuple[Drive | None, str | None
     if not driven:
         return None
     lefts, rights = _side(driven, 1), _side(driven, -1)
-    if not (lefts and rights) or len(lefts) + len(rights) != len(driven):
-        return None
+    if not lefts or len(lefts) != len(rights) or 2 * len(lefts) != len(driven):
+        return None  # (a wheel on the centre line, or named on both sides: E303 says so)
     kind = "differential" if len(lefts) == len(rights) == 1 else "skid-steer"
     free = [w for w in tree.wheels if w not in driven]
     return Drive(kind, lefts, rights, free, chosen="declared", sources=sources), None

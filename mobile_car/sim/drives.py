@@ -157,7 +157,9 @@ def find_tree(mj, model, data, joints: dict, lowest: dict | None = None) -> Tree
     rolling = [_wheel(mj, model, data, joints, name) for name, element in joints.items()
                if element.get("type") == "continuous" and name in names]
     rolling = [w for w in rolling if w.geom_ids]
-    floor = min(lowest.values(), default=0.0)
+    # The floor is what the collision geometry reaches (an export's visuals touch nothing).
+    floor = min((z for g, z in lowest.items()
+                 if model.geom_contype[g] or model.geom_conaffinity[g]), default=0.0)
     candidates, not_wheels = [], {}
     for wheel in rolling:
         why = _not_a_wheel(model, data, wheel, lowest, floor)

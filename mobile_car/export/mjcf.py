@@ -162,7 +162,7 @@ def _complete(mj, spec, root, joints, sources, assets, loaded, options, warnings
     shape = _compile(spec, loaded.label)
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)
-    drive, why = fit_drive(mj, shape, data, joints, sources)
+    drive, why = fit_drive(mj, shape, data, joints, sources, lowest_points(mj, shape, data))
     mass = float(shape.body_mass.sum())
     add_motors(mj, spec, drive, mass)
     floor = options.floor if options.floor is not None else options.base == "floating"

@@ -145,14 +145,10 @@ class Tree:
     not_wheels: dict = field(default_factory=dict)
 
 
-def find_tree(mj, model, data, joints: dict, lowest: dict | None = None) -> Tree:
+def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
     """The wheels, steering joints, rollers and castor wheels of a compiled model
     (``joints``: URDF joint name -> element, the robot's own joints; ``lowest``: geom ->
     the z of its lowest point, :func:`.model.lowest_points`)."""
-    if lowest is None:
-        from .model import lowest_points
-
-        lowest = lowest_points(mj, model, data)
     names = {model.joint(j).name for j in range(model.njnt)}
     rolling = [_wheel(mj, model, data, joints, name) for name, element in joints.items()
                if element.get("type") == "continuous" and name in names]

@@ -136,7 +136,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     mj.mj_kinematics(shape, data)
     lowest = lowest_points(mj, shape, data)
     drive, why = fit_drive(mj, shape, data, joints,
-                           DriveSources(root_figures, actuated, friction, declared),
+                           DriveSources(root_figures, actuated, friction, declared), lowest,
                            left, right, kind, effort, speed)
     wheels = drive.wheels if drive else []
     mass = float(shape.body_mass.sum())

@@ -47,12 +47,14 @@ class DriveSources:
         return [d for d in found if meant_for(d, joints)]
 
 
-def fit_drive(mj, shape, data, joints: dict, sources: DriveSources, left=None, right=None,
-              kind=None, effort=None, speed=None) -> tuple[Drive | None, str | None]:
-    """The drive of a compiled model (kinematics done on ``data``) with its driven wheels'
-    motor figures and servo gains, or (None, why there is none); what ``mcar export
-    --to mjcf`` gives MuJoCo users too."""
-    tree = find_tree(mj, shape, data, joints)
+def fit_drive(mj, shape, data, joints: dict, sources: DriveSources, lowest: dict, left=None,
+              right=None, kind=None, effort=None,
+              speed=None) -> tuple[Drive | None, str | None]:
+    """The drive of a compiled model (kinematics done on ``data``; ``lowest``: its geoms'
+    lowest points, :func:`.model.lowest_points`) with its driven wheels' motor figures and
+    servo gains, or (None, why there is none); what ``mcar export --to mjcf`` gives MuJoCo
+    users too."""
+    tree = find_tree(mj, shape, data, joints, lowest)
     drive, why = choose_drive(tree, sources.actuated, left, right, kind,
                               sources.declarations(joints))
     if drive is not None:

@@ -168,7 +168,7 @@ def command(words, scenarios, output_format, record, left, right, kind, steering
                 continue
             result = simulate(checked, scenarios, left, right, record=bool(record),
                               only_if_drives=not explicit, effort=effort, speed=speed,
-                              kind=kind, steering=steering)
+                              kind=kind, steering=steering, setting=_drive_setting(inp))
             if not result.simulated:
                 skipped.append((result.file, result.not_a_vehicle))
                 continue
@@ -179,6 +179,15 @@ def command(words, scenarios, output_format, record, left, right, kind, steering
         _write_recording(record, reports, codes)
     _emit(reports, output_format, combine_exit_codes(codes), unchecked)
     raise SystemExit(combine_exit_codes(codes))
+
+
+def _drive_setting(inp):
+    """The package's mcar.yaml ``sim.drive`` for the input, or None (stdin, no package)."""
+    from mobile_car.packages.package_config import load_package_config
+    from mobile_car.packages.search import enclosing_package
+
+    found = enclosing_package(inp.path) if inp.path is not None else None
+    return load_package_config(found[1]).sim_drive_for(inp.path) if found else None
 
 
 def say_not_simulated(skipped) -> None:

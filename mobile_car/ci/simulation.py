@@ -69,8 +69,15 @@ def skip_reason(item: CiItem, configs: dict[Path, PackageConfig]) -> str | None:
     return None
 
 
-def sim_step(item: CiItem, skip: str | None = None) -> None:
-    """Simulate an item that passed its check; ``skip``: its package's reason not to."""
+def drive_setting(item: CiItem, configs: dict[Path, PackageConfig]):
+    """({kind, left, right}, where) the item's package sets in ``sim.drive``, or None."""
+    config = config_for(item, configs)
+    return config.sim_drive_for(item.source) if config is not None else None
+
+
+def sim_step(item: CiItem, skip: str | None = None, setting=None) -> None:
+    """Simulate an item that passed its check; ``skip``: its package's reason not to;
+    ``setting``: its package's ``sim.drive`` (:func:`drive_setting`)."""
     from ..sim.report import failure_lines, junit_cases, simulate
 
     started = time.perf_counter()
@@ -79,7 +86,7 @@ def sim_step(item: CiItem, skip: str | None = None) -> None:
                                summary="opted out"))
         return
     try:
-        result = simulate(item.checked, only_if_drives=True)
+        result = simulate(item.checked, only_if_drives=True, setting=setting)
     except McarError as error:  # no engine, or drive wheels named that cannot drive
         item.steps.append(Step("sim", "failed", str(error), exit_code=error.exit_code,
                                error=error, seconds=time.perf_counter() - started))

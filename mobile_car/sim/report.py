@@ -8,7 +8,7 @@ import time
 from dataclasses import dataclass, field
 from xml.etree import ElementTree as ET
 
-from ..errors import EXIT_OK, EXIT_PROBLEMS
+from ..errors import EXIT_OK, EXIT_PROBLEMS, UsageError
 from .junit import junit_case, junit_document
 from .lint import SimDiagnostic, lint, moving_links_without_mass
 from .scenarios import (
@@ -53,7 +53,7 @@ class SimReport:
 def simulate(checked, names=None, left=None, right=None, record: bool = False,
              only_if_drives: bool = False, effort: float | None = None,
              speed: float | None = None, kind: str | None = None,
-             steering: float | None = None) -> SimReport:
+             steering: float | None = None, setting=None) -> SimReport:
     """Lint and run ``names`` (default: the drive kind's scenarios) on a robot that passed
     ``mcar check`` (a CheckResult); ``left``/``right``: the driven joints of each side,
     ``kind``: the drive kind (:mod:`.drives`; both else found from the tree); ``record``:
@@ -61,7 +61,10 @@ def simulate(checked, names=None, left=None, right=None, record: bool = False,
     (:func:`.vehicle.not_a_vehicle`) is not simulated (``simulated`` False), as for the
     files of a package and in ``mcar ci``; ``effort``, ``speed``: the drive motors'
     figures where the description gives none (:mod:`.motors`); ``steering``: the turn's
-    steering angle (rad)."""
+    steering angle (rad); ``setting``: ({kind, left, right}, where) of the package's
+    mcar.yaml ``sim.drive``
+    (:meth:`~mobile_car.packages.package_config.PackageConfig.sim_drive_for`), which the
+    options override."""
     from .model import SimModelError, build_model
 
     started = time.perf_counter()
@@ -84,12 +87,23 @@ def simulate(checked, names=None, left=None, right=None, record: bool = False,
         report.error = "a link MuJoCo must move has no mass (E305 above)"
         return report
     declared, unread, report.reads = declarations(checked)
+    chosen_in = None  # where the package's mcar.yaml chose the drive
+    if setting is not None and not (left or right or kind):
+        (drive_set, chosen_in) = setting
+        left, right, kind = drive_set.get("left"), drive_set.get("right"), drive_set.get("kind")
     try:
         sim = build_model(loaded.urdf, checked.file, loaded.base, loaded.search, left, right,
                           effort, speed, kind, declared)
     except SimModelError as error:
         report.error = error.message
         return report
+    except UsageError as error:
+        if chosen_in is None:
+            raise
+        raise UsageError(f"sim.drive: {error.message}", file=chosen_in) from None
+    if chosen_in is not None and sim.drive is not None:
+        sim.drive.chosen = f"{chosen_in} sim.drive"
+        sim.drive.sources = {joint: sim.drive.chosen for joint in sim.drive.sources}
     report.notes = list(sim.notes) + unread
     report.held = list(sim.held)
     report.diagnostics = lint(checked, sim, declared)

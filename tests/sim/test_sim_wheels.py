@@ -203,3 +203,58 @@ def test_a_vehicle_sim_cannot_drive_fails_unless_only_drop_was_asked(cli, made):
     code, stderr, entry = sim(cli, made["tricycle"], "--scenario", "drop")
     assert code == 0, stderr
     assert statuses(entry) == {"drop": "passed"}
+
+
+MCAR_YAML = """sim:
+  drive:
+    "urdf/dummy.urdf": {kind: differential, left: wheel_left_joint,
+                        right: [wheel_right_joint]}
+"""
+
+
+@pytest.fixture
+def rover_package(tmp_path):
+    """A package whose mcar.yaml sets the drive of its robot (the dummy-wheel car)."""
+    package = tmp_path / "rover_description"
+    (package / "urdf").mkdir(parents=True)
+    (package / "package.xml").write_text(PACKAGE_XML.format("rover_description"))
+    (package / "urdf" / "dummy.urdf").write_text(dummy_wheel())
+    (package / "mcar.yaml").write_text(MCAR_YAML)
+    return package
+
+
+def test_mcar_yaml_sets_the_drive_and_the_options_override_it(cli, rover_package,
+                                                              monkeypatch, run_mcar):
+    monkeypatch.chdir(rover_package)
+    code, stderr, entry = sim(cli, "urdf/dummy.urdf", "--scenario", "drop")
+    assert code == 0, stderr
+    drive = entry["drive"]
+    assert (drive["kind"], drive["chosen"]) == ("differential", "mcar.yaml:3 sim.drive")
+    assert drive["sources"] == {"wheel_left_joint": "mcar.yaml:3 sim.drive",
+                                "wheel_right_joint": "mcar.yaml:3 sim.drive"}
+    code, stderr, entry = sim(cli, "urdf/dummy.urdf", "--scenario", "drop", "--left",
+                              "wheel_right_joint", "--right", "wheel_left_joint")
+    assert entry["drive"]["chosen"] == "--left/--right"
+    # ci reads the same key and gives the same drive.
+    result = run_mcar("ci", ".", "--no-render", "--build-dir", rover_package.parent / "build")
+    assert result.returncode == 0, result.stderr
+    assert " differential 3/3 " in result.stdout
+
+
+@pytest.mark.parametrize("setting, message", [
+    ('{left: nope_joint, right: wheel_right_joint}',
+     "mcar.yaml:3: error: sim.drive: --left/--right nope_joint: the robot has no joint of "
+     "that name"),
+    ("{kind: hovercraft}", "mcar.yaml:3: error: sim.drive 'urdf/dummy.urdf': kind "
+     "'hovercraft' is not one of differential, skid-steer, ackermann"),
+    ("{left: wheel_left_joint}", "mcar.yaml:3: error: sim.drive 'urdf/dummy.urdf': left and "
+     "right go together: name the drive joints of each side"),
+])
+def test_a_wrong_mcar_yaml_drive_is_a_located_usage_error(cli, rover_package, monkeypatch,
+                                                          setting, message):
+    (rover_package / "mcar.yaml").write_text(f'sim:\n  drive:\n    "urdf/dummy.urdf": '
+                                             f'{setting}\n')
+    monkeypatch.chdir(rover_package)
+    result = cli("sim", "urdf/dummy.urdf", "--scenario", "drop")
+    assert result.exit_code == 2
+    assert message in result.stderr, result.stderr

@@ -49,7 +49,10 @@ YAML_STEER = ("front_steer", "front_wheels_names", "front_wheel_name", "steering
 YAML_MECANUM = ("front_left_wheel_command_joint_name", "front_right_wheel_command_joint_name",
                 "rear_left_wheel_command_joint_name", "rear_right_wheel_command_joint_name",
                 "front_left_wheel_joint", "front_right_wheel_joint", "rear_left_wheel_joint",
-                "rear_right_wheel_joint")
+                "rear_right_wheel_joint",
+                # Husarion's mecanum_drive_controller (ROSbot XL)
+                "front_left_wheel_name", "front_right_wheel_name", "rear_left_wheel_name",
+                "rear_right_wheel_name")
 
 
 @dataclass
@@ -136,7 +139,8 @@ def in_yaml_mapping(keys: dict, path: str, names) -> Declaration | None:
     if traction and steering:
         return _yaml("ackermann", path, at_traction or at_steer, driven=traction,
                      steering=steering)
-    if "mecanum" in kind_text or any(k.endswith("_command_joint_name") for k in keys):
+    if "mecanum" in kind_text or any(k.endswith(("_command_joint_name", "_wheel_name"))
+                                     and k.startswith(("front_", "rear_")) for k in keys):
         wheels, at = joints(YAML_MECANUM)
         if len(wheels) == 4:
             return _yaml("mecanum", path, at, driven=wheels)

@@ -7,6 +7,7 @@ from __future__ import annotations
 import pytest
 import yaml
 from lxml import etree
+
 from mobile_car.sim.declared import in_urdf, in_yaml_mapping, joint_problems
 
 

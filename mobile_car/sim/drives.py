@@ -448,6 +448,9 @@ def _why_not(tree: Tree) -> str | None:
         if tree.castor_wheels:
             return ("no drive wheels: only castor wheels on swivels "
                     f"({', '.join(tree.castor_wheels)})")
+        if tree.not_wheels:
+            return ("no drive wheels: no continuous joint about a level axis touches the floor ("
+                    + "; ".join(f"{j}: {why}" for j, why in tree.not_wheels.items()) + ")")
         return "no drive wheels: no continuous joint moves a link with collision geometry"
     centre = [w.joint for w in tree.wheels if abs(w.y) <= SIDE_EPSILON]
     if centre:

@@ -48,7 +48,7 @@ def find_control_config(loaded, joints) -> tuple[ControlConfig | None, list[str]
     """(the multiplier of the controller driving ``joints`` (else the first one found),
     the sentences saying which files could not be read)."""
     problems: list[str] = []
-    for files in _control_packages(loaded):
+    for files in _control_packages(loaded, problems):
         found = []
         for path in files:
             found += _multipliers(path, problems)
@@ -67,7 +67,7 @@ def find_controllers(loaded) -> tuple[list, list[str], list[Path]]:
 
     problems: list[str] = []
     found, read = [], []
-    for files in _control_packages(loaded):
+    for files in _control_packages(loaded, problems):
         read += files
         for path in files:
             shown = display_path(path)
@@ -77,8 +77,14 @@ def find_controllers(loaded) -> tuple[list, list[str], list[Path]]:
     return found, problems, read
 
 
-def _control_packages(loaded):
-    """Each control package's YAML files (at most MAX_FILES), nearest package first."""
+def _control_packages(loaded, problems: list[str]):
+    """Each control package's YAML files (at most MAX_FILES), nearest package first. A
+    file that is a link out of the repository holding its package (or into its ``.git``)
+    is not read, and said in ``problems``: a pull request commits
+    ``X_control/config/c.yaml`` -> a token file, and the YAML error quoting its first line
+    would print the token."""
+    from ..packages.asset_roots import link_out_of, repository_of
+
     for name in _description_packages(loaded):
         stem = next(name[: -len(s)] for s in SUFFIXES if name.endswith(s))
         for suffix in CONTROL_SUFFIXES:
@@ -87,7 +93,14 @@ def _control_packages(loaded):
             except McarError:
                 continue
             files = sorted(root.glob("config/*.yaml")) + sorted(root.glob("*.yaml"))
-            yield files[:MAX_FILES]
+            repository, kept = repository_of(root), []
+            for path in files[:MAX_FILES]:
+                why = link_out_of(path, repository)
+                if why is None:
+                    kept.append(path)
+                else:
+                    problems.append(f"{display_path(path)}: not read ({why})")
+            yield kept
 
 
 def _description_packages(loaded) -> list[str]:

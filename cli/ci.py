@@ -207,7 +207,8 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
                         if helper is not None:
                             pipeline.gazebo_step(item, item.strict)
                         if not no_sim:
-                            simulation.sim_step(item, simulation.skip_reason(item, configs))
+                            simulation.sim_step(item, simulation.skip_reason(item, configs),
+                                                simulation.drive_setting(item, configs))
                         if item.exports:
                             export_step(item, build_dir)
                     cache.record(item, basis, item.strict)

@@ -195,7 +195,7 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
     shape = _compile(spec, loaded.label)
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)
-    drive, why = fit_drive(mj, shape, data, joints, sources)
+    drive, why = fit_drive(mj, shape, data, joints, sources, lowest_points(mj, shape, data))
     mass = float(shape.body_mass.sum())
     add_motors(mj, spec, drive, mass)
     points = lowest_points(mj, shape, data)

@@ -14,6 +14,7 @@ from ..check.mujoco_inertia import make_physical, refusals
 from ..check.urdf_model import parse_number
 from ..load.bounded import read_text_quietly
 from ..load.inputs import display_path
+from .declared import joint_problems, meant_for
 from .diagnostics import SimDiagnostic
 
 RELATIVE_TOLERANCE = 0.01
@@ -109,10 +110,13 @@ def physical_urdf(urdf: bytes) -> tuple[bytes, list[str]]:
     return etree.tostring(root, encoding="utf-8"), lines
 
 
-def lint(checked, sim) -> list[SimDiagnostic]:
-    """Every sim diagnostic of a checked robot and its model, sorted."""
+def lint(checked, sim, declared=()) -> list[SimDiagnostic]:
+    """Every sim diagnostic of a checked robot and its model, sorted; ``declared``: the
+    package's drive declarations (:mod:`.declared`), whose joints must turn."""
     locate = Locator(checked)
-    found = []
+    found = _declared_joints(checked, declared, locate)
+    named_badly = {name for d in declared for name, _ in
+                   joint_problems(d, {j.name: j.type for j in checked.robot.joints})}
     for link in checked.robot.links:
         if link.collisions and link.inertial is None:
             found.append(_at(locate, "W304", link.element,
@@ -120,8 +124,33 @@ def lint(checked, sim) -> list[SimDiagnostic]:
                              "Gazebo leaves it out if it moves (lumps it if fixed), MuJoCo "
                              "gives it a mass from its volume; mcar sim keeps it massless"))
     for plugin in _diff_drive_plugins(checked.robot.element):
-        found += _check_plugin(plugin, sim, locate)
+        found += _check_plugin(plugin, sim, locate, named_badly)
     return sorted(found, key=lambda d: (d.file, d.line or 0, d.rule))
+
+
+def _declared_joints(checked, declared, locate) -> list[SimDiagnostic]:
+    """E306 for each joint a drive declaration names that is fixed or missing, at the
+    declaration: the plugin's tag naming it, or the controller YAML's line. A control
+    package's YAML naming none of this robot's joints is another robot's, not flagged."""
+    types = {j.name: j.type for j in checked.robot.joints}
+    found, said = [], set()
+    for declaration in declared:
+        if not meant_for(declaration, types):
+            continue
+        for name, why in joint_problems(declaration, types):
+            if name in said:  # once per joint, at its first declaration
+                continue
+            said.add(name)
+            message = (f"{declaration.kind} drive declaration names joint {name}: {why}; "
+                       "the robot cannot be driven as its package says")
+            if declaration.element is not None:
+                tag = next((c for c in declaration.element if (c.text or "").strip() == name),
+                           declaration.element)
+                found.append(_at(locate, "E306", tag, message))
+            else:
+                found.append(SimDiagnostic("E306", declaration.file, declaration.line,
+                                           message))
+    return found
 
 
 def _diff_drive_plugins(root):
@@ -143,7 +172,7 @@ def _value(element) -> float | None:
     return parse_number((element.text or "").strip()) if element is not None else None
 
 
-def _check_plugin(plugin, sim, locate) -> list[SimDiagnostic]:
+def _check_plugin(plugin, sim, locate, named_badly=frozenset()) -> list[SimDiagnostic]:
     found = []
     drive = sim.drive
     lefts, rights = (drive.left, drive.right) if drive else ([], [])
@@ -152,7 +181,7 @@ def _check_plugin(plugin, sim, locate) -> list[SimDiagnostic]:
         # gz-sim's DiffDrive takes a <left_joint> per wheel of a side (skid-steer).
         for element in (e for e in plugin if e.tag in tags):
             name = (element.text or "").strip()
-            if name in {w.joint for w in group}:
+            if name in {w.joint for w in group} or name in named_badly:  # (E306 says it)
                 continue
             other = next((w for w in others if w.joint == name), None)
             if other is not None:

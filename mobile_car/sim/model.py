@@ -92,9 +92,11 @@ class SimModel:
 
 def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=None,
                 effort: float | None = None, speed: float | None = None,
-                kind: str | None = None) -> SimModel:
+                kind: str | None = None, declared=None) -> SimModel:
     """``left``, ``right``: the driven joints of each side (a name, comma-separated names
-    or a list), ``kind``: a drive kind (:mod:`.drives`), else found from the tree;
+    or a list), ``kind``: a drive kind (:mod:`.drives`), else declared or found from the
+    tree; ``declared``: the package's drive declarations (:func:`.report.declarations`),
+    None for the URDF's plugins alone;
     ``effort`` (N·m), ``speed`` (rad/s): the drive motors' figures where the description
     gives none (:mod:`.motors`)."""
     mj = mujoco()
@@ -133,9 +135,9 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)
     lowest = lowest_points(mj, shape, data)
-    drive, why = fit_drive(mj, shape, data, joints, DriveSources(root_figures, actuated,
-                                                                friction), left, right, kind,
-                           effort, speed)
+    drive, why = fit_drive(mj, shape, data, joints,
+                           DriveSources(root_figures, actuated, friction, declared), lowest,
+                           left, right, kind, effort, speed)
     wheels = drive.wheels if drive else []
     mass = float(shape.body_mass.sum())
     if not _colliding(shape):

@@ -44,8 +44,9 @@ def sim_model_of(mj, path, exported, label: str):
     mj.mj_kinematics(model, data)
     joints = _joint_elements(mj, model, getattr(exported, "joint_types", None) or {})
     summary = exported.drive
+    tree = find_tree(mj, model, data, joints, lowest_points(mj, model, data))
     try:
-        drive, _ = choose_drive(find_tree(mj, model, data, joints), set(), summary["left"],
+        drive, _ = choose_drive(tree, set(), summary["left"],
                                 summary["right"], summary["kind"])
     except UsageError as error:  # worded for --left/--right: the manifest named them
         raise ExportError(f"the manifest's drive does not fit the model: {error.message}",

@@ -6,7 +6,8 @@ A *wheel* is a ``continuous`` joint whose child link has collision geometry (the
 no other mark of one); it is on the left if its centre has y > 0, on the right if y < 0.
 Above a wheel (between it and the root) may sit an upright hinge: a ``revolute`` one is a
 steering joint, a ``continuous`` one a castor's swivel (that wheel is a castor, not a
-drive wheel). A wheel below another wheel is a roller of an omni or mecanum wheel. The
+drive wheel). A wheel below another wheel is a roller of an omni or mecanum wheel; a
+small one on a level wheel's rim makes that wheel a mecanum hub (:mod:`.mecanum`). The
 kinds:
 
 * ``differential``: one wheel each side, none steered, any castors (TurtleBot3, Kobuki);
@@ -15,8 +16,11 @@ kinds:
 * ``ackermann``: two steered wheels in front, one each side, each on its own steering
   joint, and unsteered wheels behind them; the rear wheels are driven, the front ones
   too where a ``<transmission>`` or ``<ros2_control>`` block gives their joint an actuator;
-* anything else (rollers, wheels on one side or on the centre line, steering that is not
-  one Ackermann pair, legs): no drive, with a sentence saying what was found.
+* ``mecanum``: two wheels a side, none steered, that the package declares mecanum or that
+  carry rollers on their rims (:mod:`.mecanum`), each gripping at 45°;
+* anything else (rollers that are not on four hubs, wheels on one side or on the centre
+  line, steering that is not one Ackermann pair, legs): no drive, with a sentence saying
+  what was found.
 
 ``--drive KIND`` picks a kind the tree allows (an Ackermann car driven as skid-steer, its
 steering held straight); ``--left/--right`` name the driven wheels (a joint or a
@@ -31,8 +35,9 @@ import numpy as np
 
 from ..check.urdf_model import parse_number
 from ..errors import UsageError
+from .mecanum import declared_mecanum, grip_of_rollers, has_rollers, is_roller, mecanum_drive
 
-KINDS = ("differential", "skid-steer", "ackermann")
+KINDS = ("differential", "skid-steer", "ackermann", "mecanum")
 UPRIGHT = 0.9       # |z| of an axis in the root frame above which a hinge steers (or swivels)
 SIDE_EPSILON = 1e-6  # m: a wheel closer than this to the centre line is on neither side
 ACKERMANN_X_TOLERANCE = 0.05  # of the wheelbase: the steering pivots stand side by side
@@ -54,6 +59,7 @@ class Wheel:
     motor: object = None  # MotorFigures: effort and speed limits with their sources
     gain: float = 0.0     # the velocity servo's kv (N·m·s/rad)
     steering: str | None = None  # the revolute joint that steers it
+    grip: tuple[float, float] | None = None  # mecanum: its rollers' grip axis (.mecanum)
 
 
 @dataclass
@@ -81,6 +87,9 @@ class Drive:
     free: list[Wheel] = field(default_factory=list)  # wheels that roll undriven
     steering: list[Steering] = field(default_factory=list)  # ackermann: left, right
     chosen: str = "found from the tree"  # or "--drive", "--left/--right"
+    declared: str = ""   # mecanum: the declaration that made it so, or the rollers
+    grip_from: str = ""  # mecanum: where the rollers' grip axes came from
+    grip_mu: dict = field(default_factory=dict)  # mecanum: joint -> (mu, mu across, source)
 
     @property
     def driven(self) -> list[Wheel]:
@@ -122,6 +131,7 @@ class Tree:
     odd_steering: list[str] = field(default_factory=list)  # above several wheels
     joints: dict = field(default_factory=dict)  # URDF joint name -> element
     make: object = None            # joint name -> Wheel, for a wheel named on the command line
+    roller_grip: dict = field(default_factory=dict)  # hub joint -> its rollers' grip axis
 
 
 def find_tree(mj, model, data, joints: dict) -> Tree:
@@ -132,13 +142,15 @@ def find_tree(mj, model, data, joints: dict) -> Tree:
                   if element.get("type") == "continuous" and name in names]
     candidates = [w for w in candidates if w.geom_ids]
     wheel_bodies = {w.body_id: w for w in candidates}
-    wheels, rollers, castors, above = [], [], [], {}
+    wheels, rollers, castors, above, on_rims = [], [], [], {}, {}
     for wheel in candidates:
         hinge, below_wheel = None, False
         body = int(model.body_parentid[wheel.body_id])
         while body > 0:
             if body in wheel_bodies:
                 below_wheel = True
+                if is_roller(mj, model, data, wheel_bodies[body], wheel):
+                    on_rims.setdefault(wheel_bodies[body].joint, []).append(wheel)
                 break
             hinge = hinge or _upright_hinge(mj, model, data, body)
             body = int(model.body_parentid[body])
@@ -159,14 +171,17 @@ def find_tree(mj, model, data, joints: dict) -> Tree:
                 wheel.steering = None
             continue
         steering.append(_steering(model, data, joints[name], name, under[0]))
+    grips = {hub: grip_of_rollers(model, data, on_rim) for hub, on_rim in on_rims.items()}
     return Tree(wheels, steering, rollers, castors, odd, joints,
-                lambda name: _wheel(mj, model, data, joints, name))
+                lambda name: _wheel(mj, model, data, joints, name),
+                {hub: grip for hub, grip in grips.items() if grip is not None})
 
 
 def choose_drive(tree: Tree, actuated: set[str], left=None, right=None,
-                 kind: str | None = None) -> tuple[Drive | None, str | None]:
+                 kind: str | None = None, declared=()) -> tuple[Drive | None, str | None]:
     """(the drive, None), or (None, why the robot is no vehicle sim can drive);
-    UsageError where --left/--right/--drive ask for what the tree does not allow."""
+    UsageError where --left/--right/--drive ask for what the tree does not allow;
+    ``declared``: the package's mecanum declarations (:mod:`.mecanum`)."""
     if kind is not None and kind not in KINDS:
         raise UsageError(f"--drive {kind}: the drive kinds are {', '.join(KINDS)}")
     if left or right:
@@ -178,7 +193,7 @@ def choose_drive(tree: Tree, actuated: set[str], left=None, right=None,
         return None, why
     lefts = [w for w in tree.wheels if w.y > SIDE_EPSILON]
     rights = [w for w in tree.wheels if w.y < -SIDE_EPSILON]
-    found = _kind_of(tree, lefts, rights)
+    found = _kind_of(tree, lefts, rights, declared)
     if found is None:
         why = _no_kind(tree, lefts, rights)
         if kind is None:
@@ -192,6 +207,13 @@ def choose_drive(tree: Tree, actuated: set[str], left=None, right=None,
         free = [w for w in tree.wheels if w not in driven]
         return Drive("ackermann", _side(driven, 1), _side(driven, -1), free,
                      _sorted_steering(tree.steering), chosen=chosen), None
+    if kind == "mecanum":
+        drive = mecanum_drive(tree, list(declared))
+        if drive is None:
+            raise UsageError(f"--drive mecanum: {len(lefts)} wheel(s) on the left, "
+                             f"{len(rights)} on the right; mecanum drives two a side")
+        drive.chosen = chosen
+        return drive, None
     if kind == "differential" and (len(lefts) != 1 or len(rights) != 1):
         raise UsageError(f"--drive differential: {len(lefts)} wheels on the left, "
                          f"{len(rights)} on the right; name the two driven ones with "
@@ -275,7 +297,7 @@ def _named_wheel(tree: Tree, name: str) -> Wheel:
 
 def _why_not(tree: Tree) -> str | None:
     """Why the tree has no drive of any kind, or None."""
-    if tree.rollers:
+    if tree.rollers and not has_rollers(tree):
         return (f"omni or mecanum wheels (rollers {', '.join(tree.rollers[:4])}"
                 f"{', ...' if len(tree.rollers) > 4 else ''} turn about the wheels): not a drive "
                 f"kind mcar sim drives ({', '.join(KINDS)})")
@@ -291,10 +313,13 @@ def _why_not(tree: Tree) -> str | None:
     return None
 
 
-def _kind_of(tree: Tree, lefts, rights) -> str | None:
+def _kind_of(tree: Tree, lefts, rights, declared=()) -> str | None:
     steered = [w for w in tree.wheels if w.steering is not None]
     if steered or tree.odd_steering:
         return "ackermann" if _no_ackermann(tree, lefts, rights) is None else None
+    if len(lefts) == len(rights) == 2 and (has_rollers(tree)
+                                           or declared_mecanum(tree, declared)):
+        return "mecanum"
     if len(lefts) == len(rights) == 1:
         return "differential"
     if len(lefts) == len(rights) and len(lefts) in (2, 3):

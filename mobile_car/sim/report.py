@@ -11,6 +11,7 @@ from xml.etree import ElementTree as ET
 from ..errors import EXIT_OK, EXIT_PROBLEMS
 from .junit import junit_case, junit_document
 from .lint import SimDiagnostic, lint, moving_links_without_mass
+from .rollers import mecanum_lines, mecanum_summary
 from .scenarios import (
     ScenarioResult,
     command_speed,
@@ -83,13 +84,16 @@ def simulate(checked, names=None, left=None, right=None, record: bool = False,
     if report.diagnostics:
         report.error = "a link MuJoCo must move has no mass (E305 above)"
         return report
+    from .mecanum import yaml_declarations
+
+    declarations, unread = yaml_declarations(loaded)
     try:
         sim = build_model(loaded.urdf, checked.file, loaded.base, loaded.search, left, right,
-                          effort, speed, kind)
+                          effort, speed, kind, declarations)
     except SimModelError as error:
         report.error = error.message
         return report
-    report.notes = list(sim.notes)
+    report.notes = list(sim.notes) + unread
     report.held = list(sim.held)
     report.diagnostics = lint(checked, sim)
     report.why_no_drive = str(why_not) if why_not else sim.why_no_drive
@@ -139,6 +143,8 @@ def drive_summary(sim) -> dict:
                           for w in drive.driven}}
     if drive.kind == "ackermann":
         summary["wheelbase"] = round(drive.wheelbase, 6)
+    if drive.kind == "mecanum":
+        summary.update(mecanum_summary(sim))
     return summary
 
 
@@ -196,6 +202,8 @@ def _drive_lines(d: dict) -> list[str]:
                 f"{motor['servo_gain']:.4g} N·m·s/rad")
         alike.setdefault(text, []).append(joint)
     lines += [f"  motor {', '.join(joints)}: {text}" for text, joints in alike.items()]
+    if "rollers" in d:
+        lines += mecanum_lines(d)
     return lines
 
 

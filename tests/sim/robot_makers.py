@@ -232,3 +232,44 @@ def arm(links: int = 3) -> str:
         parent = f"arm_{number}_link"
     parts.append("\n</robot>\n")
     return "".join(parts)
+
+
+PLANAR_MOVE = """
+  <gazebo>
+    <plugin name="object_controller" filename="libgazebo_ros_planar_move.so">
+      <command_topic>cmd_vel</command_topic>
+    </plugin>
+  </gazebo>"""
+
+
+def mecanum_wheels(mass: float = 10.0, wheelbase: float = 0.4, track: float = 0.4,
+                   radius: float = 0.06, wheel_mu: float | None = None,
+                   extra: str = "") -> str:
+    """A box on four plain cylinders (mecanum wheels as linorobot2 and ROSbot XL draw
+    them: no roller links); ``wheel_mu``: each wheel's <gazebo><mu1> (linorobot2: 0.01);
+    ``extra``: what declares them mecanum (PLANAR_MOVE), else nothing does."""
+    width = 0.5 * radius
+    wheel_mass = 0.05 * mass
+    body_mass = mass - 4 * wheel_mass
+    body = (wheelbase, track - width - 0.04, 0.6 * radius)
+    parts = ['<?xml version="1.0"?>\n<robot name="mecanum_wheels">',
+             _body(body_mass, body, 0.2 * radius, axle=radius)]
+    for end, x in (("front", wheelbase / 2), ("rear", -wheelbase / 2)):
+        for side, sign in (("left", 1), ("right", -1)):
+            name = f"{end}_{side}_wheel"
+            parts.append(_wheel(name, "base_link", (x, sign * track / 2, 0), radius, width,
+                                wheel_mass))
+            if wheel_mu is not None:
+                parts.append(f'\n  <gazebo reference="{name}_link"><mu1>{wheel_mu:g}</mu1>'
+                             f'<mu2>{wheel_mu:g}</mu2></gazebo>')
+    parts.append(extra + "\n</robot>\n")
+    return "".join(parts)
+
+
+def centre_wheel(mass: float = 20.0, radius: float = 0.1) -> str:
+    """A four-wheel skid-steer box with a fifth wheel on its centre line: a vehicle that
+    no drive kind fits (sim cannot drive it)."""
+    width = 0.25 * radius
+    return skid_steer(mass=mass, radius=radius, extra=_wheel(
+        "centre_wheel", "base_link", (0, 0, 0), radius, width, 0.05 * mass)).replace(
+        'name="skid_steer_4"', 'name="centre_wheel"')

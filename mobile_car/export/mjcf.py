@@ -87,13 +87,15 @@ def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = Fal
     copied too with ``copy_textures``, else taken out (MuJoCo reads none): the tool given
     the URDF never reads a file the export did not measure and allow."""
     from ..sim.drives import actuated_joints
+    from ..sim.mecanum import urdf_declarations
     from ..sim.model import gazebo_friction
     from ..sim.servos import DriveSources
 
     root = parse_robot(loaded.urdf, loaded.label)
     joints = {j.get("name"): j for j in root if j.tag == "joint"}
     sources = DriveSources([e for e in root if e.tag in ("gazebo", "ros2_control")],
-                           actuated_joints(root), gazebo_friction(root))
+                           actuated_joints(root), gazebo_friction(root),
+                           urdf_declarations(root))
     if not keep_extras:
         for element in list(root.iter("gazebo", "transmission", "ros2_control")):
             element.getparent().remove(element)
@@ -165,6 +167,7 @@ def _complete(mj, spec, root, joints, sources, assets, loaded, options, warnings
     drive, why = fit_drive(mj, shape, data, joints, sources)
     mass = float(shape.body_mass.sum())
     add_motors(mj, spec, drive, mass)
+    mecanum = _mecanum_tyres(spec, drive, sources)
     floor = options.floor if options.floor is not None else options.base == "floating"
     if floor:
         lowest = [z for g, z in lowest_points(mj, shape, data).items()
@@ -181,8 +184,29 @@ def _complete(mj, spec, root, joints, sources, assets, loaded, options, warnings
         robot_file=name, urdf_mass=urdf_mass(root), model_mass=float(model.body_mass.sum()),
         moving_joints=moving_joints(root), meshes=sorted(assets.taken),
         converted=[f"{a.uri} -> {a.relative}" for a in assets.by_uri.values() if a.converted],
-        warnings=warnings, notes=[f"no drive actuators: {why}"] if drive is None and why else [],
+        warnings=warnings, notes=([f"no drive actuators: {why}"] if drive is None and why
+                                  else []) + mecanum,
         drive=drive_summary(drive), base=options.base, floor=floor, added_mass=added)
+
+
+def _mecanum_tyres(spec, drive, sources) -> list[str]:
+    """A mecanum robot's wheels grip as tyres in the file (their tyre's friction, not the
+    rollers' free roll of a planar_move robot's <mu1> 0.01): a file cannot hold the
+    rollers mcar sim models (their contact is re-aligned every step, sim/rollers.py), so
+    it drives forward and turns, but does not strafe; the note says so."""
+    from ..sim.rollers import tyre_grip
+
+    if drive is None or drive.kind != "mecanum":
+        return []
+    grips = {w.link: tyre_grip(w, sources)[0] for w in drive.wheels}
+    for geom in spec.geoms:
+        if geom.parent.name in grips and (geom.contype or geom.conaffinity):
+            geom.friction = [grips[geom.parent.name], geom.friction[1], geom.friction[2]]
+            geom.priority = 1
+    return ["mecanum wheels: their rollers are not in the file (mcar sim models them); "
+            "each wheel grips as a tyre of mu " + ", ".join(sorted({f"{g:g}" for g in
+                                                                  grips.values()}))
+            + ": the robot drives and turns, but does not strafe"]
 
 
 def parse_robot(urdf: bytes, label: str):

@@ -17,7 +17,10 @@ A robot is mecanum when its package says so (a declaration) or its tree shows it
   a diff-drive and a mecanum YAML for the same joints: its xacro argument picks the
   wheels, 48 or 50 mm, and so the YAML that fits them);
 * a ``<gazebo>`` ``planar_move`` plugin (linorobot2's ``omni_drive.urdf.xacro``: Gazebo
-  moves the base, the wheels slide) on a robot with two wheels a side;
+  moves the base) on a robot with two wheels a side that all slide (their ``<mu1>`` under
+  GRIP_MIN: linorobot2's 0.01, Summit XL's omni wheels' 0): planar_move alone says only
+  that Gazebo moves the base, and Summit XL moves its skid-steer variant, on rubber
+  wheels of mu 1, with it too;
 * ``<fdir1>`` with ``mu2`` near 0 in the wheels' ``<gazebo reference>`` (Gazebo's own
   mecanum model; ROSbot XL in simulation), which also gives each wheel's grip axis;
 * from the tree: four wheels, two a side, each carrying rollers on its rim (small wheels
@@ -43,6 +46,7 @@ from ..errors import McarError
 CORNERS = ("front_left", "front_right", "rear_left", "rear_right")
 RADIUS_TOLERANCE = 0.02   # of the wheels' radius: a controller YAML for other wheels
 FREE_MU = 0.1             # mu2 / mu1 under this: fdir1 declares a grip axis, not a tyre
+GRIP_MIN = 0.1            # a <mu1> under this is rollers' free roll, not a tyre's grip
 ROLLER_SHARE = 0.5        # a roller is smaller than this share of its wheel's radius ...
 RIM_SHARE = 0.5           # ... and its centre this share of it or more off the axle
 MAX_FILES = 20            # YAML files looked at in one control package
@@ -65,6 +69,7 @@ class Declaration:
     radius: float | None = None
     grip: dict[str, tuple[float, float]] = field(default_factory=dict)
     grip_mu: dict[str, tuple[float, float]] = field(default_factory=dict)  # link: mu, mu2
+    sliding: set[str] | None = None  # planar_move: the links whose <mu1> slides
 
     def fits(self, wheels) -> bool:
         """True when it names (or can be read as naming) these four wheels."""
@@ -77,18 +82,28 @@ class Declaration:
                 return False
         if self.grip and not {w.link for w in wheels} <= set(self.grip):
             return False
+        if self.sliding is not None and not {w.link for w in wheels} <= self.sliding:
+            return False
         return True
 
 
 def urdf_declarations(root) -> list[Declaration]:
     """The declarations of the URDF itself: a planar_move plugin, fdir1 grip axes."""
     found = []
+    sliding = set()
+    for gazebo in root.iterchildren("gazebo"):
+        mu = gazebo.find("mu1")
+        # Gazebo reads <mu1>0.01</mu1> and <mu1 value="0.0"/> alike
+        values = _number_list(mu) or (_number_list_text(mu.get("value"))
+                                      if mu is not None else [])
+        if gazebo.get("reference") and values and values[0] < GRIP_MIN:
+            sliding.add(gazebo.get("reference"))
     for gazebo in root.iterchildren("gazebo"):
         for plugin in gazebo.iterchildren("plugin"):
             text = f"{plugin.get('name', '')} {plugin.get('filename', '')}"
             if PLANAR_MOVE.search(text):
                 label = plugin.get("filename") or plugin.get("name")
-                found.append(Declaration(f"<gazebo> plugin {label}"))
+                found.append(Declaration(f"<gazebo> plugin {label}", sliding=sliding))
     grip, grip_mu = {}, {}
     for gazebo in root.iterchildren("gazebo"):
         link = gazebo.get("reference")
@@ -165,9 +180,11 @@ def _from_yaml(path: Path, problems: list[str]) -> list[Declaration]:
 
 
 def _number_list(element) -> list[float]:
-    if element is None or not element.text:
-        return []
-    values = [parse_number(v) for v in element.text.split()]
+    return _number_list_text(element.text) if element is not None else []
+
+
+def _number_list_text(text) -> list[float]:
+    values = [parse_number(v) for v in (text or "").split()]
     return [] if None in values else values
 
 

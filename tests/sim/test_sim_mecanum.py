@@ -1,11 +1,11 @@
 """Mecanum is its own drive kind: a base on four plain cylinders (as linorobot2 and ROSbot
-XL draw theirs) is mecanum where its package declares it (a <gazebo> planar_move plugin,
-mecanum_drive_controller in its X_control package's YAML, fdir1 with mu2 0), skid-steer
-where nothing does. Simulated with rollers that grip at 45°, it drives forward, strafes
-left and spins at the rates its geometry gives, which the tests compute: r·ω·t forward
-and sideways, r·ω/(a + b) yaw. The torque its motors get comes from its tyres' grip, not
-from a <mu1> of 0.01 (linorobot2's rollers' free roll), and rollers that grip the other
-way (an O pattern) strafe it the wrong way."""
+XL draw theirs) is mecanum where its package declares it (a <gazebo> planar_move plugin on
+sliding wheels, mecanum_drive_controller in its X_control package's YAML, fdir1 with mu2
+0), skid-steer where nothing does. Simulated with rollers that grip at 45°, it drives
+forward, strafes left and spins at the rates its geometry gives, which the tests compute:
+r·ω·t forward and sideways, r·ω/(a + b) yaw. The torque its motors get comes from its
+tyres' grip, not from a <mu1> of 0.01 (linorobot2's rollers' free roll), and rollers that
+grip the other way (an O pattern) strafe it the wrong way."""
 
 from __future__ import annotations
 
@@ -145,6 +145,13 @@ def test_without_a_declaration_plain_cylinders_stay_skid_steer(cli, tmp_path):
     result, entry = sim_json(cli, path, "--scenario", "drop")
     assert result.exit_code == 0, result.stderr
     assert entry["drive"]["kind"] == "skid-steer" and "rollers" not in entry["drive"]
+    # planar_move says only that Gazebo moves the base: on tyres that grip (Summit XL's
+    # skid-steer variant, mu 1) it is no mecanum declaration.
+    gripping = tmp_path / "gripping.urdf"
+    gripping.write_text(mecanum_wheels(wheel_mu=1.0, extra=PLANAR_MOVE, **BASE))
+    result, entry = sim_json(cli, gripping, "--scenario", "drop")
+    assert result.exit_code == 0, result.stderr
+    assert entry["drive"]["kind"] == "skid-steer"
     skid = tmp_path / "skid.urdf"
     skid.write_text(skid_steer())
     result, entry = sim_json(cli, skid, "--scenario", "strafe")

@@ -124,6 +124,8 @@ def yaml_declarations(loaded) -> tuple[list[Declaration], list[str]]:
     """The ``mecanum_drive_controller`` configurations of the robot's control package
     (``X_control`` or ``X_controller`` beside ``X_description``, found on the package
     search path as control_config finds it), and the files that could not be read."""
+    from ..load.inputs import display_path
+    from ..packages.asset_roots import link_out_of, real_path
     from .control_config import SUFFIX, _description_packages
 
     found, problems = [], []
@@ -135,7 +137,13 @@ def yaml_declarations(loaded) -> tuple[list[Declaration], list[str]]:
                 continue
             files = sorted(root.glob("config/*.yaml")) + sorted(root.glob("*.yaml"))
             for path in files[:MAX_FILES]:
-                found += _from_yaml(path, problems)
+                # a package's link to a file outside it (a secret) is not read: its
+                # parse error would quote it
+                outside = link_out_of(path, real_path(root))
+                if outside:
+                    problems.append(f"{display_path(path)}: not read ({outside})")
+                else:
+                    found += _from_yaml(path, problems)
     return found, problems
 
 

@@ -137,19 +137,20 @@ class Rollers:
         wheels = [w for w in drive.wheels if w.grip is not None]
         self.geoms = np.array([model.geom(f"mcar_grip_{w.joint}").id for w in wheels], int)
         self.qpos = np.array([model.jnt_qposadr[model.joint(w.joint).id] for w in wheels], int)
-        self.axes = np.array([model.jnt_axis[model.joint(w.joint).id] for w in wheels])
+        axes = np.array([model.jnt_axis[model.joint(w.joint).id] for w in wheels])
         self.rest = model.geom_quat[self.geoms].copy()  # at every joint's 0
+        # rotation(axis, -angle) ⊗ rest = cos(angle/2)·rest - sin(angle/2)·((0, axis) ⊗ rest):
+        # linear in cos and sin, so each step costs two products (this runs every step).
+        w, v = self.rest[:, 0], self.rest[:, 1:]
+        turned = np.empty_like(self.rest)
+        turned[:, 0] = -np.einsum("ij,ij->i", axes, v)
+        turned[:, 1:] = w[:, None] * axes + np.cross(axes, v)
+        self.turned = -turned
         for wheel, geom in zip(wheels, self.geoms, strict=True):
             wheel.geom_ids = [int(geom)]  # what touches the floor now
 
     def align(self, model, data) -> None:
-        """Turn each capsule back by its wheel joint's angle (quaternion product
-        rotation(axis, -angle) ⊗ rest, all wheels at once)."""
-        half = -0.5 * data.qpos[self.qpos]
-        w1 = np.cos(half)
-        v1 = self.axes * np.sin(half)[:, None]
-        w2, v2 = self.rest[:, 0], self.rest[:, 1:]
-        out = np.empty_like(self.rest)
-        out[:, 0] = w1 * w2 - np.einsum("ij,ij->i", v1, v2)
-        out[:, 1:] = w1[:, None] * v2 + w2[:, None] * v1 + np.cross(v1, v2)
-        model.geom_quat[self.geoms] = out
+        """Turn each capsule back by its wheel joint's angle."""
+        half = 0.5 * data.qpos[self.qpos]
+        model.geom_quat[self.geoms] = (np.cos(half)[:, None] * self.rest
+                                       + np.sin(half)[:, None] * self.turned)

@@ -283,6 +283,16 @@ def mecanum_drive(tree, declared: list[Declaration], names=None):
     return drive
 
 
+def declared_drive(tree, kind: str, wheel_names, where: str = "declared"):
+    """The drive a declaration read elsewhere (a controller YAML, a plugin) gives: for kind
+    ``mecanum``, the mecanum Drive of the tree's wheels ``wheel_names`` (``where`` names
+    the declaration in the report), or None where they are not four, two a side, or the
+    kind is another."""
+    if kind != "mecanum":
+        return None
+    return mecanum_drive(tree, [Declaration(where)], list(wheel_names))
+
+
 def declared_mecanum(tree, declared: list[Declaration]) -> bool:
     """Whether a declaration that fits the tree's wheels makes it mecanum."""
     wheels = [w for w in tree.wheels if abs(w.y) > 0]

@@ -258,3 +258,31 @@ def test_linorobot2_mecanum_exports_a_verified_mjcf(cli, tmp_path):
     assert share and int(share[1]) >= 95, result.stderr  # mu 0.01: 15%
     written = (tmp_path / "out" / "linorobot2_2wd.xml").read_text()
     assert 'friction="0.01' not in written
+
+
+def test_a_declaration_read_elsewhere_gets_its_mecanum_drive_from_the_tree():
+    # The entry point drives.py's "declarations first" calls with the kind and the wheel
+    # joints a controller names.
+    import mujoco
+    from lxml import etree
+
+    from mobile_car.sim.drives import find_tree
+    from mobile_car.sim.mecanum import declared_drive
+
+    text = mecanum_wheels(**BASE)
+    model = mujoco.MjModel.from_xml_string(text)
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    joints = {j.get("name"): j for j in etree.fromstring(text.encode()) if j.tag == "joint"}
+    tree = find_tree(mujoco, model, data, joints)
+    names = ["front_left_wheel_joint", "front_right_wheel_joint", "rear_left_wheel_joint",
+             "rear_right_wheel_joint"]
+    drive = declared_drive(tree, "mecanum", names, "base.yaml:3 (mecanum_drive_controller)")
+    assert drive.kind == "mecanum" and drive.declared == "base.yaml:3 (mecanum_drive_controller)"
+    assert [w.joint for w in drive.left] == ["front_left_wheel_joint", "rear_left_wheel_joint"]
+    assert [w.grip for w in drive.driven] == [(math.sqrt(0.5), -math.sqrt(0.5)),
+                                              (math.sqrt(0.5), math.sqrt(0.5)),
+                                              (math.sqrt(0.5), math.sqrt(0.5)),
+                                              (math.sqrt(0.5), -math.sqrt(0.5))]
+    assert declared_drive(tree, "mecanum", names[:3]) is None  # three wheels: no mecanum
+    assert declared_drive(tree, "diff_drive", names) is None

@@ -168,7 +168,8 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
                 geom.friction = [CASTOR_FRICTION, geom.friction[1], geom.friction[2]]
                 geom.priority = 1
     for wheel in wheels:
-        _round_tyre(spec, wheel, mj)
+        if wheel.grip is None:  # (a mecanum wheel's capsule touches for it: keep its look)
+            _round_tyre(spec, wheel, mj)
     add_rollers(mj, spec, shape, drive, sources)
     add_motors(mj, spec, drive, mass)
     steering = drive.steering if drive else []

@@ -268,6 +268,13 @@ def _named(tree: Tree, lefts: list[str], rights: list[str], kind: str | None) ->
     if kind == "skid-steer" and (len(left) < 2 or len(right) < 2):
         raise UsageError("--drive skid-steer drives two or more wheels a side: name them "
                          "with --left A,B --right C,D")
+    if kind == "mecanum":
+        drive = mecanum_drive(tree, [], lefts + rights)
+        if drive is None or {w.joint for w in drive.left} != set(lefts):
+            raise UsageError("--drive mecanum drives two wheels a side, one in front of the "
+                             "other: name them with --left A,B --right C,D")
+        drive.chosen = "--left/--right"
+        return drive
     steering = _sorted_steering(tree.steering) if kind == "ackermann" else []
     return Drive(kind, left, right, free, steering, chosen="--left/--right")
 

@@ -286,3 +286,20 @@ def test_a_declaration_read_elsewhere_gets_its_mecanum_drive_from_the_tree():
                                               (math.sqrt(0.5), -math.sqrt(0.5))]
     assert declared_drive(tree, "mecanum", names[:3]) is None  # three wheels: no mecanum
     assert declared_drive(tree, "diff_drive", names) is None
+
+
+def test_named_wheels_drive_as_mecanum_when_asked(cli, tmp_path):
+    path = tmp_path / "plain.urdf"
+    path.write_text(mecanum_wheels(**BASE))
+    left = "front_left_wheel_joint,rear_left_wheel_joint"
+    right = "front_right_wheel_joint,rear_right_wheel_joint"
+    result, entry = sim_json(cli, path, "--left", left, "--right", right, "--drive", "mecanum",
+                             "--scenario", "drop")
+    assert result.exit_code == 0, result.stderr
+    assert (entry["drive"]["kind"], entry["drive"]["chosen"]) == ("mecanum", "--left/--right")
+    result = cli("sim", path, "--left", "front_left_wheel_joint,front_right_wheel_joint",
+                 "--right", "rear_left_wheel_joint,rear_right_wheel_joint", "--drive",
+                 "mecanum", "--scenario", "drop")
+    assert result.exit_code == 2
+    assert "--drive mecanum drives two wheels a side, one in front of the other" in \
+        result.stderr

@@ -35,7 +35,14 @@ import numpy as np
 
 from ..check.urdf_model import parse_number
 from ..errors import UsageError
-from .mecanum import declared_mecanum, grip_of_rollers, has_rollers, is_roller, mecanum_drive
+from .mecanum import (
+    bare_hubs,
+    declared_mecanum,
+    grip_of_rollers,
+    has_rollers,
+    is_roller,
+    mecanum_drive,
+)
 
 KINDS = ("differential", "skid-steer", "ackermann", "mecanum")
 UPRIGHT = 0.9       # |z| of an axis in the root frame above which a hinge steers (or swivels)
@@ -140,7 +147,9 @@ def find_tree(mj, model, data, joints: dict) -> Tree:
     names = {model.joint(j).name for j in range(model.njnt)}
     candidates = [_wheel(mj, model, data, joints, name) for name, element in joints.items()
                   if element.get("type") == "continuous" and name in names]
+    bare = [w for w in candidates if not w.geom_ids]
     candidates = [w for w in candidates if w.geom_ids]
+    candidates += bare_hubs(model, data, bare, candidates)  # hubs that roll on rollers only
     wheel_bodies = {w.body_id: w for w in candidates}
     wheels, rollers, castors, above, on_rims = [], [], [], {}, {}
     for wheel in candidates:

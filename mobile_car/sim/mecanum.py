@@ -24,7 +24,8 @@ A robot is mecanum when its package says so (a declaration) or its tree shows it
 * ``<fdir1>`` with ``mu2`` near 0 in the wheels' ``<gazebo reference>`` (Gazebo's own
   mecanum model; ROSbot XL in simulation), which also gives each wheel's grip axis;
 * from the tree: four wheels, two a side, each carrying rollers on its rim (small wheels
-  whose centre is off its axle by half its radius or more).
+  whose centre is off its axle by half its radius or more); a hub without collision
+  geometry of its own counts as a wheel where three or more rollers make its rim.
 
 A wheel macro named ``mecanum`` is not a declaration. The grip axes come from ``fdir1``,
 else from the roller links (the lowest roller of each wheel) where they make an X or an
@@ -49,6 +50,7 @@ FREE_MU = 0.1             # mu2 / mu1 under this: fdir1 declares a grip axis, no
 GRIP_MIN = 0.1            # a <mu1> under this is rollers' free roll, not a tyre's grip
 ROLLER_SHARE = 0.5        # a roller is smaller than this share of its wheel's radius ...
 RIM_SHARE = 0.5           # ... and its centre this share of it or more off the axle
+MIN_ROLLERS = 3           # rollers on a hub without a tyre of its own
 MAX_FILES = 20            # YAML files looked at in one control package
 CONTROLLER = "mecanum_drive_controller"
 PLANAR_MOVE = re.compile(r"planar_?move", re.IGNORECASE)
@@ -206,6 +208,32 @@ def is_roller(mj, model, data, hub, roller) -> bool:
     offset = data.xpos[roller.body_id] - data.xanchor[hub.joint_id]
     off_axle = np.linalg.norm(offset - (offset @ axis) * axis)
     return bool(off_axle >= RIM_SHARE * hub.radius)
+
+
+def bare_hubs(model, data, bare, wheels) -> list:
+    """The wheels of ``bare`` (continuous joints moving no collision geometry) that carry
+    MIN_ROLLERS or more of ``wheels`` around their level axle, each smaller than
+    ROLLER_SHARE of the rim they make: a mecanum hub drawn without a tyre, whose rollers
+    touch the floor. Each gets the radius of that rim (its rollers' outer reach)."""
+    hubs = []
+    for hub in bare:
+        axis = data.xaxis[hub.joint_id]
+        if abs(axis[2]) > 0.5:
+            continue
+        reach = []
+        for wheel in wheels:
+            body = int(model.body_parentid[wheel.body_id])
+            while body > 0 and body != hub.body_id:
+                body = int(model.body_parentid[body])
+            if body == hub.body_id:
+                offset = data.xpos[wheel.body_id] - data.xanchor[hub.joint_id]
+                off_axle = float(np.linalg.norm(offset - (offset @ axis) * axis))
+                reach.append((off_axle, wheel.radius))
+        rim = max((d + r for d, r in reach), default=0.0)
+        if len(reach) >= MIN_ROLLERS and all(r < ROLLER_SHARE * rim for _, r in reach):
+            hub.radius = rim
+            hubs.append(hub)
+    return hubs
 
 
 def grip_of_rollers(model, data, rollers) -> tuple[float, float] | None:

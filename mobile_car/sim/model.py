@@ -144,7 +144,8 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     drive, why = fit_drive(mj, shape, data, joints, sources, left, right, kind, effort, speed)
     wheels = drive.wheels if drive else []
     mass = float(shape.body_mass.sum())
-    wheels_lowest = [lowest[g] for w in wheels for g in w.geom_ids]
+    wheels_lowest = [lowest[g] for w in wheels for g in w.geom_ids] + [
+        float(data.xpos[w.body_id][2]) - w.radius for w in wheels if not w.geom_ids]
     robot_geoms = [g for g in range(shape.ngeom) if shape.geom_bodyid[g] != 0]
     if not robot_geoms:
         raise SimModelError("no link has <collision> geometry: nothing can rest on the "

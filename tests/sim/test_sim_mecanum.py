@@ -14,7 +14,7 @@ import math
 import re
 
 import pytest
-from sim.robot_makers import PLANAR_MOVE, mecanum_wheels, skid_steer
+from sim.robot_makers import PLANAR_MOVE, mecanum_rings, mecanum_wheels, skid_steer
 from sim.test_sim_real_robots import FOLDER, needs_folder
 
 # A wheelbase other than the track: the spin's r·ω/(a + b) is not 2·r·ω/track.
@@ -303,3 +303,26 @@ def test_named_wheels_drive_as_mecanum_when_asked(cli, tmp_path):
     assert result.exit_code == 2
     assert "--drive mecanum drives two wheels a side, one in front of the other" in \
         result.stderr
+
+
+@pytest.mark.parametrize("pattern", [1, -1], ids=["X", "O"])
+def test_hubs_on_rings_of_roller_links_get_their_grip_axes_from_the_rollers(cli, tmp_path,
+                                                                              pattern):
+    # Hubs without collision geometry of their own, eight roller links each: the rollers
+    # make the rim (its radius the wheel's) and say which way they grip.
+    path = tmp_path / "rings.urdf"
+    path.write_text(mecanum_rings(pattern=pattern, **BASE))
+    result, entry = sim_json(cli, path, "--scenario", "strafe")
+    drive = entry["drive"]
+    assert (drive["kind"], drive["declared"], drive["grip_from"]) == (
+        "mecanum", "rollers on the wheels' rims", "the roller links")
+    assert drive["wheel_radius"] == BASE["radius"] and drive["castors"] == []
+    h = pattern * round(math.sqrt(0.5), 4)
+    assert drive["rollers"]["front_left_wheel_joint"]["grip_axis"] == [abs(h), -h]
+    strafe = entry["scenarios"][0]
+    if pattern == 1:
+        assert result.exit_code == 0, result.stderr
+        assert strafe["status"] == "passed"
+    else:  # an O pattern, driven as mecanum_drive_controller drives: it moves right
+        assert result.exit_code == 1
+        assert strafe["message"].startswith("moved to the right (")

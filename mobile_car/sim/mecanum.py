@@ -24,7 +24,9 @@ A robot is mecanum when its package says so (a declaration) or its tree shows it
 * ``<fdir1>`` with ``mu2`` near 0 in the wheels' ``<gazebo reference>`` (Gazebo's own
   mecanum model; ROSbot XL in simulation), which also gives each wheel's grip axis;
 * from the tree: four wheels, two a side, each carrying rollers on its rim (small wheels
-  whose centre is off its axle by half its radius or more); a hub without collision
+  whose centre is off its axle by half its radius or more, turning about an axis slanted
+  from its axle: 45° on a mecanum wheel, where an omni wheel's rollers turn across it and
+  a rocker's wheels parallel to it); a hub without collision
   geometry of its own counts as a wheel where three or more rollers make its rim.
 
 A wheel macro named ``mecanum`` is not a declaration. The grip axes come from ``fdir1``,
@@ -51,6 +53,7 @@ GRIP_MIN = 0.1            # a <mu1> under this is rollers' free roll, not a tyre
 ROLLER_SHARE = 0.5        # a roller is smaller than this share of its wheel's radius ...
 RIM_SHARE = 0.5           # ... and its centre this share of it or more off the axle
 MIN_ROLLERS = 3           # rollers on a hub without a tyre of its own
+SLANT_DEGREES = (20, 70)  # a roller's axis to its hub's: a mecanum wheel's 45°, roughly
 MAX_FILES = 20            # YAML files looked at in one control package
 CONTROLLER = "mecanum_drive_controller"
 PLANAR_MOVE = re.compile(r"planar_?move", re.IGNORECASE)
@@ -207,7 +210,16 @@ def is_roller(mj, model, data, hub, roller) -> bool:
         return False
     offset = data.xpos[roller.body_id] - data.xanchor[hub.joint_id]
     off_axle = np.linalg.norm(offset - (offset @ axis) * axis)
-    return bool(off_axle >= RIM_SHARE * hub.radius)
+    return bool(off_axle >= RIM_SHARE * hub.radius and _slanted(data, hub, roller))
+
+
+def _slanted(data, hub, roller) -> bool:
+    """A mecanum roller turns about an axis at SLANT_DEGREES to its hub's (45° on every
+    wheel made): not parallel to it (a rocker's or bogie's wheels), nor across it (an
+    omni wheel's rollers)."""
+    cosine = abs(float(data.xaxis[hub.joint_id] @ data.xaxis[roller.joint_id]))
+    low, high = (math.radians(d) for d in SLANT_DEGREES)
+    return math.cos(high) <= cosine <= math.cos(low)
 
 
 def bare_hubs(model, data, bare, wheels) -> list:
@@ -225,7 +237,7 @@ def bare_hubs(model, data, bare, wheels) -> list:
             body = int(model.body_parentid[wheel.body_id])
             while body > 0 and body != hub.body_id:
                 body = int(model.body_parentid[body])
-            if body == hub.body_id:
+            if body == hub.body_id and _slanted(data, hub, wheel):
                 offset = data.xpos[wheel.body_id] - data.xanchor[hub.joint_id]
                 off_axle = float(np.linalg.norm(offset - (offset @ axis) * axis))
                 reach.append((off_axle, wheel.radius))

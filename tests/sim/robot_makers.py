@@ -280,7 +280,7 @@ def mecanum_rings(mass: float = 10.0, wheelbase: float = 0.4, track: float = 0.4
     """A box on four mecanum hubs without collision geometry of their own, each carrying a
     ring of ``rollers`` roller links (spheres) whose axes, at the bottom, lie at 45°: the
     usual X pattern (``pattern`` 1: the front left and rear right rollers along (1, -1)),
-    or the O pattern (-1)."""
+    or the O pattern (-1); ``pattern`` 0: rollers across the axle, omni wheels."""
     width = 0.5 * radius
     hub_mass, roller_mass = 0.04 * mass, 0.002 * mass
     body_mass = mass - 4 * hub_mass - 4 * rollers * roller_mass
@@ -309,7 +309,7 @@ def mecanum_rings(mass: float = 10.0, wheelbase: float = 0.4, track: float = 0.4
   <joint name="{name}_roller_{number}" type="continuous">
     <parent link="{name}_link"/><child link="{name}_roller_{number}_link"/>
     <origin xyz="{x_at:.6g} 0 {z_at:.6g}" rpy="0 {angle:.6g} 0"/>
-    <axis xyz="0.7071068 {0.7071068 * across:.6g} 0"/>
+    <axis xyz="{1 if pattern == 0 else 0.7071068} {0.7071068 * across:.6g} 0"/>
   </joint>
   <link name="{name}_roller_{number}_link">
     <collision><geometry><sphere radius="{ball:.6g}"/></geometry></collision>

@@ -326,3 +326,11 @@ def test_hubs_on_rings_of_roller_links_get_their_grip_axes_from_the_rollers(cli,
     else:  # an O pattern, driven as mecanum_drive_controller drives: it moves right
         assert result.exit_code == 1
         assert strafe["message"].startswith("moved to the right (")
+
+
+def test_omni_wheels_rollers_across_their_axle_are_not_mecanum(cli, tmp_path):
+    path = tmp_path / "omni.urdf"
+    path.write_text(mecanum_rings(pattern=0, **BASE))
+    result, entry = sim_json(cli, path, "--scenario", "drop")
+    assert entry["drive"] is None
+    assert "not a drive kind mcar sim drives" in entry["why_no_drive"]

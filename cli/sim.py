@@ -120,6 +120,9 @@ def scenario_list(ctx, param, value):
                    "junit: JUnit XML, one testcase per scenario.")
 @click.option("--record", metavar="FILE.gif",
               help="Write an animation of the runs (one INPUT only); MP4 is refused.")
+@click.option("--record-size", metavar="WxH", default="640x480", show_default=True,
+              help="The animation's size in pixels; the camera follows the robot, an "
+                   "arrow over each driven wheel shows its command.")
 @click.option("--left", metavar="JOINT[,JOINT]", help="The left driven wheels' joints.")
 @click.option("--right", metavar="JOINT[,JOINT]", help="The right driven wheels' joints.")
 @click.option("--drive", "kind", type=click.Choice(DRIVE_KINDS), default=None,
@@ -132,14 +135,20 @@ def scenario_list(ctx, param, value):
               help="The drive motors' effort limit where the description gives none.")
 @click.option("--speed", type=click.FloatRange(min=0, min_open=True), metavar="RAD/S",
               help="The drive motors' speed limit where the description gives none.")
+@click.option("--fix-inertia", is_flag=True,
+              help="Make the inertias MuJoCo refuses physical (the nearest tensor that "
+                   "satisfies the triangle inequality; a token mass for a moving link "
+                   "without one), saying what changed, instead of failing (E305, E310).")
 @robot_options
 @handle_errors
-def command(words, scenarios, output_format, record, left, right, kind, steering_angle, effort,
-            speed, package_paths, sets, config_files):
+def command(words, scenarios, output_format, record, record_size, left, right, kind,
+            steering_angle, effort, speed, fix_inertia, package_paths, sets, config_files):
+    size = None
     if record:
-        from mobile_car.sim.record import require_format
+        from mobile_car.sim.record import parse_size, require_format
 
         require_format(record)
+        size = parse_size(record_size)
     if bool(left) != bool(right):
         raise UsageError("--left and --right go together: name both drive joints")
     steering = None if steering_angle is None else math.radians(steering_angle)
@@ -166,9 +175,9 @@ def command(words, scenarios, output_format, record, left, right, kind, steering
                 codes.append(EXIT_PROBLEMS)
                 unchecked += 1
                 continue
-            result = simulate(checked, scenarios, left, right, record=bool(record),
+            result = simulate(checked, scenarios, left, right, record=size,
                               only_if_drives=not explicit, effort=effort, speed=speed,
-                              kind=kind, steering=steering)
+                              kind=kind, steering=steering, fix_inertia=fix_inertia)
             if not result.simulated:
                 skipped.append((result.file, result.not_a_vehicle))
                 continue

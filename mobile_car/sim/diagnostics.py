@@ -19,6 +19,10 @@ SIM_RULES = {
              "wheel of the robot, or puts the left wheel on the right"),
     "E305": ("moving-link-massless", "a moving link without mass: MuJoCo refuses to "
              "simulate it, Gazebo leaves it out with what moves below it"),
+    "E310": ("inertia-refused", "an inertia tensor MuJoCo refuses: not positive definite, "
+             "principal moments that break the triangle inequality (check warns: W204, "
+             "W205), or all zeros on a moving link with a mass; `--fix-inertia` puts the "
+             "nearest physical tensor in its place (a small sphere's for zeros)"),
     "W304": ("mass-invented", "a link with collision geometry and no `<inertial>`: Gazebo "
              "leaves it out if it moves, MuJoCo gives it a mass from its volume; mcar sim "
              "keeps it massless, as URDF says"),

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import re
 
+from ..check.mujoco_inertia import make_physical, refusals
 from ..check.urdf_model import parse_number
 from ..load.bounded import read_text_quietly
 from ..load.inputs import display_path
@@ -69,8 +70,43 @@ def moving_links_without_mass(checked) -> list[SimDiagnostic]:
             found.append(_at(locate, "E305", link.element,
                              f"link {link.name} moves (child of a non-fixed joint) but has no "
                              "mass: MuJoCo cannot simulate it, Gazebo leaves it out with what "
-                             "moves below it (mcar check --gazebo); give it an <inertial>"))
+                             "moves below it (mcar check --gazebo); give it an <inertial> "
+                             "(--fix-inertia gives it a token mass)"))
     return found
+
+
+def refused_inertias(checked) -> list[SimDiagnostic]:
+    """E310 for each inertia tensor MuJoCo refuses (not positive definite, or breaking the
+    triangle inequality: check only warns, W204 and W205; all zeros on a moving link with
+    a mass), at its <inertia>: run before the engine, which would stop at the first
+    without naming its link."""
+    locate = Locator(checked)
+    return [_at(locate, "E310", item.element, f"{item.describe()}: MuJoCo refuses it; "
+                + ("--fix-inertia gives it a small sphere's" if item.problem == "no-inertia"
+                   else "--fix-inertia puts the nearest physical tensor in its place"))
+            for item in refusals(checked.robot.element, massless=False)]
+
+
+def refused_error(diagnostics: list[SimDiagnostic]) -> str:
+    """The one-line reason a robot with E305 or E310 is not simulated."""
+    if any(d.message.startswith("root link") for d in diagnostics):
+        return "a link MuJoCo must move has no mass (E305 above)"
+    links = len(diagnostics)
+    return (f"MuJoCo refuses {links} link{'s' * (links != 1)} (E305/E310 above); "
+            "--fix-inertia makes {} physical".format("them" if links != 1 else "it"))
+
+
+def physical_urdf(urdf: bytes) -> tuple[bytes, list[str]]:
+    """``urdf`` with every inertia MuJoCo refuses made physical (--fix-inertia), and one
+    line per link changed (:mod:`mobile_car.check.mujoco_inertia`)."""
+    from lxml import etree
+
+    root = etree.fromstring(urdf, etree.XMLParser(resolve_entities=False, no_network=True))
+    found = refusals(root)
+    if not found:
+        return urdf, []
+    lines = make_physical(root, found)
+    return etree.tostring(root, encoding="utf-8"), lines
 
 
 def lint(checked, sim) -> list[SimDiagnostic]:

@@ -10,7 +10,14 @@ from xml.etree import ElementTree as ET
 
 from ..errors import EXIT_OK, EXIT_PROBLEMS
 from .junit import junit_case, junit_document
-from .lint import SimDiagnostic, lint, moving_links_without_mass
+from .lint import (
+    SimDiagnostic,
+    lint,
+    moving_links_without_mass,
+    physical_urdf,
+    refused_error,
+    refused_inertias,
+)
 from .rollers import mecanum_lines, mecanum_summary
 from .scenarios import (
     ScenarioResult,
@@ -51,14 +58,16 @@ class SimReport:
         return EXIT_OK
 
 
-def simulate(checked, names=None, left=None, right=None, record: bool = False,
+def simulate(checked, names=None, left=None, right=None,
+             record: bool | tuple[int, int] = False,
              only_if_drives: bool = False, effort: float | None = None,
              speed: float | None = None, kind: str | None = None,
-             steering: float | None = None) -> SimReport:
+             steering: float | None = None, fix_inertia: bool = False) -> SimReport:
     """Lint and run ``names`` (default: the drive kind's scenarios) on a robot that passed
     ``mcar check`` (a CheckResult); ``left``/``right``: the driven joints of each side,
     ``kind``: the drive kind (:mod:`.drives`; both else found from the tree); ``record``:
-    keep a GIF of the runs; ``only_if_drives``: a robot that is not a vehicle
+    keep a GIF of the runs (True, or its size in pixels, width x height);
+    ``only_if_drives``: a robot that is not a vehicle
     (:func:`.vehicle.not_a_vehicle`) is not simulated (``simulated`` False), as for the
     files of a package and in ``mcar ci``; ``effort``, ``speed``: the drive motors'
     figures where the description gives none (:mod:`.motors`); ``steering``: the turn's
@@ -80,20 +89,27 @@ def simulate(checked, names=None, left=None, right=None, record: bool = False,
                             ScenarioResult(name, skipped=report.why_no_drive)
                             for name in (names or ("drop", "drive", "spin"))]
         return report
-    report.diagnostics = moving_links_without_mass(checked)
+    urdf, fixed = loaded.urdf, []
+    massless = moving_links_without_mass(checked)
+    if fix_inertia:  # (a robot whose root has no mass is not one a token mass mends)
+        report.diagnostics = [d for d in massless if d.message.startswith("root link")]
+        if not report.diagnostics:
+            urdf, fixed = physical_urdf(urdf)
+    else:
+        report.diagnostics = refused_inertias(checked) + massless
     if report.diagnostics:
-        report.error = "a link MuJoCo must move has no mass (E305 above)"
+        report.error = refused_error(report.diagnostics)
         return report
     from .mecanum import yaml_declarations
 
     declarations, unread = yaml_declarations(loaded)
     try:
-        sim = build_model(loaded.urdf, checked.file, loaded.base, loaded.search, left, right,
+        sim = build_model(urdf, checked.file, loaded.base, loaded.search, left, right,
                           effort, speed, kind, declarations)
     except SimModelError as error:
         report.error = error.message
         return report
-    report.notes = list(sim.notes) + unread
+    report.notes = [f"--fix-inertia: {line}" for line in fixed] + list(sim.notes) + unread
     report.held = list(sim.held)
     report.diagnostics = lint(checked, sim)
     report.why_no_drive = str(why_not) if why_not else sim.why_no_drive
@@ -116,7 +132,8 @@ def simulate(checked, names=None, left=None, right=None, record: bool = False,
     if record:
         from .record import Recorder
 
-        recorder = Recorder(sim, scenarios_for(sim, names))
+        recorder = Recorder(sim, scenarios_for(sim, names),
+                            record if isinstance(record, tuple) else None)
     try:
         report.scenarios = run_scenarios(sim, names, recorder, delta)
         if recorder is not None:

@@ -113,13 +113,12 @@ def mecanum_lines(d: dict) -> list[str]:
     return lines
 
 
-def roller_bodies(model, drive) -> set[int]:
-    """The bodies below a mecanum drive's wheels (their roller links): part of the wheel,
-    not castors, and off the floor (the gripping capsule touches it)."""
-    if drive is None or drive.kind != "mecanum":
-        return set()
-    return set().union(*(_subtree(model, w.body_id) for w in drive.wheels)) - {
-        w.body_id for w in drive.wheels}
+def roller_bodies(model, wheels) -> set[int]:
+    """The bodies below mecanum wheels (those with a grip axis: their roller links): part
+    of the wheel, not castors, and off the floor (the gripping capsule touches it)."""
+    gripping = [w for w in wheels if w.grip is not None]
+    return set().union(set(), *(_subtree(model, w.body_id) for w in gripping)) - {
+        w.body_id for w in gripping}
 
 
 def _subtree(model, body: int) -> set[int]:

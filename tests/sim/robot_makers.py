@@ -234,6 +234,111 @@ def arm(links: int = 3) -> str:
     return "".join(parts)
 
 
+def heavy_wheels(wheel_mass: float = 1000.0) -> str:
+    """two_wheeler() whose wheels weigh ``wheel_mass`` kg each, their inertia scaled with
+    it (a TurtleBot3 burger's 28 g wheel typed as 1000 kg: every tensor stays physical)."""
+    import re
+
+    text = two_wheeler()
+
+    def scaled(link):
+        old = float(re.search(r'<mass value="([^"]+)"', link.group(0)).group(1))
+        return re.sub(r'(mass value|ixx|iyy|izz)="([^"]+)"',
+                      lambda m: f'{m.group(1)}="{float(m.group(2)) * wheel_mass / old:.6g}"',
+                      link.group(0))
+
+    return re.sub(r'<link name="wheel_(left|right)_link">.*?</link>', scaled, text,
+                  flags=re.DOTALL)
+
+
+# PMB2's antenna inertia as released (pmb2_description urdf/objects/antenna.urdf.xacro):
+# principal moments -3.5e-8, 3.5e-8, 9.1e-8 kg m², not positive definite.
+_ANTENNA = """
+  <joint name="antenna_joint" type="fixed">
+    <parent link="base_link"/><child link="antenna_link"/><origin xyz="-0.05 0 0.08"/>
+  </joint>
+  <link name="antenna_link">
+    <inertial><mass value="0.001"/>
+      <inertia ixx="2.371e-08" ixy="6.119e-08" ixz="1.179e-08" iyy="2.833e-08"
+        iyz="7.74e-09" izz="3.849e-08"/>
+    </inertial>
+  </link>"""
+
+# PR2's gripper gap (pr2_description urdf/gripper_v0/gripper.urdf.xacro): a frame with no
+# mass and no geometry at the end of a prismatic joint.
+_FINGER_FRAME = """
+  <joint name="gap_joint" type="prismatic">
+    <parent link="base_link"/><child link="gap_frame"/><origin xyz="0.05 0 0.08"/>
+    <axis xyz="0 1 0"/><limit effort="10" lower="0" upper="0.09" velocity="0.2"/>
+  </joint>
+  <link name="gap_frame"/>"""
+
+
+def non_positive_antenna() -> str:
+    """two_wheeler() carrying PMB2's antenna, whose tensor MuJoCo refuses."""
+    return two_wheeler(extra=_ANTENNA)
+
+
+def massless_frame() -> str:
+    """two_wheeler() carrying PR2's gripper-gap frame, moving without mass."""
+    return two_wheeler(extra=_FINGER_FRAME)
+
+
+# A swivel with a mass and an inertia of zeros, which MuJoCo refuses on a moving body.
+_ZERO_TENSOR = """
+  <joint name="swivel_joint" type="continuous">
+    <parent link="base_link"/><child link="swivel_link"/><origin xyz="0 0 0.09"/>
+    <axis xyz="0 0 1"/>
+  </joint>
+  <link name="swivel_link">
+    <inertial><mass value="0.01"/>
+      <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial>
+  </link>"""
+
+
+def zero_tensor_swivel() -> str:
+    """two_wheeler() with a swivel of 10 g whose inertia is all zeros."""
+    return two_wheeler(extra=_ZERO_TENSOR)
+
+
+def pr2_like_inertias() -> str:
+    """two_wheeler() with both of the above: PMB2's antenna and PR2's gripper-gap frame."""
+    return two_wheeler(extra=_ANTENNA + _FINGER_FRAME)
+
+
+def skid_plate(sag: float = 0.004) -> str:
+    """The two-wheeler with a skid plate fixed under its body just ahead of the axle, its
+    bottom ``sag`` m below the wheels' (negative: above them): a body lower than the
+    wheels rests on its belly."""
+    r = 0.033
+    size = (0.06, 0.08, 0.01)
+    plate = f"""
+  <joint name="plate_joint" type="fixed">
+    <parent link="base_link"/><child link="plate_link"/>
+    <origin xyz="0.05 0 {-r - sag + size[2] / 2:.6g}"/>
+  </joint>
+  <link name="plate_link">
+    <collision><geometry><box size="{size[0]:.6g} {size[1]:.6g} {size[2]:.6g}"/></geometry>
+    </collision>
+    <inertial><mass value="0.02"/>{box_inertia(0.02, *size)}</inertial>
+  </link>"""
+    return two_wheeler(extra=plate)
+
+
+def weak_motors(effort: float = 0.004) -> str:
+    """The two-wheeler whose wheel joints allow ``effort`` N·m (and 20 rad/s): too little
+    to turn its wheels at 10 rad/s against its own inertia in time."""
+    return two_wheeler(limit=f'<limit effort="{effort:g}" velocity="20"/>')
+
+
+def massless(robot: str) -> str:
+    """``robot`` with every <inertial> taken out: a visual-only description (as
+    urdf_tutorial's 06-flexible.urdf), which weighs nothing."""
+    import re
+
+    return re.sub(r"<inertial>.*?</inertial>", "", robot, flags=re.S)
+
+
 PLANAR_MOVE = """
   <gazebo>
     <plugin name="object_controller" filename="libgazebo_ros_planar_move.so">

@@ -253,9 +253,12 @@ def test_linorobot2_mecanum_exports_a_verified_mjcf(cli, tmp_path):
     assert ("mecanum wheels: their rollers are not in the file (mcar sim models them); each "
             "wheel grips as a tyre of mu 1: the robot drives and turns, but does not "
             "strafe") in result.stderr
-    share = re.search(r"verified: drove [0-9.]+ m forward in 2 s under its actuators "
-                      r"\(([0-9]+)% of r·ω·t\)", result.stderr)
-    assert share and int(share[1]) >= 95, result.stderr  # mu 0.01: 15%
+    # judged as sim judges, on drop and drive only: the file holds no rollers to strafe on
+    assert "verified: drop passed as mcar sim judges it" in result.stderr
+    error = re.search(r"verified: drive passed as mcar sim judges it: distance error "
+                      r"([0-9.]+) %", result.stderr)
+    assert error and float(error[1]) < 2.0, result.stderr  # mu 0.01: 85% short
+    assert "strafe" not in result.stderr.replace("does not strafe", "")
     written = (tmp_path / "out" / "linorobot2_2wd.xml").read_text()
     assert 'friction="0.01' not in written
 

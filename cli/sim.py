@@ -24,8 +24,8 @@ from .common import (
     use_color,
 )
 
-SCENARIO_NAMES = ("drop", "drive", "spin", "turn")
-DRIVE_KINDS = ("differential", "skid-steer", "ackermann")
+SCENARIO_NAMES = ("drop", "drive", "spin", "turn", "strafe")
+DRIVE_KINDS = ("differential", "skid-steer", "ackermann", "mecanum")
 
 HELP = f"""Simulate the robot in MuJoCo, headless, and check that it stands, drives
 straight and turns as its geometry says.
@@ -46,10 +46,13 @@ Scenarios (bounds in docs/sim.md):
   drive  every driven wheel at one speed for 3 s: distance within 2% of r·ω·t (the
          0.5 s ramp accounted for), small drift and heading change, no wheel off
          the floor, the motors' effort limit enough for the speed
+  strafe a mecanum robot, wheels set to move it left: r·ω·t to its left (5%),
+         little forward drift, heading kept
   spin   left wheels forward, right wheels back: a differential robot turns at
          2·r·ω/track (5%) with its axle's centre within 1 cm; a skid-steer one
          clockwise about a point within its wheels, and the report gives its
-         effective track and multiplier against its X_control package's
+         effective track and multiplier against its X_control package's; a
+         mecanum one at r·ω/(half wheelbase + half track) (5%)
   turn   an Ackermann car, front wheels at their Ackermann angles: its turning
          radius within 10% of wheelbase / tan(steering angle)
 
@@ -65,17 +68,21 @@ wheel came from:
   ackermann     two front wheels on revolute steering joints (upright axis), one
                 a side; the rear wheels driven (the front too where a
                 <transmission> or <ros2_control> block drives them)
-A vehicle of any other kind (mecanum rollers, wheels on one side) runs drop, and its
+  mecanum       two wheels a side, declared so (mecanum_drive_controller in its
+                control package's YAML, a <gazebo> planar_move plugin, fdir1
+                with mu2 0) or carrying rollers on their rims; rollers grip at
+                45° (fdir1, the roller links, else the usual X pattern)
+A vehicle of any other kind (omni rollers, wheels on one side) runs drop, and its
 drive scenarios fail saying why (exit 1), unless only drop was asked for.
 --left/--right name the driven joints of each side (A,B for a group); the other
 wheels roll free. --drive picks another kind the wheels allow.
 
 The motors' effort and speed limits come from the joint's <limit>, else its
 <ros2_control> command interfaces, else the <gazebo> drive plugin, else --effort, else
-a default (the torque that holds the robot on a 10 degree slope; a skid-steer robot's,
-the torque that slips its wheels; no speed limit); --speed overrides every speed limit.
-A speed limit over 5 m/s at the rim (r·ω) is a placeholder: the robot is driven as if
-none were given. The report says which.
+a default (the torque that holds the robot on a 10 degree slope; a skid-steer or mecanum
+robot's, the torque that slips its wheels on its tyres' grip; no speed limit); --speed
+overrides every speed limit. A speed limit over 5 m/s at the rim (r·ω) is a placeholder:
+the robot is driven as if none were given. The report says which.
 
 Every robot is checked first, as by `mcar check`: one with errors is reported with
 check's diagnostics (exit 1). The <gazebo> DiffDrive plugin's wheel separation, radius

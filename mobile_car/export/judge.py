@@ -78,7 +78,9 @@ def judge(mj, path, exported, label: str) -> list[str]:
     from ..sim.scenarios import run_scenarios, show_bound, show_value
 
     sim = sim_model_of(mj, path, exported, label)
-    results = run_scenarios(sim)
+    # A file holds no mecanum rollers (sim re-aligns their contact every step: a file
+    # cannot): a mecanum export's wheels grip as tyres, judged on drop and drive only.
+    results = run_scenarios(sim, ("drop", "drive") if sim.kind == "mecanum" else None)
     failed = [r for r in results if r.status == "failed"]
     if failed:  # one line: the first failure in full, the others by name
         others = f" ({' and '.join(r.name for r in failed[1:])} failed too)" \

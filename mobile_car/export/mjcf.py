@@ -96,13 +96,15 @@ def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = Fal
     the URDF never reads a file the export did not measure and allow."""
     from ..check.colours import drop_unusable_colours
     from ..sim.drives import actuated_joints
+    from ..sim.mecanum import urdf_declarations
     from ..sim.model import gazebo_friction
     from ..sim.servos import DriveSources
 
     root = parse_robot(loaded.urdf, loaded.label)
     joints = {j.get("name"): j for j in root if j.tag == "joint"}
     sources = DriveSources([e for e in root if e.tag in ("gazebo", "ros2_control")],
-                           actuated_joints(root), gazebo_friction(root))
+                           actuated_joints(root), gazebo_friction(root),
+                           urdf_declarations(root))
     if not keep_extras:
         for element in list(root.iter("gazebo", "transmission", "ros2_control")):
             element.getparent().remove(element)
@@ -202,6 +204,7 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
     if drive is not None:  # sim's castor friction and round tyres: what --verify judges
         rolling_contacts(mj, spec, drive, resting_parts(shape, points, drive.wheels)[1],
                          sources.friction)
+    mecanum = _mecanum_tyres(spec, drive, sources)
     floor = options.floor if options.floor is not None else options.base == "floating"
     if floor:
         lowest = [z for g, z in points.items()
@@ -220,10 +223,31 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
         model_mass=float(model.body_mass.sum()),
         moving_joints=moving_joints(root), meshes=sorted(assets.taken),
         converted=[f"{a.uri} -> {a.relative}" for a in assets.by_uri.values() if a.converted],
-        warnings=warnings, notes=[f"no drive actuators: {why}"] if drive is None and why else [],
+        warnings=warnings, notes=([f"no drive actuators: {why}"] if drive is None and why
+                                  else []) + mecanum,
         drive=drive_summary(drive), base=options.base, floor=floor, added_mass=added + tokens,
         joint_types={j.get("name"): j.get("type") for j in root.iterchildren("joint")
                      if j.get("type") != "fixed"})
+
+
+def _mecanum_tyres(spec, drive, sources) -> list[str]:
+    """A mecanum robot's wheels grip as tyres in the file (their tyre's friction, not the
+    rollers' free roll of a planar_move robot's <mu1> 0.01): a file cannot hold the
+    rollers mcar sim models (their contact is re-aligned every step, sim/rollers.py), so
+    it drives forward and turns, but does not strafe; the note says so."""
+    from ..sim.rollers import tyre_grip
+
+    if drive is None or drive.kind != "mecanum":
+        return []
+    grips = {w.link: tyre_grip(w, sources)[0] for w in drive.wheels}
+    for geom in spec.geoms:
+        if geom.parent.name in grips and (geom.contype or geom.conaffinity):
+            geom.friction = [grips[geom.parent.name], geom.friction[1], geom.friction[2]]
+            geom.priority = 1
+    return ["mecanum wheels: their rollers are not in the file (mcar sim models them); "
+            "each wheel grips as a tyre of mu " + ", ".join(sorted({f"{g:g}" for g in
+                                                                  grips.values()}))
+            + ": the robot drives and turns, but does not strafe"]
 
 
 def parse_robot(urdf: bytes, label: str):

@@ -11,7 +11,8 @@ virtual wheel (steer_bot's, 75 mm up) is not one. A wheel is on the left if its 
 has y > 0, on the right if y < 0. Above a wheel (between it and the root) may sit an
 upright hinge: a ``revolute`` one is a steering joint, a ``continuous`` one a castor's
 swivel (that wheel is a castor, not a drive wheel). A wheel below another wheel is a
-roller of an omni or mecanum wheel. The kinds:
+roller of an omni or mecanum wheel; a small one on a level wheel's rim makes that wheel a
+mecanum hub (:mod:`.mecanum`). The kinds:
 
 * ``differential``: one wheel each side, none steered, any castors (TurtleBot3, Kobuki);
 * ``skid-steer``: two or three wheels each side (4 or 6), none steered, all driven
@@ -19,8 +20,11 @@ roller of an omni or mecanum wheel. The kinds:
 * ``ackermann``: two steered wheels in front, one each side, each on its own steering
   joint, and unsteered wheels behind them; the rear wheels are driven, the front ones
   too where a ``<transmission>`` or ``<ros2_control>`` block gives their joint an actuator;
-* anything else (rollers, wheels on one side or on the centre line, steering that is not
-  one Ackermann pair, legs): no drive, with a sentence saying what was found.
+* ``mecanum``: two wheels a side, none steered, that the package declares mecanum or that
+  carry rollers on their rims (:mod:`.mecanum`), each gripping at 45°;
+* anything else (rollers that are not on four hubs, wheels on one side or on the centre
+  line, steering that is not one Ackermann pair, legs): no drive, with a sentence saying
+  what was found.
 
 A declaration names joints; each maps onto the tree's wheels: a wheel is itself, a joint
 that is no wheel of the tree (a bicycle model's ``rear_wheel_joint`` on the centre line,
@@ -41,8 +45,17 @@ import numpy as np
 
 from ..check.urdf_model import parse_number
 from ..errors import UsageError
+from .mecanum import (
+    bare_hubs,
+    declared_drive,
+    declared_mecanum,
+    grip_of_rollers,
+    has_rollers,
+    is_roller,
+    mecanum_drive,
+)
 
-KINDS = ("differential", "skid-steer", "ackermann")
+KINDS = ("differential", "skid-steer", "ackermann", "mecanum")
 UPRIGHT = 0.9       # |z| of an axis in the root frame above which a hinge steers (or swivels)
 SIDE_EPSILON = 1e-6  # m: a wheel closer than this to the centre line is on neither side
 ACKERMANN_X_TOLERANCE = 0.05  # of the wheelbase: the steering pivots stand side by side
@@ -71,6 +84,7 @@ class Wheel:
     motor: object = None  # MotorFigures: effort and speed limits with their sources
     gain: float = 0.0     # the velocity servo's kv (N·m·s/rad)
     steering: str | None = None  # the revolute joint that steers it
+    grip: tuple[float, float] | None = None  # mecanum: its rollers' grip axis (.mecanum)
 
 
 @dataclass
@@ -100,6 +114,9 @@ class Drive:
     chosen: str = "found from the tree"  # or "declared", "--drive", "--left/--right"
     sources: dict = field(default_factory=dict)  # driven joint -> where it came from
     not_wheels: dict = field(default_factory=dict)  # Tree.not_wheels, for the report
+    declared: str = ""   # mecanum: the declaration that made it so, or the rollers
+    grip_from: str = ""  # mecanum: where the rollers' grip axes came from
+    grip_mu: dict = field(default_factory=dict)  # mecanum: joint -> (mu, mu across, source)
 
     @property
     def driven(self) -> list[Wheel]:
@@ -143,6 +160,7 @@ class Tree:
     make: object = None            # joint name -> Wheel, for a wheel named on the command line
     # continuous joints moving collision geometry that are no wheel: joint -> why (for notes)
     not_wheels: dict = field(default_factory=dict)
+    roller_grip: dict = field(default_factory=dict)  # hub joint -> its rollers' grip axis
 
 
 def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
@@ -152,30 +170,33 @@ def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
     names = {model.joint(j).name for j in range(model.njnt)}
     rolling = [_wheel(mj, model, data, joints, name) for name, element in joints.items()
                if element.get("type") == "continuous" and name in names]
+    bare = [w for w in rolling if not w.geom_ids]
     rolling = [w for w in rolling if w.geom_ids]
+    hubs = bare_hubs(model, data, bare, rolling)  # hubs that roll on rollers only
     # The floor is what the collision geometry reaches (an export's visuals touch nothing).
     floor = min((z for g, z in lowest.items()
                  if model.geom_contype[g] or model.geom_conaffinity[g]), default=0.0)
-    candidates, not_wheels = [], {}
+    not_wheels = {}
     for wheel in rolling:
         why = _not_a_wheel(model, data, wheel, lowest, floor)
-        if why is None:
-            candidates.append(wheel)
-        else:
+        if why is not None:
             not_wheels[wheel.joint] = why
-    wheel_bodies = {w.body_id: w for w in candidates}
+    wheel_bodies = {w.body_id: w for w in rolling + hubs if w.joint not in not_wheels}
     # A roller sits on a wheel's rim: any rolling joint below a floor wheel, touching or not.
     for wheel in rolling:
         if wheel.joint in not_wheels and _below(model, wheel.body_id, wheel_bodies):
             del not_wheels[wheel.joint]
-    candidates = [w for w in rolling if w.joint not in not_wheels]
-    wheels, rollers, castors, above = [], [], [], {}
+    candidates = [w for w in rolling if w.joint not in not_wheels] + hubs
+    wheel_bodies = {w.body_id: w for w in candidates}
+    wheels, rollers, castors, above, on_rims = [], [], [], {}, {}
     for wheel in candidates:
         hinge, below_wheel = None, False
         body = int(model.body_parentid[wheel.body_id])
         while body > 0:
             if body in wheel_bodies:
                 below_wheel = True
+                if is_roller(mj, model, data, wheel_bodies[body], wheel):
+                    on_rims.setdefault(wheel_bodies[body].joint, []).append(wheel)
                 break
             hinge = hinge or _upright_hinge(mj, model, data, body)
             body = int(model.body_parentid[body])
@@ -196,8 +217,10 @@ def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
                 wheel.steering = None
             continue
         steering.append(_steering(model, data, joints[name], name, under[0]))
+    grips = {hub: grip_of_rollers(model, data, on_rim) for hub, on_rim in on_rims.items()}
     return Tree(wheels, steering, rollers, castors, odd, joints,
-                lambda name: _wheel(mj, model, data, joints, name), not_wheels)
+                lambda name: _wheel(mj, model, data, joints, name), not_wheels=not_wheels,
+                roller_grip={hub: grip for hub, grip in grips.items() if grip is not None})
 
 
 def _not_a_wheel(model, data, wheel: Wheel, lowest: dict, floor: float) -> str | None:
@@ -221,11 +244,12 @@ def _below(model, body: int, bodies) -> bool:
 
 
 def choose_drive(tree: Tree, actuated: set[str], left=None, right=None,
-                 kind: str | None = None, declared=()) -> tuple[Drive | None, str | None]:
+                 kind: str | None = None, declared=(),
+                 mecanum=()) -> tuple[Drive | None, str | None]:
     """(the drive, None), or (None, why the robot is no vehicle sim can drive);
     ``declared``: the package's declarations (:mod:`.declared`), the first that maps
-    onto the tree wins; UsageError where --left/--right/--drive ask for what the tree
-    does not allow."""
+    onto the tree wins; ``mecanum``: its mecanum declarations (:mod:`.mecanum`);
+    UsageError where --left/--right/--drive ask for what the tree does not allow."""
     if kind is not None and kind not in KINDS:
         raise UsageError(f"--drive {kind}: the drive kinds are {', '.join(KINDS)}")
     if left or right:
@@ -242,7 +266,7 @@ def choose_drive(tree: Tree, actuated: set[str], left=None, right=None,
         if kind is not None:
             raise UsageError(f"--drive {kind}: {why}")
         return None, why
-    found = None if why is not None else _kind_of(tree, lefts, rights)
+    found = None if why is not None else _kind_of(tree, lefts, rights, mecanum)
     if found is None and kind is None:
         return None, _no_kind(tree, lefts, rights)
     kind = kind or found
@@ -256,6 +280,13 @@ def choose_drive(tree: Tree, actuated: set[str], left=None, right=None,
         return Drive("ackermann", _side(driven, 1), _side(driven, -1), free,
                      _sorted_steering(tree.steering), chosen=chosen,
                      sources=_each(driven, source)), None
+    if kind == "mecanum":
+        drive = mecanum_drive(tree, list(mecanum))
+        if drive is None:
+            raise UsageError(f"--drive mecanum: {len(lefts)} wheel(s) on the left, "
+                             f"{len(rights)} on the right; mecanum drives two a side")
+        drive.chosen, drive.sources = chosen, _each(drive.driven, source)
+        return drive, None
     if kind == "differential" and (len(lefts) != 1 or len(rights) != 1):
         raise UsageError(f"--drive differential: {len(lefts)} wheels on the left, "
                          f"{len(rights)} on the right; name the two driven ones with "
@@ -277,6 +308,15 @@ def _from_declaration(tree: Tree, declaration) -> tuple[Drive | None, str | None
     if any(tree.joints.get(n) is None or tree.joints[n].get("type") == "fixed"
            for n in declaration.joints):
         return None
+    if declaration.kind == "mecanum":
+        drive = declared_drive(tree, "mecanum",
+                               declaration.left + declaration.right + declaration.driven,
+                               declaration.source)
+        if drive is None:
+            return None
+        drive.chosen = "declared"
+        drive.sources = _each(drive.driven, declaration.source)
+        return drive, None
     if declaration.kind not in KINDS:
         return None, (f"{declaration.kind} wheels ({declaration.source}): not a drive kind "
                       f"mcar sim drives ({', '.join(KINDS)})")
@@ -410,6 +450,13 @@ def _named(tree: Tree, lefts: list[str], rights: list[str], kind: str | None) ->
     if kind == "skid-steer" and (len(left) < 2 or len(right) < 2):
         raise UsageError("--drive skid-steer drives two or more wheels a side: name them "
                          "with --left A,B --right C,D")
+    if kind == "mecanum":
+        drive = mecanum_drive(tree, [], lefts + rights)
+        if drive is None or {w.joint for w in drive.left} != set(lefts):
+            raise UsageError("--drive mecanum drives two wheels a side, one in front of the "
+                             "other: name them with --left A,B --right C,D")
+        drive.chosen = "--left/--right"
+        return drive
     steering = _sorted_steering(tree.steering) if kind == "ackermann" else []
     return Drive(kind, left, right, free, steering, chosen="--left/--right",
                  sources=_each(left + right, "--left/--right"))
@@ -440,7 +487,7 @@ def _named_wheel(tree: Tree, name: str) -> Wheel:
 
 def _why_not(tree: Tree) -> str | None:
     """Why the tree has no drive of any kind, or None."""
-    if tree.rollers:
+    if tree.rollers and not has_rollers(tree):
         return (f"omni or mecanum wheels (rollers {', '.join(tree.rollers[:4])}"
                 f"{', ...' if len(tree.rollers) > 4 else ''} turn about the wheels): not a drive "
                 f"kind mcar sim drives ({', '.join(KINDS)})")
@@ -459,10 +506,13 @@ def _why_not(tree: Tree) -> str | None:
     return None
 
 
-def _kind_of(tree: Tree, lefts, rights) -> str | None:
+def _kind_of(tree: Tree, lefts, rights, declared=()) -> str | None:
     steered = [w for w in tree.wheels if w.steering is not None]
     if steered or tree.odd_steering:
         return "ackermann" if _no_ackermann(tree, lefts, rights) is None else None
+    if len(lefts) == len(rights) == 2 and (has_rollers(tree)
+                                           or declared_mecanum(tree, declared)):
+        return "mecanum"
     if len(lefts) == len(rights) == 1:
         return "differential"
     if len(lefts) == len(rights) and len(lefts) in (2, 3):

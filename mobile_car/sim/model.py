@@ -25,6 +25,8 @@ The simulation-only choices (docs/sim.md) are made here and nowhere else:
   as motors grow with what they drive: without it light wheels chatter against the stiff
   velocity servo and the robot over-travels as the speed ramps up (the car ~7%, Jackal
   2.8%); and a 1 ms step (0.6% over-travel, 2% at MuJoCo's default 2 ms);
+* a mecanum wheel touches the floor through a capsule that grips along its rollers' axis
+  and rolls freely across it (:mod:`.rollers`);
 * an Ackermann car's steering joints get a position servo stiff enough that a tyre's
   whole friction moves them by 0.3° at most (:func:`.servos.steering_gain`), within the joint's
   effort limit; other revolute and prismatic joints (an arm, steering held straight
@@ -43,6 +45,8 @@ from ..check.urdf_model import parse_number
 from ..errors import EXIT_PROBLEMS, InputError, McarError
 from .drives import Drive, actuated_joints
 from .engine import mujoco
+from .mecanum import urdf_declarations
+from .rollers import Rollers, add_rollers, roller_bodies
 from .servos import DriveSources, add_motors, fit_drive
 
 TIMESTEP = 0.001
@@ -76,6 +80,7 @@ class SimModel:
     mass: float = 0.0   # kg, the whole robot
     held: list[str] = field(default_factory=list)  # joints held still: not the drive's
     control: object = None  # skid-steer: its control package's ControlConfig, if found
+    rollers: object = None  # mecanum: .rollers.Rollers, to align before every step
 
     @property
     def kind(self) -> str | None:
@@ -92,13 +97,14 @@ class SimModel:
 
 def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=None,
                 effort: float | None = None, speed: float | None = None,
-                kind: str | None = None, declared=None) -> SimModel:
+                kind: str | None = None, declared=None, mecanum=()) -> SimModel:
     """``left``, ``right``: the driven joints of each side (a name, comma-separated names
     or a list), ``kind``: a drive kind (:mod:`.drives`), else declared or found from the
     tree; ``declared``: the package's drive declarations (:func:`.report.declarations`),
     None for the URDF's plugins alone;
     ``effort`` (N·m), ``speed`` (rad/s): the drive motors' figures where the description
-    gives none (:mod:`.motors`)."""
+    gives none (:mod:`.motors`); ``mecanum``: the mecanum declarations of the
+    robot's control package (:func:`.mecanum.yaml_declarations`)."""
     mj = mujoco()
     root = etree.fromstring(urdf, etree.XMLParser(resolve_entities=False, no_network=True))
     # The robot's own joints only: a <transmission> or <ros2_control> names joints too.
@@ -108,6 +114,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     # The motor figures' other sources, kept before _prepare takes them out of the tree.
     root_figures = [e for e in root if e.tag in ("gazebo", "ros2_control")]
     actuated = actuated_joints(root)
+    mecanum = urdf_declarations(root) + list(mecanum)
     notes = _prepare(root, base, search)
     try:
         spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
@@ -135,16 +142,17 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)
     lowest = lowest_points(mj, shape, data)
-    drive, why = fit_drive(mj, shape, data, joints,
-                           DriveSources(root_figures, actuated, friction, declared), lowest,
-                           left, right, kind, effort, speed)
+    sources = DriveSources(root_figures, actuated, friction, declared, mecanum)
+    drive, why = fit_drive(mj, shape, data, joints, sources, lowest, left, right, kind, effort,
+                           speed)
     wheels = drive.wheels if drive else []
     mass = float(shape.body_mass.sum())
     if not _colliding(shape):
         raise SimModelError("no link has <collision> geometry: nothing can rest on the "
                             "floor, the robot would fall through it", file=label)
-    ground, parts, clearance = resting_parts(shape, lowest, wheels)
+    ground, parts, clearance = resting_parts(shape, lowest, wheels, data)
     rolling_contacts(mj, spec, drive, parts, friction)
+    add_rollers(mj, spec, shape, drive, sources)
     add_motors(mj, spec, drive, mass)
     steering = drive.steering if drive else []
     held = _hold_the_rest(spec, joints, drive)
@@ -156,10 +164,12 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     for steer in steering:
         steer.joint_id = model.joint(steer.joint).id
         steer.actuator_id = model.actuator(f"mcar_steer_{steer.joint}").id
+    aligned = Rollers(mj, model, drive) if drive and drive.kind == "mecanum" else None
     return SimModel(model=model, spec=spec, root=root_body.name,
                     root_body=model.body(root_body.name).id, drive=drive,
                     why_no_drive=why, rest_height=-ground, ground_parts=parts, clearance=clearance,
-                    floor_geom=model.geom("mcar_floor").id, notes=notes, mass=mass, held=held)
+                    floor_geom=model.geom("mcar_floor").id, notes=notes, mass=mass, held=held,
+                    rollers=aligned)
 
 
 def _hold_the_rest(spec, joints: dict, drive) -> list[str]:
@@ -296,19 +306,28 @@ def lowest_points(mj, model, data) -> dict[int, float]:
     return lowest
 
 
-def resting_parts(shape, lowest: dict[int, float], wheels) -> tuple[float, dict, dict]:
+def resting_parts(shape, lowest: dict[int, float], wheels,
+                  data=None) -> tuple[float, dict, dict]:
     """(the floor's z under the robot: the drive wheels' lowest point, else the lowest
     colliding geom's; the other links resting on it, link -> body id; link -> its lowest
     point above that floor, for the wheels and the resting links), every joint at 0.
     Shared by ``mcar sim`` and ``mcar export --verify``, which judge alike; a geom that
-    touches nothing (an export's visual) rests on nothing."""
+    touches nothing (an export's visual) rests on nothing. A mecanum wheel's roller links
+    are its own (its capsule touches for them, :mod:`.rollers`); a mecanum hub without
+    geometry of its own reaches its radius below its centre (``data``: the kinematics)."""
     robot_geoms = _colliding(shape)
     wheels_lowest = [lowest[g] for w in wheels for g in w.geom_ids]
+    if data is not None:
+        wheels_lowest += [float(data.xpos[w.body_id][2]) - w.radius for w in wheels
+                          if not w.geom_ids]
     ground = min(wheels_lowest) if wheels_lowest else min(lowest[g] for g in robot_geoms)
     wheel_bodies = {w.body_id for w in wheels}
+    rollers = roller_bodies(shape, wheels)
     parts, clearance = {}, {}
     for g in robot_geoms:
         body = int(shape.geom_bodyid[g])
+        if body in rollers:
+            continue
         name = shape.body(body).name
         if body in wheel_bodies or lowest[g] <= ground + GROUND_TOLERANCE:
             clearance[name] = min(clearance.get(name, np.inf), lowest[g] - ground)

@@ -71,10 +71,12 @@ class MotorFigures:
 
 def motor_figures(extras, joint, radius: float, drive_wheels: int, mass: float,
                   effort_flag: float | None = None, speed_flag: float | None = None,
-                  slip_friction: float | None = None) -> MotorFigures:
+                  slip_friction: float | None = None,
+                  kind: str = "skid-steer") -> MotorFigures:
     """The figures of the drive joint element ``joint``; ``extras``: the robot's top-level
     ``<ros2_control>`` and ``<gazebo>`` elements; ``slip_friction``: a skid-steer robot's
-    tyre friction, whose default torque slips the wheels rather than holds the slope."""
+    tyre friction, whose default torque slips the wheels rather than holds the slope (a
+    mecanum robot's too: ``kind`` names it in the source)."""
     name = joint.get("name")
     efforts, velocities = [], []
     limit = _first(joint, "limit")
@@ -97,7 +99,7 @@ def motor_figures(extras, joint, radius: float, drive_wheels: int, mass: float,
     if effort is None and slip_friction is not None:
         effort = slip_friction * mass * GRAVITY * radius / max(1, drive_wheels)
         effort_from = (f"default: slips the wheels of {mass:.3g} kg at mu {slip_friction:g} "
-                       f"(mu·m·g·r / {drive_wheels}, skid-steer)")
+                       f"(mu·m·g·r / {drive_wheels}, {kind})")
     elif effort is None:
         effort = slope_torque(mass, radius, drive_wheels)
         effort_from = (f"default: holds {mass:.3g} kg on a {SLOPE_DEGREES:g}° slope "

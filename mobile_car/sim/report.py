@@ -18,6 +18,7 @@ from .lint import (
     refused_error,
     refused_inertias,
 )
+from .rollers import mecanum_lines, mecanum_summary
 from .scenarios import (
     ScenarioResult,
     command_speed,
@@ -108,9 +109,13 @@ def simulate(checked, names=None, left=None, right=None,
     if setting is not None and not (left or right or kind):
         (drive_set, chosen_in) = setting
         left, right, kind = drive_set.get("left"), drive_set.get("right"), drive_set.get("kind")
+    from .mecanum import yaml_declarations
+
+    mecanum, unread_mecanum = yaml_declarations(loaded)
+    unread = list(dict.fromkeys(unread + unread_mecanum))
     try:
         sim = build_model(urdf, checked.file, loaded.base, loaded.search, left, right,
-                          effort, speed, kind, declared)
+                          effort, speed, kind, declared, mecanum)
     except SimModelError as error:
         report.error = error.message
         return report
@@ -200,6 +205,8 @@ def drive_summary(sim) -> dict:
                "not_wheels": dict(drive.not_wheels)}
     if drive.kind == "ackermann":
         summary["wheelbase"] = round(drive.wheelbase, 6)
+    if drive.kind == "mecanum":
+        summary.update(mecanum_summary(sim))
     return summary
 
 
@@ -267,6 +274,8 @@ def _drive_lines(d: dict) -> list[str]:
                 f"{motor['servo_gain']:.4g} N·m·s/rad")
         alike.setdefault(text, []).append(joint)
     lines += [f"  motor {', '.join(joints)}: {text}" for text, joints in alike.items()]
+    if "rollers" in d:
+        lines += mecanum_lines(d)
     return lines
 
 

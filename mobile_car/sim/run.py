@@ -35,6 +35,9 @@ class Run:
         self.free = adr
         self.free_dof = self.model.jnt_dofadr[free]  # vx vy vz (world), wx wy wz (root)
         self.data.qpos[adr + 2] = sim.rest_height + lift
+        self.rollers = getattr(sim, "rollers", None)  # mecanum: kept level every step
+        if self.rollers is not None:
+            self.rollers.align(self.model, self.data)
         self.mj.mj_forward(self.model, self.data)
         self.frame = frame
 
@@ -43,6 +46,8 @@ class Run:
         for _ in range(steps):
             if control is not None:
                 control(self.data.time)
+            if self.rollers is not None:
+                self.rollers.align(self.model, self.data)
             self.mj.mj_step(self.model, self.data)
             if each is not None:
                 each()
@@ -88,8 +93,7 @@ class Run:
         """Height of the wheel's lowest sphere (its tyre) above the floor, or None when
         its geometry is no sphere (then contacts tell)."""
         gaps = [float(self.data.geom_xpos[g][2] - self.model.geom_size[g][0])
-                for g in wheel.geom_ids
-                if self.model.geom_type[g] == self.mj.mjtGeom.mjGEOM_SPHERE]
+                for g in wheel.geom_ids if int(self.model.geom_type[g]) in _tyres(self.mj)]
         return min(gaps) if gaps else None
 
     def wheel_speed(self, wheel) -> float:
@@ -101,6 +105,12 @@ class Run:
     def centre_of(self, wheels) -> np.ndarray:
         """The mean of the wheels' centres (the axle centre of a differential robot)."""
         return self.data.xpos[[w.body_id for w in wheels]].mean(axis=0)
+
+
+def _tyres(mj) -> tuple:
+    """The geom types a wheel rolls on whose lowest point is its centre's height less its
+    radius: a sphere, and a mecanum wheel's capsule, kept level (:mod:`.rollers`)."""
+    return (int(mj.mjtGeom.mjGEOM_SPHERE), int(mj.mjtGeom.mjGEOM_CAPSULE))
 
 
 def ramp(t: float) -> float:
@@ -149,10 +159,9 @@ class OffFloor:
         self.current, self.total = 0, 0
         # Each wheel's tyre spheres, read at once every step (numpy, not a loop per wheel);
         # a wheel without one is judged by its contacts.
-        sphere = run.mj.mjtGeom.mjGEOM_SPHERE
         model = run.model
         pairs = [(i, g) for i, w in enumerate(self.wheels) for g in w.geom_ids
-                 if model.geom_type[g] == sphere]
+                 if int(model.geom_type[g]) in _tyres(run.mj)]
         self.owner = np.array([i for i, _ in pairs], dtype=int)
         self.spheres = np.array([g for _, g in pairs], dtype=int)
         self.radii = model.geom_size[self.spheres, 0]

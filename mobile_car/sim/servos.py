@@ -7,10 +7,11 @@ motor's rotor inertia seen through its gearbox. The choices are explained in
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from .drives import Drive, choose_drive, find_tree
 from .motors import motor_figures
+from .rollers import tyre_grip
 
 # kv of the wheel motors' velocity servo (N m s/rad) for a wheel driving up to
 # SERVO_REFERENCE_INERTIA: stiff enough to follow a ramp of a few rad/s², within the effort
@@ -38,6 +39,7 @@ class DriveSources:
     actuated: set[str]
     friction: dict[str, float]
     declared: list | None = None
+    mecanum: list = field(default_factory=list)  # .mecanum.Declaration: what says mecanum
 
     def declarations(self, joints: dict) -> list:
         """The drive declarations that are this robot's, the URDF's plugins first."""
@@ -56,14 +58,16 @@ def fit_drive(mj, shape, data, joints: dict, sources: DriveSources, lowest: dict
     users too."""
     tree = find_tree(mj, shape, data, joints, lowest)
     drive, why = choose_drive(tree, sources.actuated, left, right, kind,
-                              sources.declarations(joints))
+                              sources.declarations(joints), sources.mecanum)
     if drive is not None:
         drive.not_wheels = dict(tree.not_wheels)
     mass = float(shape.body_mass.sum())
     for wheel in drive.driven if drive else []:
         slip = sources.friction.get(wheel.link, 1.0) if drive.kind == "skid-steer" else None
+        if drive.kind == "mecanum":  # its tyre's grip, not its rollers' free roll
+            slip = tyre_grip(wheel, sources)[0]
         wheel.motor = motor_figures(sources.figures, joints[wheel.joint], wheel.radius,
-                                    len(drive.driven), mass, effort, speed, slip)
+                                    len(drive.driven), mass, effort, speed, slip, drive.kind)
         wheel.effort, wheel.velocity = wheel.motor.effort, wheel.motor.velocity
         wheel.gain = servo_gain(mass, wheel.radius, len(drive.driven),
                                 wheel_armature(mass, drive.radius, len(drive.wheels)))

@@ -461,3 +461,89 @@ def diff_drive_plugin(left: str, right: str) -> str:
       <right_joint>{right}</right_joint>
     </plugin>
   </gazebo>"""
+
+
+PLANAR_MOVE = """
+  <gazebo>
+    <plugin name="object_controller" filename="libgazebo_ros_planar_move.so">
+      <command_topic>cmd_vel</command_topic>
+    </plugin>
+  </gazebo>"""
+
+
+def mecanum_wheels(mass: float = 10.0, wheelbase: float = 0.4, track: float = 0.4,
+                   radius: float = 0.06, wheel_mu: float | None = None,
+                   extra: str = "") -> str:
+    """A box on four plain cylinders (mecanum wheels as linorobot2 and ROSbot XL draw
+    them: no roller links); ``wheel_mu``: each wheel's <gazebo><mu1> (linorobot2: 0.01);
+    ``extra``: what declares them mecanum (PLANAR_MOVE), else nothing does."""
+    width = 0.5 * radius
+    wheel_mass = 0.05 * mass
+    body_mass = mass - 4 * wheel_mass
+    body = (wheelbase, track - width - 0.04, 0.6 * radius)
+    parts = ['<?xml version="1.0"?>\n<robot name="mecanum_wheels">',
+             _body(body_mass, body, 0.2 * radius, axle=radius)]
+    for end, x in (("front", wheelbase / 2), ("rear", -wheelbase / 2)):
+        for side, sign in (("left", 1), ("right", -1)):
+            name = f"{end}_{side}_wheel"
+            parts.append(_wheel(name, "base_link", (x, sign * track / 2, 0), radius, width,
+                                wheel_mass))
+            if wheel_mu is not None:
+                parts.append(f'\n  <gazebo reference="{name}_link"><mu1>{wheel_mu:g}</mu1>'
+                             f'<mu2>{wheel_mu:g}</mu2></gazebo>')
+    parts.append(extra + "\n</robot>\n")
+    return "".join(parts)
+
+
+def centre_wheel(mass: float = 20.0, radius: float = 0.1) -> str:
+    """A four-wheel skid-steer box with a fifth wheel on its centre line: a vehicle that
+    no drive kind fits (sim cannot drive it)."""
+    width = 0.25 * radius
+    return skid_steer(mass=mass, radius=radius, extra=_wheel(
+        "centre_wheel", "base_link", (0, 0, 0), radius, width, 0.05 * mass)).replace(
+        'name="skid_steer_4"', 'name="centre_wheel"')
+
+
+def mecanum_rings(mass: float = 10.0, wheelbase: float = 0.4, track: float = 0.4,
+                  radius: float = 0.06, rollers: int = 8, pattern: int = 1) -> str:
+    """A box on four mecanum hubs without collision geometry of their own, each carrying a
+    ring of ``rollers`` roller links (spheres) whose axes, at the bottom, lie at 45°: the
+    usual X pattern (``pattern`` 1: the front left and rear right rollers along (1, -1)),
+    or the O pattern (-1); ``pattern`` 0: rollers across the axle, omni wheels."""
+    width = 0.5 * radius
+    hub_mass, roller_mass = 0.04 * mass, 0.002 * mass
+    body_mass = mass - 4 * hub_mass - 4 * rollers * roller_mass
+    body = (wheelbase, track - width - 0.04, 0.6 * radius)
+    ball = 0.15 * radius
+    roller_i = 0.4 * roller_mass * ball * ball
+    parts = ['<?xml version="1.0"?>\n<robot name="mecanum_rings">',
+             _body(body_mass, body, 0.2 * radius, axle=radius)]
+    for end, x in (("front", wheelbase / 2), ("rear", -wheelbase / 2)):
+        for side, sign in (("left", 1), ("right", -1)):
+            name = f"{end}_{side}_wheel"
+            across = -pattern if (end == "front") == (side == "left") else pattern
+            parts.append(f"""
+  <joint name="{name}_joint" type="continuous">
+    <parent link="base_link"/><child link="{name}_link"/>
+    <origin xyz="{x:.6g} {sign * track / 2:.6g} 0"/><axis xyz="0 1 0"/>
+  </joint>
+  <link name="{name}_link">
+    <inertial><mass value="{hub_mass:.6g}"/>{_cylinder_y_inertia(hub_mass, radius, width)}
+    </inertial>
+  </link>""")
+            for number in range(rollers):
+                angle = 2 * math.pi * number / rollers
+                x_at, z_at = -(radius - ball) * math.sin(angle), -(radius - ball) * math.cos(angle)
+                parts.append(f"""
+  <joint name="{name}_roller_{number}" type="continuous">
+    <parent link="{name}_link"/><child link="{name}_roller_{number}_link"/>
+    <origin xyz="{x_at:.6g} 0 {z_at:.6g}" rpy="0 {angle:.6g} 0"/>
+    <axis xyz="{1 if pattern == 0 else 0.7071068} {0.7071068 * across:.6g} 0"/>
+  </joint>
+  <link name="{name}_roller_{number}_link">
+    <collision><geometry><sphere radius="{ball:.6g}"/></geometry></collision>
+    <inertial><mass value="{roller_mass:.6g}"/><inertia ixx="{roller_i:.6g}" ixy="0" ixz="0"
+      iyy="{roller_i:.6g}" iyz="0" izz="{roller_i:.6g}"/></inertial>
+  </link>""")
+    parts.append("\n</robot>\n")
+    return "".join(parts)

@@ -104,7 +104,7 @@ def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = Fal
     joints = {j.get("name"): j for j in root if j.tag == "joint"}
     sources = DriveSources([e for e in root if e.tag in ("gazebo", "ros2_control")],
                            actuated_joints(root), gazebo_friction(root),
-                           urdf_declarations(root))
+                           mecanum=urdf_declarations(root))
     if not keep_extras:
         for element in list(root.iter("gazebo", "transmission", "ros2_control")):
             element.getparent().remove(element)

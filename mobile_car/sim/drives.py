@@ -39,12 +39,11 @@ free. Each driven wheel carries where it came from (``Drive.sources``), for the 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
 
 from ..check.urdf_model import parse_number
 from ..errors import UsageError
+from .drive_parts import Drive, Steering, Tree, Wheel
 from .mecanum import (
     bare_hubs,
     declared_drive,
@@ -68,101 +67,6 @@ CENTRE_SHARE = 0.1  # of the nearest side wheel's |y|: a declared joint this nea
 GEOMETRY = "geometry: a wheel that touches the floor"
 
 
-@dataclass
-class Wheel:
-    joint: str
-    link: str
-    joint_id: int
-    body_id: int
-    geom_ids: list[int]
-    radius: float       # m
-    x: float            # wheel centre in the root frame (m)
-    y: float
-    effort: float | None = None
-    velocity: float | None = None
-    actuator_id: int = -1
-    motor: object = None  # MotorFigures: effort and speed limits with their sources
-    gain: float = 0.0     # the velocity servo's kv (N·m·s/rad)
-    steering: str | None = None  # the revolute joint that steers it
-    grip: tuple[float, float] | None = None  # mecanum: its rollers' grip axis (.mecanum)
-
-
-@dataclass
-class Steering:
-    """A steering joint and the wheel it turns; ``sign`` is +1 when a positive joint angle
-    turns the wheel to the left (its axis points up), -1 when it points down."""
-
-    joint: str
-    joint_id: int
-    wheel: Wheel
-    x: float            # pivot in the root frame (m)
-    y: float
-    sign: float
-    lower: float | None  # rad, the joint's <limit>
-    upper: float | None
-    effort: float | None  # N·m, the joint's <limit effort>, None when it gives none
-    actuator_id: int = -1
-
-
-@dataclass
-class Drive:
-    kind: str
-    left: list[Wheel]    # the driven wheels, by side
-    right: list[Wheel]
-    free: list[Wheel] = field(default_factory=list)  # wheels that roll undriven
-    steering: list[Steering] = field(default_factory=list)  # ackermann: left, right
-    chosen: str = "found from the tree"  # or "declared", "--drive", "--left/--right"
-    sources: dict = field(default_factory=dict)  # driven joint -> where it came from
-    not_wheels: dict = field(default_factory=dict)  # Tree.not_wheels, for the report
-    declared: str = ""   # mecanum: the declaration that made it so, or the rollers
-    grip_from: str = ""  # mecanum: where the rollers' grip axes came from
-    grip_mu: dict = field(default_factory=dict)  # mecanum: joint -> (mu, mu across, source)
-
-    @property
-    def driven(self) -> list[Wheel]:
-        return self.left + self.right
-
-    @property
-    def wheels(self) -> list[Wheel]:
-        """Every wheel that rolls on the floor, driven or not."""
-        return self.driven + self.free
-
-    @property
-    def track(self) -> float:
-        """The distance between the left and right driven wheels' centre lines (m)."""
-        return float(np.mean([w.y for w in self.left]) - np.mean([w.y for w in self.right]))
-
-    @property
-    def radius(self) -> float:
-        return float(np.mean([w.radius for w in self.driven]))
-
-    @property
-    def rear(self) -> list[Wheel]:
-        """Ackermann: the unsteered wheels (their axle is the turn's reference)."""
-        return [w for w in self.wheels if w.steering is None]
-
-    @property
-    def wheelbase(self) -> float:
-        """Ackermann: from the rear axle to the steering pivots (m)."""
-        return float(np.mean([s.x for s in self.steering]) - np.mean([w.x for w in self.rear]))
-
-
-@dataclass
-class Tree:
-    """What was found of the robot's wheels before a kind is chosen."""
-
-    wheels: list[Wheel]            # drive candidates: neither rollers nor castors
-    steering: list[Steering]       # revolute upright joints, each above one wheel
-    rollers: list[str]             # wheels below another wheel
-    castor_wheels: list[str]       # links of wheels on a swivel
-    odd_steering: list[str] = field(default_factory=list)  # above several wheels
-    joints: dict = field(default_factory=dict)  # URDF joint name -> element
-    make: object = None            # joint name -> Wheel, for a wheel named on the command line
-    # continuous joints moving collision geometry that are no wheel: joint -> why (for notes)
-    not_wheels: dict = field(default_factory=dict)
-    roller_grip: dict = field(default_factory=dict)  # hub joint -> its rollers' grip axis
-
-
 def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
     """The wheels, steering joints, rollers and castor wheels of a compiled model
     (``joints``: URDF joint name -> element, the robot's own joints; ``lowest``: geom ->
@@ -173,9 +77,14 @@ def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
     bare = [w for w in rolling if not w.geom_ids]
     rolling = [w for w in rolling if w.geom_ids]
     hubs = bare_hubs(model, data, bare, rolling)  # hubs that roll on rollers only
-    # The floor is what the collision geometry reaches (an export's visuals touch nothing).
-    floor = min((z for g, z in lowest.items()
-                 if model.geom_contype[g] or model.geom_conaffinity[g]), default=0.0)
+    # The floor is where the lowest level wheel touches: a body lower than its wheels rests
+    # on its belly, which drop fails naming the part; it does not make its wheels no wheels.
+    # (Collision geometry only: an export's visuals touch nothing.)
+    level = [g for w in rolling if abs(data.xaxis[w.joint_id][2]) < HORIZONTAL
+             for g in w.geom_ids]
+    floor = min((lowest[g] for g in level), default=min(
+        (z for g, z in lowest.items() if model.geom_contype[g] or model.geom_conaffinity[g]),
+        default=0.0))
     not_wheels = {}
     for wheel in rolling:
         why = _not_a_wheel(model, data, wheel, lowest, floor)
@@ -186,7 +95,13 @@ def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
     for wheel in rolling:
         if wheel.joint in not_wheels and _below(model, wheel.body_id, wheel_bodies):
             del not_wheels[wheel.joint]
-    candidates = [w for w in rolling if w.joint not in not_wheels] + hubs
+    # Rollers on a level hub drawn without a tyre that is no mecanum hub (omni rollers
+    # across the axle) are rollers too, not four small wheels.
+    bare_level = {w.body_id for w in bare if w not in hubs
+                  and abs(data.xaxis[w.joint_id][2]) < HORIZONTAL}
+    on_bare = [w.joint for w in rolling if _below(model, w.body_id, bare_level)]
+    candidates = [w for w in rolling if w.joint not in not_wheels
+                  and w.joint not in on_bare] + hubs
     wheel_bodies = {w.body_id: w for w in candidates}
     wheels, rollers, castors, above, on_rims = [], [], [], {}, {}
     for wheel in candidates:
@@ -209,6 +124,9 @@ def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
             if hinge is not None:
                 above.setdefault(hinge, []).append(wheel)
             wheels.append(wheel)
+    for joint in on_bare:
+        not_wheels.pop(joint, None)
+    rollers += on_bare
     steering, odd = [], []
     for name, under in above.items():
         if len(under) != 1:
@@ -255,6 +173,14 @@ def choose_drive(tree: Tree, actuated: set[str], left=None, right=None,
     if left or right:
         return _named(tree, _names(left), _names(right), kind), None
     if kind is None:
+        # The mecanum reader's declarations first: it checks a controller's wheel radius
+        # against the wheels' (ROSbot XL ships a diff-drive and a mecanum controller for the
+        # same four joints); the other readers' mecanum declarations are plugins.
+        drive = mecanum_drive(tree, list(mecanum)) if declared_mecanum(tree, mecanum) else None
+        if drive is not None:
+            drive.chosen = "declared"
+            drive.sources = _each(drive.driven, drive.declared)
+            return drive, None
         for declaration in declared:
             found = _from_declaration(tree, declaration)
             if found is not None:
@@ -309,6 +235,8 @@ def _from_declaration(tree: Tree, declaration) -> tuple[Drive | None, str | None
            for n in declaration.joints):
         return None
     if declaration.kind == "mecanum":
+        if declaration.element is None:  # a controller YAML: the mecanum reader's to judge
+            return None
         drive = declared_drive(tree, "mecanum",
                                declaration.left + declaration.right + declaration.driven,
                                declaration.source)

@@ -308,7 +308,7 @@ def mecanum_drive(tree, declared: list[Declaration], names=None):
     """The mecanum Drive of ``tree`` (a drives.Tree): its four wheels (``names``: the
     wheel joints a declaration names, else the tree's) with their grip axes, or None
     when they are not four, two a side. ``declared``: what the package said."""
-    from .drives import Drive
+    from .drive_parts import Drive
 
     wheels = tree.wheels if not names else [w for w in tree.wheels if w.joint in set(names)]
     by_corner = corners(wheels)

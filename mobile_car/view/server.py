@@ -32,12 +32,14 @@ from viser.extras import ViserUrdf
 from ..errors import McarError, UsageError
 from .dimensions import Dimensions
 from .inbound import Inbound, UnreadableMessages
-from .model import ViewModel, error_lines
+from .markers import THICKNESS_PX, marker_segments
+from .model import MOVING, ViewModel, error_lines
 from .origin import PageOrigin, guarding_requests
 from .watch import FileWatch
 
 ROBOT_NODE = "/robot"
 FRAMES_NODE = "/frames"
+MARKERS_NODE = "/joint_markers"
 # Collision geometry has no colour in URDF: a see-through orange tells it from the visual.
 COLLISION_RGBA = (0.95, 0.55, 0.15, 0.6)
 # Where the camera looks from at start, as rviz's default view does: front-left-above.
@@ -50,8 +52,8 @@ ERROR_BOX_STYLE = ("white-space: pre-wrap; overflow-wrap: anywhere; font-family:
                    "font-size: 0.75rem; line-height: 1.35; padding: 0 0.75rem 0.5rem")
 
 # Rows of the control panel, top to bottom.
-_ORDER = {"status": 0, "errors": 0.5, "visual": 1, "collision": 2, "frames": 3, "reset": 4,
-          "joints": 10, "dimensions": 20}
+_ORDER = {"status": 0, "errors": 0.5, "visual": 1, "collision": 2, "frames": 3,
+          "markers": 3.5, "reset": 4, "joints": 10, "dimensions": 20}
 
 
 def url_of(host: str, port: int) -> str:
@@ -82,6 +84,7 @@ class RobotView:
         self.reloads = 0  # rebuilds shown (for the tests and the status line)
         self.sliders: dict[str, viser.GuiSliderHandle] = {}
         self.frames: dict[str, viser.FrameHandle] = {}
+        self.markers: dict[str, viser.LineSegmentsHandle] = {}  # by joint name
         self._robot: ViserUrdf | None = None
         self._joints_folder = None
         self.watch = FileWatch()
@@ -138,12 +141,16 @@ class RobotView:
         self.show_frames = accept(gui.add_checkbox(
             "Link frames", False, order=_ORDER["frames"],
             hint="x/y/z axes (red/green/blue) of every link"))
+        self.show_markers = accept(gui.add_checkbox(
+            "Joint markers", True, order=_ORDER["markers"],
+            hint="each moving joint's axis (amber) and a spoke that turns with it (magenta)"))
         self.reset = accept(gui.add_button("Reset joints", order=_ORDER["reset"],
                                            hint="Every joint back to zero (or its nearer limit)"))
         visibility = self._on_page(self._apply_visibility, "showing or hiding geometry")
         self.show_visual.on_update(visibility)
         self.show_collision.on_update(visibility)
         self.show_frames.on_update(visibility)
+        self.show_markers.on_update(visibility)
         self.reset.on_click(self._on_page(self.reset_joints, "resetting the joints"))
         if self.dimensions is not None and self.dimensions.ranges:
             self._build_dimension_panel()
@@ -161,6 +168,8 @@ class RobotView:
                     self._robot.show_collision = self.show_collision.value
             for frame in self.frames.values():
                 frame.visible = self.show_frames.value
+            for marker in self.markers.values():
+                marker.visible = self.show_markers.value
 
     def _set_status(self) -> None:
         model = self.model
@@ -186,8 +195,8 @@ class RobotView:
                 with warnings.catch_warnings():  # it removes children its parents took along
                     warnings.simplefilter("ignore", UserWarning)
                     self._robot.remove()
-            for frame in self.frames.values():
-                frame.remove()
+            for node in [*self.frames.values(), *self.markers.values()]:
+                node.remove()
             if self._joints_folder is not None:
                 self._inbound.forget(self.sliders.values())
                 self._joints_folder.remove()
@@ -197,6 +206,7 @@ class RobotView:
                                     load_meshes=True, load_collision_meshes=model.has_collision,
                                     collision_mesh_color_override=COLLISION_RGBA)
             self._add_frames(model)
+            self._add_markers(model)
             self._add_sliders(model, kept)
             self._pose()
             self._apply_visibility()
@@ -211,6 +221,19 @@ class RobotView:
             self.frames[link.name] = self.server.scene.add_frame(
                 f"{FRAMES_NODE}/{index}", axes_length=0.15 * size, axes_radius=0.006 * size,
                 visible=False)
+
+    def _add_markers(self, model: ViewModel) -> None:
+        """A marker on every joint that moves (mimic joints too: they move with theirs)."""
+        size = _robot_size(model)
+        self.markers = {}
+        for index, joint in enumerate(model.urdf.robot.joints):
+            if joint.type not in MOVING:
+                continue
+            axis = joint.axis if joint.axis is not None else (1.0, 0.0, 0.0)
+            points, colours = marker_segments(axis, joint.type, size)
+            self.markers[joint.name] = self.server.scene.add_line_segments(
+                f"{MARKERS_NODE}/{index}", points, colours, thickness=THICKNESS_PX,
+                thickness_units="screen")
 
     def _add_sliders(self, model: ViewModel, kept: dict[str, float]) -> None:
         self.sliders = {}
@@ -244,9 +267,9 @@ class RobotView:
                 self._robot.update_cfg(values)  # yourdfpy takes {joint name: value} too
             urdf = self.model.urdf
             for name, frame in self.frames.items():
-                pose = urdf.get_transform(name, urdf.base_link)
-                frame.wxyz = vtf.SO3.from_matrix(pose[:3, :3]).wxyz
-                frame.position = pose[:3, 3]
+                _place(frame, urdf.get_transform(name, urdf.base_link))
+            for name, marker in self.markers.items():  # in the joint's frame: its child's
+                _place(marker, urdf.get_transform(urdf.joint_map[name].child, urdf.base_link))
 
     def _add_ground(self, model: ViewModel) -> None:
         """A grid under the robot at start, with round spacing, for scale."""
@@ -360,6 +383,11 @@ class RobotView:
             self.reloads += 1
             self.show(model)
         return None
+
+
+def _place(node, pose: np.ndarray) -> None:
+    node.wxyz = vtf.SO3.from_matrix(pose[:3, :3]).wxyz
+    node.position = pose[:3, 3]
 
 
 def error_box_html(lines: list[str]) -> str:

@@ -175,3 +175,45 @@ def test_the_error_box_shows_the_whole_message_wrapped(car, page):
     block.wait_for(timeout=SECONDS * 1000)
     scroll, client = block.evaluate("e => [e.scrollWidth, e.clientWidth]")
     assert scroll > 2 * client
+
+
+# Columns of the scene left of the control panel and of the near wheel it half hides (the
+# facets of a turning cylinder's rim shade differently there, markers or not): the far
+# wheel's marker shows over the chassis.
+CANVAS = 500
+
+
+def _magenta(picture: np.ndarray) -> int:
+    """Pixels of the joint markers' spokes (nothing else on the car is magenta)."""
+    r, g, b = picture[..., 0], picture[..., 1], picture[..., 2]
+    return int(((r > 170) & (g < 90) & (b > 120)).sum())
+
+
+def _changed(one: np.ndarray, other: np.ndarray) -> int:
+    """Scene pixels that differ clearly (not by a shade) between two pictures."""
+    return int((np.abs(one[:, :CANVAS] - other[:, :CANVAS]).max(axis=2) > 48).sum())
+
+
+def test_a_turned_wheel_is_seen_turning(car, page):
+    page.goto(car.url, timeout=SECONDS * 1000)
+    page.get_by_text("wheel_left_joint", exact=True).wait_for(timeout=SECONDS * 1000)
+    rest = _picture_when(page, lambda p: _magenta(p[:, :CANVAS]) > 40,
+                         "the wheels' joint markers appear")
+    for slider in car.sliders.values():
+        slider.value = 1.2
+    turned = _picture_when(page, lambda p: _changed(rest, p) > 150,
+                           "the wheels' markers turn with them")
+    if SCREENSHOT_DIR:
+        page.screenshot(path=str(Path(SCREENSHOT_DIR) / "view-wheel.png"),
+                        timeout=SECONDS * 1000)
+    # The control: without the markers, the plain cylinders turning back change nothing.
+    car.show_markers.value = False
+    hidden = _picture_when(page, lambda p: _magenta(p[:, :CANVAS]) < 5,
+                           "the markers are switched off")
+    for slider in car.sliders.values():
+        slider.value = 0.0
+    box = page.locator(".mantine-NumberInput-input").first
+    _until(lambda _: box.input_value() == "0", "the page has the wheels at 0")
+    _picture(page)  # (a frame drawn after the update)
+    back = _picture(page)
+    assert _changed(hidden, back) < 20 < _changed(rest, turned)

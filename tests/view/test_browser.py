@@ -217,3 +217,28 @@ def test_a_turned_wheel_is_seen_turning(car, page):
     _picture(page)  # (a frame drawn after the update)
     back = _picture(page)
     assert _changed(hidden, back) < 20 < _changed(rest, turned)
+
+
+def test_the_pages_share_one_robot_as_docs_view_says(served, page, browser):
+    """The state is the viewer's, not the page's (docs/view.md): a page opened later opens
+    with the joint values set, and a joint moved in one page moves in every page."""
+    page.goto(served.url, timeout=SECONDS * 1000)
+    first = page.locator(".mantine-NumberInput-input").first  # the shoulder's box
+    first.fill("0.75")
+    first.press("Enter")
+    _until(lambda _: served.joint_values()["shoulder"] == 0.75, "the server has 0.75")
+    context = browser.new_context(viewport=VIEWPORT)
+    context.set_default_timeout(SECONDS * 1000)
+    try:
+        later = context.new_page()
+        later.goto(served.url, timeout=SECONDS * 1000)
+        second = later.locator(".mantine-NumberInput-input").first
+        _until(lambda _: second.input_value() == "0.75", "a later page opens at 0.75")
+        second.fill("-0.5")
+        second.press("Enter")
+        _until(lambda _: first.input_value() == "-0.5", "the first page follows the second")
+    finally:
+        context.close()
+    assert served.joint_values()["shoulder"] == -0.5
+    page_text = (Path(__file__).resolve().parents[2] / "docs" / "view.md").read_text()
+    assert "one robot for every page" in " ".join(page_text.split())

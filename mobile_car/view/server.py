@@ -77,7 +77,8 @@ class RobotView:
         # One dimension change at a time, so that each builds on the last one accepted.
         self._dimension_lock = threading.RLock()  # (putting a slider back re-enters)
         self.dimensions = dimensions
-        self.dimension_sliders: dict[str, viser.GuiSliderHandle] = {}
+        self.dimension_sliders: dict[str, viser.GuiSliderHandle] = {}  # (in shown units)
+        self._dimension_items: dict = {}  # name -> its DimensionRange
         self.overrides_yaml = None  # the text area the copy button fills
         self.model: ViewModel | None = None
         self.errors: list[str] = []  # the last failed rebuild's lines; empty when current
@@ -305,23 +306,27 @@ class RobotView:
                                                       visible=False))
             copy.on_click(self._on_page(self.show_overrides_yaml, "showing the overrides"))
             for item in dims.ranges:
+                value = min(max(dims.value(item.name), item.low), item.high)
+                start, end, step = item.neighbourhood(value)
+                unit = "" if item.shown_unit in ("1", "count") else f" {item.shown_unit}"
                 slider = gui.add_slider(
-                    item.label, min=item.low, max=item.high, step=item.step,
-                    initial_value=min(max(dims.value(item.name), item.low), item.high),
-                    hint=f"{item.meaning} (default {item.default:g}, "
-                         f"{item.low:g} to {item.high:g})")
+                    item.label, min=start, max=end, step=step, initial_value=item.shown(value),
+                    hint=f"{item.meaning} (default {item.shown(item.default):g}{unit}; "
+                         f"the slider spans half to twice the value, the box takes any "
+                         f"value of {item.plausible})")
                 slider.on_update(self._inbound.guarded(
-                    lambda event, name=item.name: self._slid(name, event.target),
+                    lambda event, item=item: self._slid(item, event.target),
                     f"setting dimension {item.name!r}"))
-                self.dimension_sliders[item.name] = accept(slider)
+                self.dimension_sliders[item.name] = accept(slider, bounds=item.bounds())
+                self._dimension_items[item.name] = item
 
-    def _slid(self, name: str, slider) -> None:
+    def _slid(self, item, slider) -> None:
         # Dragging sends values faster than the robot builds: each callback, once its turn
         # comes, builds the slider's newest value, and the ones queued behind it see it built.
         with self._dimension_lock:
-            value = slider.value
-            if value != self.dimensions.value(name):
-                self.set_dimension(name, value)
+            shown = slider.value
+            if shown != item.shown(self.dimensions.value(item.name)):
+                self.set_dimension(item.name, shown * item.factor)
 
     def set_dimension(self, name: str, value: float) -> McarError | None:
         """Rebuild with dimension ``name`` at ``value``, validated as ``--set`` is. A value
@@ -338,6 +343,7 @@ class RobotView:
             error = self.rebuild(lambda: dims.load(values))
             if error is not None:
                 return self._refuse_dimension(name, error)
+            self._span(name)
             if self.overrides_yaml is not None and self.overrides_yaml.visible:
                 self.show_overrides_yaml()
             return None
@@ -347,9 +353,19 @@ class RobotView:
             self.errors = error_lines(error)
             self._set_status()
         slider = self.dimension_sliders.get(name)
-        if slider is not None:
-            slider.value = self.dimensions.value(name)
+        if slider is not None:  # put back (a typed value may have been past its end)
+            self._span(name)
+            slider.value = self._dimension_items[name].shown(self.dimensions.value(name))
         return error
+
+    def _span(self, name: str) -> None:
+        """A dimension built at a value past its slider's ends (typed in the box): the
+        slider spans the neighbourhood of that value instead. (Its value is left alone:
+        a drag may have sent newer ones, which are on their way.)"""
+        slider, item = self.dimension_sliders.get(name), self._dimension_items.get(name)
+        value = self.dimensions.value(name)
+        if slider is not None and not slider.min <= item.shown(value) <= slider.max:
+            slider.min, slider.max, slider.step = item.neighbourhood(value)
 
     def show_overrides_yaml(self) -> str:
         """Show the overrides as a ``--config`` file in the page, to copy from (a page

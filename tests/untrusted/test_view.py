@@ -327,3 +327,42 @@ def test_markup_in_an_error_message_is_shown_as_text(served):
     assert html.escape(quoted, quote=True) in box
     assert box.startswith('<div class="mcar-errors" ') and box.endswith("</div>")
     assert box.count("<") == 2  # its own <div> and </div>, nothing of the file's
+
+
+def test_a_dimension_takes_its_plausible_range_from_the_page_and_nothing_past_it(repo,
+                                                                                 capfd):
+    """A dimension's box takes values past its slider's ends (the slider spans only the
+    neighbourhood of the value), but nothing outside the dimension's plausible range: the
+    page's values are still checked before they touch the robot."""
+    from mobile_car.load.inputs import RobotInput
+    from mobile_car.load.robot import LoadOptions
+    from mobile_car.view.dimensions import robot_dimensions
+    from mobile_car.view.model import load_model
+    from mobile_car.view.server import RobotView
+
+    inp, options = RobotInput(repo / "urdf" / "mobile_robot.xacro"), LoadOptions()
+    model = load_model(inp, options)
+    dimensions = robot_dimensions(inp, options, model)
+    view = RobotView(model, dimensions.load, host="127.0.0.1", port=0, dimensions=dimensions,
+                     warn=lambda text: print(text, file=sys.stderr))
+    try:
+        from mobile_car.view.inbound import refusal
+
+        wheel = view.dimension_sliders["wheel_radius"]
+        assert wheel.max == 0.065  # its slider; the range is 5 mm..0.5 m
+        # the check by the slider alone refuses 0.1; by the dimension's range, not 0.6
+        assert refusal(wheel, {"value": 0.1}) == "0.1 is not within 0.0162..0.065"
+        assert refusal(wheel, {"value": 0.6}, (0.005, 0.5)) == "0.6 is not within 0.005..0.5"
+        with _page(view.port) as page:
+            uuid = _slider(_scene(page), "wheel_radius (m)")["uuid"]
+            for bad in (0.6, 1e308, -0.01):
+                page.send(_update(uuid, {"value": bad}))
+            page.send(_update(uuid, {"value": 0.1}))  # past the slider, inside the range
+            # (viser applied it: a value the check refuses never reaches the slider)
+            _until(lambda: wheel.value == 0.1, "the value past the slider's end was not taken")
+        lines = _stderr_lines(capfd)
+        assert lines == ["mcar view: ignored what the page sent for the slider "
+                         "'wheel_radius (m)': 0.6 is not within 0.005..0.5 (more from it are "
+                         "ignored silently)"], lines
+    finally:
+        view.stop()

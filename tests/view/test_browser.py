@@ -154,29 +154,6 @@ _WIDTHS = """e => { const out = [];
   return out; }"""
 
 
-def test_the_error_box_shows_the_whole_message_wrapped(car, page):
-    error = car.set_dimension("track_width", 0.3)  # the brackets stick out of the plate
-    assert error is not None and len(car.errors[0]) > 200  # far wider than the panel
-    page.goto(car.url, timeout=SECONDS * 1000)
-    box = page.locator(".mcar-errors")
-    box.wait_for(timeout=SECONDS * 1000)
-    assert box.inner_text() == car.errors[0]  # every word of it, as text
-    # Nothing between it and the panel is wider than it shows: no hidden scroll.
-    widths = box.evaluate(_WIDTHS)
-    assert widths and all(scroll <= client for scroll, client in widths), widths
-    assert box.bounding_box()["height"] > 4 * 12  # on several rows
-    if SCREENSHOT_DIR:
-        page.screenshot(path=str(Path(SCREENSHOT_DIR) / "view-error.png"),
-                        timeout=SECONDS * 1000)
-    # The control: the same message in a markdown code block, as the page showed it
-    # before, is one row wider than the panel, its end behind a scroll bar.
-    car.status.content = "```\n" + car.errors[0] + "\n```"
-    block = page.locator("pre").first
-    block.wait_for(timeout=SECONDS * 1000)
-    scroll, client = block.evaluate("e => [e.scrollWidth, e.clientWidth]")
-    assert scroll > 2 * client
-
-
 # Columns of the scene left of the control panel and of the near wheel it half hides (the
 # facets of a turning cylinder's rim shade differently there, markers or not): the far
 # wheel's marker shows over the chassis.
@@ -194,6 +171,7 @@ def _changed(one: np.ndarray, other: np.ndarray) -> int:
     return int((np.abs(one[:, :CANVAS] - other[:, :CANVAS]).max(axis=2) > 48).sum())
 
 
+@pytest.mark.slow
 def test_a_turned_wheel_is_seen_turning(car, page):
     page.goto(car.url, timeout=SECONDS * 1000)
     page.get_by_text("wheel_left_joint", exact=True).wait_for(timeout=SECONDS * 1000)
@@ -219,6 +197,7 @@ def test_a_turned_wheel_is_seen_turning(car, page):
     assert _changed(hidden, back) < 20 < _changed(rest, turned)
 
 
+@pytest.mark.slow
 def test_the_pages_share_one_robot_as_docs_view_says(served, page, browser):
     """The state is the viewer's, not the page's (docs/view.md): a page opened later opens
     with the joint values set, and a joint moved in one page moves in every page."""
@@ -242,3 +221,60 @@ def test_the_pages_share_one_robot_as_docs_view_says(served, page, browser):
     assert served.joint_values()["shoulder"] == -0.5
     page_text = (Path(__file__).resolve().parents[2] / "docs" / "view.md").read_text()
     assert "one robot for every page" in " ".join(page_text.split())
+
+
+@pytest.mark.slow
+def test_a_dragged_dimension_slider_lands_on_a_plausible_value_and_an_error_shows_whole(
+        car, page):
+    page.goto(car.url, timeout=SECONDS * 1000)
+    page.get_by_text("Dimensions", exact=True).click(timeout=SECONDS * 1000)  # (folded)
+    page.get_by_text("wheel_radius (m)", exact=True).wait_for(timeout=SECONDS * 1000)
+    # A value that does not fit: the whole message, wrapped at the panel's edge.
+    error = car.set_dimension("track_width", 0.3)  # the brackets stick out of the plate
+    assert error is not None and len(car.errors[0]) > 200  # far wider than the panel
+    box = page.locator(".mcar-errors")
+    box.wait_for(timeout=SECONDS * 1000)
+    assert box.inner_text() == car.errors[0]  # every word of it, as text
+    # Nothing between it and the panel is wider than it shows: no hidden scroll.
+    widths = box.evaluate(_WIDTHS)
+    assert widths and all(scroll <= client for scroll, client in widths), widths
+    assert box.bounding_box()["height"] > 4 * 12  # on several rows
+    if SCREENSHOT_DIR:
+        page.screenshot(path=str(Path(SCREENSHOT_DIR) / "view-error.png"),
+                        timeout=SECONDS * 1000)
+    # The control: the same message in a markdown code block, as the page showed it
+    # before, is one row wider than the panel, its end behind a scroll bar.
+    car.status.content = "```\n" + car.errors[0] + "\n```"
+    block = page.locator("pre").first
+    block.wait_for(timeout=SECONDS * 1000)
+    scroll, client = block.evaluate("e => [e.scrollWidth, e.clientWidth]")
+    assert scroll > 2 * client
+
+    # Then a drag: it lands on a plausible value (and, built, clears the message).
+    slider = car.dimension_sliders["wheel_radius"]
+    span = (slider.min, slider.max)
+    # The sliders: the two wheel joints', then the dimensions' from wheel_radius on.
+    track = page.locator(".mantine-Slider-root").nth(len(car.sliders)).bounding_box()
+    thumb = page.locator(".mantine-Slider-thumb").nth(len(car.sliders)).bounding_box()
+    x, y = thumb["x"] + thumb["width"] / 2, thumb["y"] + thumb["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    page.mouse.move(x + track["width"] / 4, y, steps=4)  # a quarter of the track right
+    page.mouse.up()
+
+    def landed(_):  # (past the values the drag sent on its way)
+        value = car.dimensions.values.get("wheel_radius", 0.0)
+        return value > 0.0325 + (span[1] - span[0]) / 10 and value == slider.value \
+            and _base_height(car) == value and not car.errors
+
+    _until(landed, "the dragged wheel_radius rebuilds the car")
+    value = car.dimensions.values["wheel_radius"]
+    # A quarter of 16.2..65 mm is some 12 mm: a wheel a little bigger, on the 0.2 mm grid.
+    assert 0.0325 < value <= 0.0325 + (span[1] - span[0]) / 4 + 0.002, value
+    assert round(value / 0.0002) * 0.0002 == pytest.approx(value, abs=1e-12)
+    # (A quarter of the slider it replaced, 5 mm..0.5 m, was a wheel 124 mm bigger.)
+    assert (value - 0.0325) * 8 < (0.5 - 0.005) / 4
+
+
+def _base_height(view) -> float:
+    return float(view.model.urdf.joint_map["base_joint"].origin[2, 3])

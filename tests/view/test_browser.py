@@ -24,7 +24,9 @@ CHROMIUM = "/usr/bin/chromium"
 ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
         "--disable-background-networking", "--disable-component-update"]
 VIEWPORT = {"width": 900, "height": 600}
-# Where a person looks at the picture the README shows (MCAR_SCREENSHOT_DIR=docs).
+# Where a person looks at the pictures: view.png, the one docs/view.md shows
+# (MCAR_SCREENSHOT_DIR=docs), view-wheel.png (a turned wheel, its markers turned) and
+# view-error.png (a whole error message in the panel).
 SCREENSHOT_DIR = os.environ.get("MCAR_SCREENSHOT_DIR")
 # Every wait below is bounded by this, playwright's own included: its default (30 s for a
 # screenshot, a click, a fill) is a fixed wait that a loaded machine overran, taking a

@@ -7,9 +7,11 @@ a plausible neighbourhood of the value, not the whole plausible range, which is 
 many (5 mm..0.5 m for a wheel: a hundredfold, where a pixel of the slider was 1.5 mm and
 a drag landed anywhere): half to twice the value (a range reaching zero or below: the
 value give or take its size, or a twentieth of the range), where a linear scale is even
-enough. A value typed in the slider's box anywhere in the plausible range is taken, and
-the slider then spans the neighbourhood of that value: going a long way is typing it, or
-dragging to an end again and again, each drag doubling or halving.
+enough (viser's slider is linear, and its box shows the slider's own value: a logarithmic
+slider would show a logarithm there). A value typed in the slider's box anywhere in the
+plausible range is taken, and the slider then spans the neighbourhood of that value:
+going a long way is typing it. A drag never re-spans it, even at an end, where the thumb
+would jump under the pointer.
 
 A robot gets them only when it is built from a config.xacro (its package's, or the mobile
 car's): a robot of another package has no dimensions to move. Derived dimensions follow

@@ -23,6 +23,7 @@ from .diagnostics import Counted, Diagnostic
 from .joints import check_joints
 from .link_bodies import check_link_bodies
 from .links import material_colours
+from .masses import check_masses
 from .meshes import MeshFile, check_meshes
 from .plausibility import check_plausibility
 from .rest_pose import rest_pose
@@ -118,6 +119,7 @@ def _check_document(root, data: bytes, file: str, base: Path, search: PackageSea
             pose = rest_pose(robot, tree, held, bounds)
         result.extents = pose.extents()
         check_plausibility(robot, tree, pose, report)
+        check_masses(robot, tree, held, bounds, report)
     if not report.numbers_confirmed():
         return None
     return _finish(result, report)

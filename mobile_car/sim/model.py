@@ -92,9 +92,11 @@ class SimModel:
 
 def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=None,
                 effort: float | None = None, speed: float | None = None,
-                kind: str | None = None) -> SimModel:
+                kind: str | None = None, declared=None) -> SimModel:
     """``left``, ``right``: the driven joints of each side (a name, comma-separated names
-    or a list), ``kind``: a drive kind (:mod:`.drives`), else found from the tree;
+    or a list), ``kind``: a drive kind (:mod:`.drives`), else declared or found from the
+    tree; ``declared``: the package's drive declarations (:func:`.report.declarations`),
+    None for the URDF's plugins alone;
     ``effort`` (N·m), ``speed`` (rad/s): the drive motors' figures where the description
     gives none (:mod:`.motors`)."""
     mj = mujoco()
@@ -133,33 +135,16 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)
     lowest = lowest_points(mj, shape, data)
-    drive, why = fit_drive(mj, shape, data, joints, DriveSources(root_figures, actuated,
-                                                                friction), left, right, kind,
-                           effort, speed)
+    drive, why = fit_drive(mj, shape, data, joints,
+                           DriveSources(root_figures, actuated, friction, declared), lowest,
+                           left, right, kind, effort, speed)
     wheels = drive.wheels if drive else []
     mass = float(shape.body_mass.sum())
-    wheels_lowest = [lowest[g] for w in wheels for g in w.geom_ids]
-    robot_geoms = [g for g in range(shape.ngeom) if shape.geom_bodyid[g] != 0]
-    if not robot_geoms:
+    if not _colliding(shape):
         raise SimModelError("no link has <collision> geometry: nothing can rest on the "
                             "floor, the robot would fall through it", file=label)
-    ground = min(wheels_lowest) if wheels_lowest else min(lowest[g] for g in robot_geoms)
-    wheel_bodies = {w.body_id for w in wheels}
-    parts, clearance = {}, {}
-    for g in robot_geoms:
-        body = int(shape.geom_bodyid[g])
-        name = shape.body(body).name
-        if body in wheel_bodies or lowest[g] <= ground + GROUND_TOLERANCE:
-            clearance[name] = min(clearance.get(name, np.inf), lowest[g] - ground)
-        if body not in wheel_bodies and lowest[g] <= ground + GROUND_TOLERANCE:
-            parts[name] = body
-    if wheels:
-        for geom in spec.geoms:
-            if geom.parent.name in parts and geom.parent.name not in friction:
-                geom.friction = [CASTOR_FRICTION, geom.friction[1], geom.friction[2]]
-                geom.priority = 1
-    for wheel in wheels:
-        _round_tyre(spec, wheel, mj)
+    ground, parts, clearance = resting_parts(shape, lowest, wheels)
+    rolling_contacts(mj, spec, drive, parts, friction)
     add_motors(mj, spec, drive, mass)
     steering = drive.steering if drive else []
     held = _hold_the_rest(spec, joints, drive)
@@ -311,10 +296,57 @@ def lowest_points(mj, model, data) -> dict[int, float]:
     return lowest
 
 
-def _round_tyre(spec, wheel, mj) -> None:
-    """The wheel's cylinders touch the floor through a sphere of the same radius."""
+def resting_parts(shape, lowest: dict[int, float], wheels) -> tuple[float, dict, dict]:
+    """(the floor's z under the robot: the drive wheels' lowest point, else the lowest
+    colliding geom's; the other links resting on it, link -> body id; link -> its lowest
+    point above that floor, for the wheels and the resting links), every joint at 0.
+    Shared by ``mcar sim`` and ``mcar export --verify``, which judge alike; a geom that
+    touches nothing (an export's visual) rests on nothing."""
+    robot_geoms = _colliding(shape)
+    wheels_lowest = [lowest[g] for w in wheels for g in w.geom_ids]
+    ground = min(wheels_lowest) if wheels_lowest else min(lowest[g] for g in robot_geoms)
+    wheel_bodies = {w.body_id for w in wheels}
+    parts, clearance = {}, {}
+    for g in robot_geoms:
+        body = int(shape.geom_bodyid[g])
+        name = shape.body(body).name
+        if body in wheel_bodies or lowest[g] <= ground + GROUND_TOLERANCE:
+            clearance[name] = min(clearance.get(name, np.inf), lowest[g] - ground)
+        if body not in wheel_bodies and lowest[g] <= ground + GROUND_TOLERANCE:
+            parts[name] = body
+    return ground, parts, clearance
+
+
+def rolling_contacts(mj, spec, drive, parts: dict, friction: dict) -> None:
+    """Sim's contact choices for a vehicle (the module's docstring), which ``mcar export
+    --to mjcf`` writes too: a castor's friction where the description gives none, and
+    round tyres."""
+    if drive is None:
+        return
     for geom in spec.geoms:
-        if geom.parent.name == wheel.link and geom.type == mj.mjtGeom.mjGEOM_CYLINDER:
+        if geom.parent.name in parts and geom.parent.name not in friction and _touches(geom):
+            geom.friction = [CASTOR_FRICTION, geom.friction[1], geom.friction[2]]
+            geom.priority = 1
+    for wheel in drive.wheels:
+        _round_tyre(spec, wheel, mj)
+
+
+def _colliding(shape) -> list[int]:
+    """The robot's geoms that collide (every one in sim; not an export's visuals)."""
+    return [g for g in range(shape.ngeom) if shape.geom_bodyid[g] != 0
+            and (shape.geom_contype[g] or shape.geom_conaffinity[g])]
+
+
+def _touches(geom) -> bool:
+    return bool(geom.contype or geom.conaffinity)
+
+
+def _round_tyre(spec, wheel, mj) -> None:
+    """The wheel's colliding cylinders touch the floor through a sphere of the same
+    radius (an export's visual cylinder stays one)."""
+    for geom in spec.geoms:
+        if geom.parent.name == wheel.link and geom.type == mj.mjtGeom.mjGEOM_CYLINDER \
+                and _touches(geom):
             geom.type = mj.mjtGeom.mjGEOM_SPHERE
             geom.size = [geom.size[0], 0, 0]
 

@@ -110,14 +110,22 @@ def ramp(t: float) -> float:
 
 
 def command_speed(sim: SimModel) -> float:
-    """Half the smallest velocity limit of the driven joints (rad/s); without one,
-    DEFAULT_SPEED or DEFAULT_LINEAR_SPEED, whichever is slower on these wheels."""
+    """Half the smallest velocity limit of the driven joints (rad/s); without one (or
+    where it is a placeholder, :data:`.motors.MAX_RIM_SPEED`), DEFAULT_SPEED or
+    DEFAULT_LINEAR_SPEED, whichever is slower on these wheels."""
     driven = sim.drive.driven
-    limits = [w.velocity for w in driven if w.velocity and w.velocity > 0]
+    limits = [_usable(w) for w in driven]
+    limits = [v for v in limits if v and v > 0]
     if limits:
         return 0.5 * min(limits)
     radius = max(w.radius for w in driven)
     return min(DEFAULT_SPEED, DEFAULT_LINEAR_SPEED / radius) if radius > 0 else DEFAULT_SPEED
+
+
+def _usable(wheel) -> float | None:
+    """The wheel's speed limit, None where its motor figures call it a placeholder."""
+    motor = wheel.motor
+    return motor.usable_velocity if motor is not None else wheel.velocity
 
 
 def forward_sign(run: Run, wheel) -> float:

@@ -30,20 +30,35 @@ GRAVITY = 9.81
 class DriveSources:
     """What a drive's motor figures and friction are read from, kept from the URDF before
     anything is taken out of it: its top-level ``<gazebo>`` and ``<ros2_control>``
-    elements, the joints a transmission drives, link -> ``<mu1>``."""
+    elements, the joints a transmission drives, link -> ``<mu1>``; and ``declared``, the
+    drive declarations (:mod:`.declared`: the URDF's plugins, located, then the controllers
+    its control package configures), None for the URDF's plugins alone."""
 
     figures: list
     actuated: set[str]
     friction: dict[str, float]
+    declared: list | None = None
+
+    def declarations(self, joints: dict) -> list:
+        """The drive declarations that are this robot's, the URDF's plugins first."""
+        from .declared import in_urdf, meant_for
+
+        found = in_urdf(self.figures) if self.declared is None else self.declared
+        return [d for d in found if meant_for(d, joints)]
 
 
-def fit_drive(mj, shape, data, joints: dict, sources: DriveSources, left=None, right=None,
-              kind=None, effort=None, speed=None) -> tuple[Drive | None, str | None]:
-    """The drive of a compiled model (kinematics done on ``data``) with its driven wheels'
-    motor figures and servo gains, or (None, why there is none); what ``mcar export
-    --to mjcf`` gives MuJoCo users too."""
-    tree = find_tree(mj, shape, data, joints)
-    drive, why = choose_drive(tree, sources.actuated, left, right, kind)
+def fit_drive(mj, shape, data, joints: dict, sources: DriveSources, lowest: dict, left=None,
+              right=None, kind=None, effort=None,
+              speed=None) -> tuple[Drive | None, str | None]:
+    """The drive of a compiled model (kinematics done on ``data``; ``lowest``: its geoms'
+    lowest points, :func:`.model.lowest_points`) with its driven wheels' motor figures and
+    servo gains, or (None, why there is none); what ``mcar export --to mjcf`` gives MuJoCo
+    users too."""
+    tree = find_tree(mj, shape, data, joints, lowest)
+    drive, why = choose_drive(tree, sources.actuated, left, right, kind,
+                              sources.declarations(joints))
+    if drive is not None:
+        drive.not_wheels = dict(tree.not_wheels)
     mass = float(shape.body_mass.sum())
     for wheel in drive.driven if drive else []:
         slip = sources.friction.get(wheel.link, 1.0) if drive.kind == "skid-steer" else None

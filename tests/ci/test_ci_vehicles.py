@@ -124,5 +124,5 @@ def test_a_mistake_in_mcar_yaml_stops_ci_before_anything_is_built(run_mcar, meca
                       cwd=tmp_path, timeout=300)
     assert result.returncode == 2
     assert result.stderr.strip().endswith(
-        "mcar.yaml:2: error: unknown key 'sim.skipp': sim takes skip")
+        "mcar.yaml:2: error: unknown key 'sim.skipp': sim takes skip, drive")
     assert not (tmp_path / "out").exists()

@@ -205,8 +205,10 @@ def test_what_the_tree_does_not_allow_is_a_usage_error(cli, robots, robot, args,
 
 
 def test_a_mecanum_base_stands_and_says_what_was_not_simulated(reports):
+    # A vehicle sim could not drive is not a pass (exit 1): drop passes, drive and spin
+    # fail with the reason.
     code, stderr, entry = reports["mecanum"]
-    assert code == 0, stderr
+    assert code == 1, stderr
     assert entry["drive"] is None
     assert entry["why_no_drive"].startswith(
         "omni or mecanum wheels (rollers front_left_wheel_roller_1, front_left_wheel_roller_2,")
@@ -214,7 +216,9 @@ def test_a_mecanum_base_stands_and_says_what_was_not_simulated(reports):
         "turn about the wheels): not a drive kind mcar sim drives (differential, skid-steer, "
         "ackermann)")
     assert [(s["name"], s["status"]) for s in entry["scenarios"]] == \
-        [("drop", "passed"), ("drive", "skipped"), ("spin", "skipped")]
+        [("drop", "passed"), ("drive", "failed"), ("spin", "failed")]
+    assert entry["scenarios"][1]["message"] == "cannot drive this vehicle: " + \
+        entry["why_no_drive"]
 
 
 PACKAGE_XML = ('<?xml version="1.0"?><package format="3"><name>{}</name><version>0.0.1'

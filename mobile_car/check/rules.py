@@ -41,7 +41,8 @@ class Rule:
 
 _TABLE = [
     # The document
-    Rule("E100", "xml-syntax", "not well-formed XML", "rejects"),
+    Rule("E100", "xml-syntax", "not well-formed XML", "rejects, but for a misspelt "
+         "`<?xml ...?>` declaration, which its TinyXML skips"),
     Rule("E101", "no-robot", "the root element is not `<robot>`", "rejects"),
     Rule("E102", "robot-name", "`<robot>` has no name, or an empty one", "rejects if absent"),
     Rule("E103", "urdf-version", "`version` is not `1.0` (the only version urdfdom 3.0 reads)",

@@ -33,8 +33,6 @@ one more read: they are written by rename, without the fsync outputs get.
 from __future__ import annotations
 
 import array
-import hashlib
-import json
 import math
 import os
 import stat
@@ -254,6 +252,8 @@ def _identity(info) -> list:
 
 def _content_digest(path: Path, reads) -> str | None:
     """SHA-256 of the mesh's bytes and of the files it reads, with the reader's version."""
+    import hashlib  # only for a mesh that is looked up: it loads OpenSSL
+
     digest = hashlib.sha256(f"mcar mesh facts {FACTS_VERSION}\0".encode())
     try:
         for file in (path, *reads):
@@ -277,6 +277,8 @@ def _folder() -> Path:
 
 
 def _path_name(path: Path) -> str:
+    import hashlib
+
     return "path-" + hashlib.sha256(os.fsencode(str(path))).hexdigest()[:40]
 
 
@@ -351,6 +353,8 @@ def _load(section: str, name: str) -> dict | None:
             data = handle.read(_RECORD_LIMIT + 1)
         if len(data) > _RECORD_LIMIT:
             return None
+        import json
+
         entries = unsealed_entries(json.loads(data), section)
     except (OSError, ValueError, RecursionError, InputError):
         return None

@@ -35,7 +35,7 @@ from .urdf_reader import Robot, read_robot
 LARGE_ROBOT = 2000  # links: the rest pose is worked out with numpy (rest_pose_arrays.py)
 
 
-@dataclass
+@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class CheckResult(Counted):
     file: str
     robot: Robot | None = None

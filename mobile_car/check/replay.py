@@ -39,7 +39,7 @@ MAX_KEPT_BYTES = 4 << 20
 MAX_KEPT_LINKS = 2000
 
 
-@dataclass
+@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class ReplayedResult(Counted):
     """What :func:`replay` reads back: the parts of a CheckResult the output is made of."""
 

@@ -11,8 +11,9 @@ docs/rules.md):
   released robots tried: 0.36 times, Hunter 2's);
 * a density no material has: mass over the volume of its geometry above DENSEST kg/m³
   (osmium, the densest element, is 22 590) or below LIGHTEST kg/m³ (air is 1.2; a foam is
-  30). The volume is its collision shapes' (its visual shapes' when it has none):
-  boxes, cylinders and spheres exactly, a mesh by the box around it, which can only be
+  30). The volume is its collision shapes', the volume simulators give it; a link with
+  none is not judged by density, as its visuals may be a marker or a stand-in (sdformat's
+  own test robots draw a 1000 kg link as a 0.1 x 0.1 x 1 m bar and load it): boxes, cylinders and spheres exactly, a mesh by the box around it, which can only be
   larger, so "too dense" is said only when even the largest volume the shapes could
   have is too small. "Too light" needs the smallest volume they could have, which only
   a box, cylinder or sphere gives (a mesh may be a thin shell); it is said of a link
@@ -65,7 +66,7 @@ def check_masses(robot, tree, held: dict, mesh_bounds: dict, report: Reporter) -
 
 def _density(name: str, mass: float, shapes, mesh_bounds: dict, element,
              report: Reporter) -> None:
-    bodies = [b for b in shapes.bodies if b[0] == "collision"] or shapes.bodies
+    bodies = [b for b in shapes.bodies if b[0] == "collision"]
     kind = bodies[0][0] if bodies else None
     largest, smallest = 0.0, 0.0  # the volume the shapes could have at most, at least
     across = 0.0

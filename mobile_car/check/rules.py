@@ -80,7 +80,7 @@ _TABLE = [
     Rule("E119", "mass-implausible", "a mass no built robot has: a wheel (a link a "
          "continuous joint turns) over 5 times the robot without its wheels, or a link denser than "
          "25 000 kg/m³ (osmium: 22 590) or, over 1 g, lighter than 1 kg/m³ (air: 1.2) in the "
-         "volume of its collision shapes (its visuals' if none; a mesh by its box; shapes "
+         "volume of its collision shapes (a link with none not judged; a mesh by its box; shapes "
          "that fit in a 2 cm cube are a placeholder, not judged)",
          "accepts"),
     # Joints

@@ -27,12 +27,22 @@ The simulation-only choices (docs/sim.md) are made here and nowhere else:
   2.8%); and a 1 ms step (0.6% over-travel, 2% at MuJoCo's default 2 ms);
 * an Ackermann car's steering joints get a position servo stiff enough that a tyre's
   whole friction moves them by 0.3° at most (:func:`.servos.steering_gain`), within the joint's
-  effort limit; other revolute and prismatic joints (an arm, steering held straight
-  when the car is driven as another kind) are welded at 0: with no motor they would fold.
+  effort limit;
+* a revolute or prismatic joint between the body and a drive wheel (wheel drop,
+  suspension, a rocker) is a spring (:mod:`.springs`), started at its rest under the
+  robot's weight; other revolute and prismatic joints (an arm, steering held straight
+  when the car is driven as another kind) are welded at 0: with no motor they would
+  fold; a ``<mimic>`` of a welded joint is welded with it;
+* the castors are the parts other than the wheels within GROUND_TOLERANCE of the floor
+  named so (CASTOR_WORDS), else the lowest of them; the robot is released in the pose
+  its geometry rests in on its wheels and castors (:mod:`.resting`): leaning on a castor
+  lower than its wheels, not level with the castor in the floor (Kobuki, balanced on its
+  two wheels with both castors in the air, rocked and spun 254% too fast).
 """
 
 from __future__ import annotations
 
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -43,11 +53,21 @@ from ..check.urdf_model import parse_number
 from ..errors import EXIT_PROBLEMS, InputError, McarError
 from .drives import Drive, actuated_joints
 from .engine import mujoco
+from .resting import RestPose, rest_pose
 from .servos import DriveSources, add_motors, fit_drive
+from .springs import apply_springs, gazebo_joint_blocks, make_springs, sprung_joints
 
 TIMESTEP = 0.001
 # Above the floor by this much, a part does not rest on it (contacts, ground parts).
 GROUND_TOLERANCE = 0.003
+# Within this of the lowest part that is no wheel, parts are the robot's castors where none
+# is named one (a body that drags, TurtleBot3's box): what the geometry rests on.
+CASTOR_TIE = 0.001
+# A part named so is a castor (a ball, a skid) wherever it is: a few mm up, it is a
+# clearance, not a part that should touch.
+CASTOR_WORDS = ("castor", "caster", "ball")
+# The wheels' contact while dropped (time constant s, damping ratio): see resting_tyres.
+RESTING_SOLREF = [0.005, 1.0]
 # mu of a castor whose description gives none: a ball that rolls freely, modelled as
 # sliding (the bundled car's caster_friction).
 CASTOR_FRICTION = 0.01
@@ -75,6 +95,11 @@ class SimModel:
     notes: list[str] = field(default_factory=list)
     mass: float = 0.0   # kg, the whole robot
     held: list[str] = field(default_factory=list)  # joints held still: not the drive's
+    springs: list = field(default_factory=list)  # Spring: suspension and wheel drop
+    start: dict[str, float] = field(default_factory=dict)  # joint -> its position at rest
+    ground_geoms: list[int] = field(default_factory=list)  # the geoms the rest height is of
+    support_geoms: list[int] = field(default_factory=list)  # ... and the castors': its pose
+    rest: RestPose | None = None  # how the geometry rests (leaning on a low castor)
     control: object = None  # skid-steer: its control package's ControlConfig, if found
 
     @property
@@ -106,6 +131,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     # The motor figures' other sources, kept before _prepare takes them out of the tree.
     root_figures = [e for e in root if e.tag in ("gazebo", "ros2_control")]
     actuated = actuated_joints(root)
+    joint_blocks = gazebo_joint_blocks(root)
     notes = _prepare(root, base, search)
     try:
         spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
@@ -138,21 +164,26 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
                            effort, speed)
     wheels = drive.wheels if drive else []
     mass = float(shape.body_mass.sum())
-    wheels_lowest = [lowest[g] for w in wheels for g in w.geom_ids]
     robot_geoms = [g for g in range(shape.ngeom) if shape.geom_bodyid[g] != 0]
     if not robot_geoms:
         raise SimModelError("no link has <collision> geometry: nothing can rest on the "
                             "floor, the robot would fall through it", file=label)
-    ground = min(wheels_lowest) if wheels_lowest else min(lowest[g] for g in robot_geoms)
     wheel_bodies = {w.body_id for w in wheels}
-    parts, clearance = {}, {}
-    for g in robot_geoms:
-        body = int(shape.geom_bodyid[g])
-        name = shape.body(body).name
-        if body in wheel_bodies or lowest[g] <= ground + GROUND_TOLERANCE:
-            clearance[name] = min(clearance.get(name, np.inf), lowest[g] - ground)
-        if body not in wheel_bodies and lowest[g] <= ground + GROUND_TOLERANCE:
-            parts[name] = body
+    ground_geoms = [g for w in wheels for g in w.geom_ids] or robot_geoms
+    springs = _springs(mj, shape, data, joints, drive, joint_blocks, mass,
+                       _supports(shape, lowest, ground_geoms, robot_geoms, wheel_bodies))
+    start = {spring.joint: spring.rest for spring in springs}
+    if start:  # the geometry at rest: every spring at its rest under its share of weight
+        for name, position in start.items():
+            data.qpos[shape.jnt_qposadr[shape.joint(name).id]] = position
+        mj.mj_kinematics(shape, data)
+        lowest = lowest_points(mj, shape, data)
+    ground = min(lowest[g] for g in ground_geoms)
+    parts, clearance = _castors(shape, lowest, ground, robot_geoms, wheel_bodies)
+    castor_bodies = set(parts.values())
+    supports = ground_geoms + [g for g in robot_geoms if shape.geom_bodyid[g] in castor_bodies
+                               and g not in ground_geoms]
+    rest = rest_pose(mj, shape, data, root_body_id(shape), supports, lowest_points)
     if wheels:
         for geom in spec.geoms:
             if geom.parent.name in parts and geom.parent.name not in friction:
@@ -162,7 +193,8 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
         _round_tyre(spec, wheel, mj)
     add_motors(mj, spec, drive, mass)
     steering = drive.steering if drive else []
-    held = _hold_the_rest(spec, joints, drive)
+    apply_springs(mj, spec, springs)
+    held = _hold_the_rest(spec, joints, drive, {s.joint for s in springs})
     model = _compile(spec, label)
     for wheel in wheels:  # (ids of the final model: held joints are gone from it)
         wheel.joint_id = model.joint(wheel.joint).id
@@ -173,19 +205,93 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
         steer.actuator_id = model.actuator(f"mcar_steer_{steer.joint}").id
     return SimModel(model=model, spec=spec, root=root_body.name,
                     root_body=model.body(root_body.name).id, drive=drive,
-                    why_no_drive=why, rest_height=-ground, ground_parts=parts, clearance=clearance,
-                    floor_geom=model.geom("mcar_floor").id, notes=notes, mass=mass, held=held)
+                    why_no_drive=why, rest_height=rest.height, ground_parts=parts,
+                    clearance=clearance,
+                    floor_geom=model.geom("mcar_floor").id, notes=notes, mass=mass, held=held,
+                    springs=springs, start=start, ground_geoms=ground_geoms,
+                    support_geoms=supports, rest=rest)
 
 
-def _hold_the_rest(spec, joints: dict, drive) -> list[str]:
+def root_body_id(model) -> int:
+    """The robot's root: the world's first child."""
+    return next(b for b in range(1, model.nbody) if model.body_parentid[b] == 0)
+
+
+def _springs(mj, shape, data, joints, drive, blocks, mass, supports) -> list:
+    """The drive wheels' suspension and wheel-drop joints as springs (:mod:`.springs`)."""
+    if drive is None:
+        return []
+    ours = {s.joint for s in drive.steering} | {w.joint for w in drive.wheels}
+    names = sprung_joints(shape, data, joints, [w.body_id for w in drive.wheels], ours)
+    if not names:
+        return []
+    springs = make_springs(mj, shape, data, joints, names, drive.wheels, supports, mass,
+                           blocks)
+    mj.mj_kinematics(shape, data)  # (make_springs ran mj_forward: the same positions)
+    return springs
+
+
+def _supports(shape, lowest, ground_geoms, robot_geoms, wheel_bodies) -> int:
+    """How many parts share the robot's weight, every joint at 0: the wheels and the
+    bodies within GROUND_TOLERANCE of their floor."""
+    ground = min(lowest[g] for g in ground_geoms)
+    others = {int(shape.geom_bodyid[g]) for g in robot_geoms
+              if lowest[g] <= ground + GROUND_TOLERANCE} - wheel_bodies
+    return len(wheel_bodies) + len(others)
+
+
+def _castors(shape, lowest, ground, robot_geoms, wheel_bodies):
+    """(link -> body of each castor, link -> its lowest point above the wheels' floor).
+    Of the parts other than the wheels within GROUND_TOLERANCE of the floor, a castor is
+    one named so (CASTOR_WORDS); where none is, the lowest ones (within CASTOR_TIE): what
+    the robot rests on besides its wheels. A bracket or motor housing a few mm up is then
+    neither a castor nor a part that must touch the floor (the car on 15 mm wheels)."""
+    near, clearance = {}, {}
+    for g in robot_geoms:
+        body = int(shape.geom_bodyid[g])
+        name = shape.body(body).name
+        if body in wheel_bodies or lowest[g] <= ground + GROUND_TOLERANCE:
+            clearance[name] = min(clearance.get(name, np.inf), lowest[g] - ground)
+        if body not in wheel_bodies and lowest[g] <= ground + GROUND_TOLERANCE:
+            near[name] = body
+    named = {n: b for n, b in near.items() if any(w in n.lower() for w in CASTOR_WORDS)}
+    if named:
+        return named, clearance
+    if not near:
+        return {}, clearance
+    least = min(clearance[n] for n in near)
+    return {n: b for n, b in near.items() if clearance[n] <= least + CASTOR_TIE}, clearance
+
+
+def rest_after(sim: SimModel, data) -> RestPose:
+    """How the geometry rests with the joints where ``data`` has them (the springs'
+    travel after a drop)."""
+    mj = mujoco()
+    scratch = mj.MjData(sim.model)
+    scratch.qpos[:] = data.qpos
+    return rest_pose(mj, sim.model, scratch, sim.root_body, sim.support_geoms, lowest_points)
+
+
+def _hold_the_rest(spec, joints: dict, drive, springs: set[str]) -> list[str]:
     """Revolute and prismatic joints that are not the drive's (an arm, a lift, steering
-    held straight) are welded at 0, the pose check and render show: with no motor they
-    would fold under gravity. Continuous joints stay free (castor swivels, rollers, a
-    spinning sensor)."""
+    held straight) nor its ``springs`` are welded at 0, the pose check and render show:
+    with no motor they would fold under gravity. Continuous joints stay free (castor
+    swivels, rollers, a spinning sensor)."""
     ours = {s.joint for s in drive.steering} | {w.joint for w in drive.wheels} if drive \
         else set()
     held = [name for name, element in joints.items()
-            if element.get("type") in ("revolute", "prismatic") and name not in ours]
+            if element.get("type") in ("revolute", "prismatic") and name not in ours
+            and name not in springs]
+    # A <mimic> of a held joint is held with it: MuJoCo's importer made the mimic an
+    # equality naming both joints, and refuses a model whose equality names a joint gone.
+    for name, element in joints.items():
+        mimic = next((c for c in element if c.tag == "mimic"), None)
+        if mimic is not None and mimic.get("joint") in held and name not in held \
+                and name not in ours:
+            held.append(name)
+    for equality in list(spec.equalities):
+        if equality.name1 in held or equality.name2 in held:
+            spec.delete(equality)
     for name in held:
         joint = spec.joint(name)
         if joint is not None:
@@ -317,4 +423,21 @@ def _round_tyre(spec, wheel, mj) -> None:
         if geom.parent.name == wheel.link and geom.type == mj.mjtGeom.mjGEOM_CYLINDER:
             geom.type = mj.mjtGeom.mjGEOM_SPHERE
             geom.size = [geom.size[0], 0, 0]
+
+
+@contextmanager
+def resting_tyres(sim: SimModel):
+    """The wheels' contacts at RESTING_SOLREF while the robot is dropped, as they were
+    after. MuJoCo's default 0.02 s lets a wheel under a heavy robot sink ~0.8 mm into the
+    floor: TurtleBot 4, whose centre of mass is 2 mm ahead of its axle when it leans on
+    its castor, then tipped back onto its body. Only for the drop: the tyres' grip while
+    driving and spinning is what the drive figures were measured with."""
+    wheels = {w.body_id for w in sim.drive.wheels} if sim.drive else set()
+    geoms = [g for g in range(sim.model.ngeom) if sim.model.geom_bodyid[g] in wheels]
+    kept = sim.model.geom_solref[geoms].copy()
+    sim.model.geom_solref[geoms] = RESTING_SOLREF
+    try:
+        yield
+    finally:
+        sim.model.geom_solref[geoms] = kept
 

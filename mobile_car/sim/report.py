@@ -139,6 +139,7 @@ def drive_summary(sim) -> dict:
                           for w in drive.driven}}
     if drive.kind == "ackermann":
         summary["wheelbase"] = round(drive.wheelbase, 6)
+    summary["sprung"] = [s.as_json() for s in sim.springs]  # suspension, wheel drop
     return summary
 
 
@@ -196,7 +197,18 @@ def _drive_lines(d: dict) -> list[str]:
                 f"{motor['servo_gain']:.4g} N·m·s/rad")
         alike.setdefault(text, []).append(joint)
     lines += [f"  motor {', '.join(joints)}: {text}" for text, joints in alike.items()]
+    lines += [f"  sprung {_spring_text(s)}" for s in d.get("sprung", [])]
     return lines
+
+
+def _spring_text(spring: dict) -> str:
+    """``JOINT 0..30 mm, 400 N/m (source)``: a sprung joint's travel and stiffness."""
+    prismatic = spring["unit"] == "m"
+    per, unit = (1000, "mm") if prismatic else (180 / math.pi, "deg")
+    lower, upper = (per * v for v in spring["travel"])
+    return (f"{spring['joint']}: travel {lower:.4g}..{upper:.4g} {unit}, "
+            f"{spring['stiffness']:.4g} {'N/m' if prismatic else 'N·m/rad'} "
+            f"({spring['source']})")
 
 
 def failure_lines(report: SimReport) -> list[str]:

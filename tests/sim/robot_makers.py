@@ -232,3 +232,81 @@ def arm(links: int = 3) -> str:
         parent = f"arm_{number}_link"
     parts.append("\n</robot>\n")
     return "".join(parts)
+
+
+def _ball(name, parent, xyz, radius, mass):
+    x, y, z = xyz
+    i = 0.4 * mass * radius * radius
+    return f"""
+  <joint name="{name}_joint" type="fixed">
+    <parent link="{parent}"/><child link="{name}_link"/><origin xyz="{x:.6g} {y:.6g} {z:.6g}"/>
+  </joint>
+  <link name="{name}_link">
+    <collision><geometry><sphere radius="{radius:.6g}"/></geometry></collision>
+    <inertial><mass value="{mass:.6g}"/><inertia ixx="{i:.6g}" ixy="0" ixz="0" iyy="{i:.6g}"
+      iyz="0" izz="{i:.6g}"/></inertial>
+  </link>"""
+
+
+def castors_fore_and_aft(mass: float = 2.0, back_lift: float = 0.002) -> str:
+    """Kobuki's shape: a box on two drive wheels (radius 35 mm, axle at the middle) and a
+    ball castor in front and behind; the back one ``back_lift`` above the floor the
+    wheels and the front one stand on."""
+    r, ball = 0.035, 0.015
+    parts = ['<?xml version="1.0"?>\n<robot name="fore_and_aft">',
+             _body(0.8 * mass, (0.3, 0.2, 0.05), 0.0, axle=r)]
+    for side, y in (("left", 0.115), ("right", -0.115)):
+        parts.append(_wheel(f"wheel_{side}", "base_link", (0, y, 0), r, 0.02, 0.08 * mass))
+    # The front castor heavier: the robot leans on it, as Kobuki does.
+    parts.append(_ball("caster_front", "base_link", (0.12, 0, ball - r), ball, 0.1 * mass))
+    parts.append(_ball("caster_back", "base_link", (-0.12, 0, ball - r + back_lift), ball,
+                       0.02 * mass))
+    parts.append("\n</robot>\n")
+    return "".join(parts)
+
+
+def sprung(mass: float = 3.0, castor_below: float = 0.003, travel: float = 0.006,
+           gazebo: bool = False) -> str:
+    """Create 3's shape: a box on two drive wheels, each on a prismatic wheel-drop joint
+    (axis down, 0..``travel``), and a front castor that reaches ``castor_below`` below
+    the wheels with the joints at 0; ``gazebo``: the springs' stiffness and reference in
+    the joints' <gazebo> blocks (4000 N/m, extended at ``travel``, as Create 3's)."""
+    r, ball = 0.035, 0.012
+    parts = ['<?xml version="1.0"?>\n<robot name="sprung">',
+             _body(0.8 * mass, (0.3, 0.2, 0.05), 0.0, axle=r)]
+    for side, y in (("left", 0.115), ("right", -0.115)):
+        parts.append(f"""
+  <joint name="wheel_drop_{side}_joint" type="prismatic">
+    <parent link="base_link"/><child link="wheel_drop_{side}"/><origin xyz="0 {y:.6g} 0"/>
+    <axis xyz="0 0 -1"/><limit lower="0" upper="{travel:.6g}" effort="0" velocity="0"/>
+    <dynamics damping="50"/>
+  </joint>
+  <link name="wheel_drop_{side}">
+    <inertial><mass value="0.02"/><inertia ixx="1e-5" ixy="0" ixz="0" iyy="1e-5" iyz="0"
+      izz="1e-5"/></inertial>
+  </link>""")
+        parts.append(_wheel(f"wheel_{side}", f"wheel_drop_{side}", (0, 0, 0), r, 0.02,
+                            0.06 * mass))
+        if gazebo:
+            parts.append(f"""
+  <gazebo reference="wheel_drop_{side}_joint">
+    <springStiffness>4000</springStiffness><springReference>{travel:.6g}</springReference>
+  </gazebo>""")
+    # A heavy castor housing puts the centre of mass ahead of the axle, as Create 3's is.
+    parts.append(_ball("front_caster", "base_link", (0.12, 0, ball - r - castor_below), ball,
+                       0.1 * mass))
+    parts.append("\n</robot>\n")
+    return "".join(parts)
+
+
+def fixed_wheels(gap: float = 0.0001) -> str:
+    """A base on four wheels on fixed joints (no drive), one ``gap`` above the floor."""
+    r = 0.05
+    parts = ['<?xml version="1.0"?>\n<robot name="fixed_wheels">',
+             _body(5.0, (0.4, 0.3, 0.06), 0.02, axle=r)]
+    for name, x, y in (("fl", 0.15, 0.18), ("fr", 0.15, -0.18), ("rl", -0.15, 0.18),
+                       ("rr", -0.15, -0.18)):
+        z = gap if name == "rr" else 0.0
+        parts.append(_wheel(name, "base_link", (x, y, z), r, 0.03, 0.3, joint_type="fixed"))
+    parts.append("\n</robot>\n")
+    return "".join(parts)

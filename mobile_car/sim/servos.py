@@ -20,6 +20,9 @@ from .motors import motor_figures
 # (0.71 kg on 32.5 mm wheels) and its variants', which keep the gain they were tuned with.
 SERVO_GAIN = 0.5
 SERVO_REFERENCE_INERTIA = 1e-3  # kg m²
+# The servo's integral gain (N m/rad) over its kv (1/s): the wheel's lag under a steady
+# load decays at this rate (20 ms), well over damped for every load (kv/inertia ~1000/s).
+INTEGRAL_RATE = 50.0
 WHEEL_ARMATURE = 1e-4  # kg m², the least, see model.py's docstring ...
 ARMATURE_SHARE = 0.25  # ... and of the wheel's share of the robot's m·r², if more
 STEER_STIFFNESS = 0.005  # rad a steering servo yields to a tyre's full friction
@@ -66,7 +69,12 @@ def add_motors(mj, spec, drive: Drive | None, mass: float) -> None:
     for wheel in drive.driven:
         actuator = spec.add_actuator(name=f"mcar_motor_{wheel.joint}", target=wheel.joint,
                                      trntype=mj.mjtTrn.mjTRN_JOINT)
-        actuator.set_to_velocity(kv=wheel.gain)
+        # A velocity servo with integral action: the actuator integrates the commanded
+        # speed into a position (its activation) and pulls the wheel to it, so that a
+        # load the wheel carries (declared joint friction or damping) costs the servo a
+        # lag in angle, not in speed: a plain velocity servo (kv only) stalled 4% short
+        # of its speed against 0.2 N·m with torque to spare.
+        actuator.set_to_intvelocity(kp=INTEGRAL_RATE * wheel.gain, kv=wheel.gain)
         _limit_force(actuator, wheel.effort)
     for steer in drive.steering:
         spec.joint(steer.joint).armature = armature

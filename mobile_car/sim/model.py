@@ -68,6 +68,10 @@ CASTOR_TIE = 0.001
 CASTOR_WORDS = ("castor", "caster", "ball")
 # The wheels' contact while dropped (time constant s, damping ratio): see resting_tyres.
 RESTING_SOLREF = [0.005, 1.0]
+# A part of <mu1> 0 touches through a frictionless contact (condim 1): MuJoCo's pyramid of
+# friction directions collapses at mu 0 onto the normal, four copies of one row, and the
+# solver went unstable (a two-wheeler on frictionless wheels ended upside down in drop).
+FRICTIONLESS = 0.0
 # mu of a castor whose description gives none: a ball that rolls freely, modelled as
 # sliding (the bundled car's caster_friction).
 CASTOR_FRICTION = 0.01
@@ -155,6 +159,8 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
             if mu is not None:
                 geom.friction = [mu, geom.friction[1], geom.friction[2]]
                 geom.priority = 1
+                if mu <= 0:  # see FRICTIONLESS
+                    geom.condim = 1
     shape = _compile(spec, label)  # once with the description's own shapes, to look at
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)

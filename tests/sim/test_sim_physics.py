@@ -11,6 +11,9 @@ import json
 import pytest
 from sim.robot_makers import castors_fore_and_aft, fixed_wheels, sprung, two_wheeler
 
+FRICTIONLESS = """
+  <gazebo reference="{0}"><mu1>0</mu1><mu2>0</mu2></gazebo>
+  <gazebo reference="{1}"><mu1>0</mu1><mu2>0</mu2></gazebo>"""
 MIMIC = """
   <joint name="flap_joint" type="revolute">
     <parent link="base_link"/><child link="flap_link"/><origin xyz="0.05 0 0.06"/>
@@ -33,6 +36,10 @@ def robots(tmp_path_factory):
     made = {"sprung": sprung(), "sprung gazebo": sprung(gazebo=True),
             "castor up": castors_fore_and_aft(), "mimic": two_wheeler(extra=MIMIC),
             "fixed wheels": fixed_wheels(),
+            "frictionless wheels": two_wheeler(extra=FRICTIONLESS.format(
+                "wheel_left_link", "wheel_right_link")),
+            "frictionless balls": castors_fore_and_aft().replace("</robot>", FRICTIONLESS.format(
+                "caster_front_link", "caster_back_link") + "</robot>"),
             "wheel friction": two_wheeler(limit='\n    <limit effort="0.5" velocity="20"/>'
                                           '<dynamics damping="0.02" friction="0.02"/>')}
     paths = {}
@@ -128,3 +135,24 @@ def test_the_servo_reaches_its_speed_against_declared_joint_friction_and_damping
     figures = _figures(entry["scenarios"][0])
     assert figures["wheel speed reached"] >= 99.5
     assert figures["distance error"] < 1
+
+
+def test_frictionless_wheels_rest_and_then_slip(cli, robots):
+    """<mu1>0</mu1> on the wheels: the robot ended upside down in drop (MuJoCo's friction
+    pyramid collapses at mu 0); now it rests, and drive fails on what is true: the wheels
+    spin and the robot does not move."""
+    result = cli("sim", robots["frictionless wheels"], "--scenario", "drop,drive",
+                 "--format", "json")
+    (entry,) = json.loads(result.stdout)["files"]
+    drop, drive = entry["scenarios"]
+    assert drop["status"] == "passed", drop["message"]
+    assert _figures(drop)["roll"] < 1
+    assert result.exit_code == 1
+    assert drive["message"].startswith("drove short; likely cause: wheel slip: ")
+    assert "the tyres' friction (mu 0) cannot pass the drive force" in drive["message"]
+
+
+def test_two_frictionless_ball_castors_rest(cli, robots):
+    result, entry, drop = _drop(cli, robots["frictionless balls"])
+    assert result.exit_code == 0, drop["message"]
+    assert _figures(drop)["pitch"] < 1 and _figures(drop)["roll"] < 1

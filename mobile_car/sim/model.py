@@ -72,6 +72,8 @@ RESTING_SOLREF = [0.005, 1.0]
 # friction directions collapses at mu 0 onto the normal, four copies of one row, and the
 # solver went unstable (a two-wheeler on frictionless wheels ended upside down in drop).
 FRICTIONLESS = 0.0
+# rad: a revolute joint limited to ± this or more turns without end (swerve bases: 1e16)
+UNLIMITED = 1e6
 # mu of a castor whose description gives none: a ball that rolls freely, modelled as
 # sliding (the bundled car's caster_friction).
 CASTOR_FRICTION = 0.01
@@ -128,6 +130,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     gives none (:mod:`.motors`)."""
     mj = mujoco()
     root = etree.fromstring(urdf, etree.XMLParser(resolve_entities=False, no_network=True))
+    read_as = as_urdfdom_reads(root)
     # The robot's own joints only: a <transmission> or <ros2_control> names joints too.
     joints = {j.get("name"): j for j in root if j.tag == "joint"}
     friction = gazebo_friction(root)
@@ -136,7 +139,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     root_figures = [e for e in root if e.tag in ("gazebo", "ros2_control")]
     actuated = actuated_joints(root)
     joint_blocks = gazebo_joint_blocks(root)
-    notes = _prepare(root, base, search)
+    notes = read_as + _prepare(root, base, search)
     try:
         spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
     except ValueError as error:
@@ -303,6 +306,38 @@ def _hold_the_rest(spec, joints: dict, drive, springs: set[str]) -> list[str]:
         if joint is not None:
             spec.delete(joint)
     return held
+
+
+def as_urdfdom_reads(root) -> list[str]:
+    """Rewrite, in place, what urdfdom reads with a warning into the form it reads it in,
+    so that MuJoCo simulates the robot RViz and Gazebo show; the notes say what changed.
+
+    * a revolute joint limited to ±UNLIMITED or more (swerve bases write ±1e16) turns
+      without end, as urdfdom and KDL read it: a ``continuous`` joint, so that a wheel
+      on it is a wheel (:mod:`.drives` finds wheels on continuous joints);
+    * an ``<axis>`` without ``xyz`` (``xzy="0 1 0"``): urdfdom keeps the axis it cleared,
+      0 0 0, a joint that cannot move; MuJoCo refuses the element. It is fixed."""
+    notes = []
+    for joint in root.iterchildren("joint"):
+        kind, name = joint.get("type"), joint.get("name")
+        limit = next((c for c in joint if c.tag == "limit"), None)
+        if kind == "revolute" and limit is not None:
+            lower = parse_number(limit.get("lower") or "0")
+            upper = parse_number(limit.get("upper") or "0")
+            if None not in (lower, upper) and lower <= -UNLIMITED and upper >= UNLIMITED:
+                joint.set("type", "continuous")
+                for key in ("lower", "upper"):
+                    limit.attrib.pop(key, None)
+                notes.append(f"joint {name}: revolute limited to {lower:g}..{upper:g} rad "
+                             "turns without end, as urdfdom and KDL read it: simulated "
+                             "continuous")
+        axis = next((c for c in joint if c.tag == "axis"), None)
+        if kind not in ("fixed", "floating") and axis is not None and axis.get("xyz") is None:
+            joint.set("type", "fixed")
+            joint.remove(axis)
+            notes.append(f"joint {name}: <axis> has no xyz, urdfdom reads 0 0 0, a joint "
+                         "that cannot move: simulated fixed")
+    return notes
 
 
 def gazebo_friction(root) -> dict[str, float]:

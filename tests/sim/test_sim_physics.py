@@ -36,6 +36,9 @@ def robots(tmp_path_factory):
     made = {"sprung": sprung(), "sprung gazebo": sprung(gazebo=True),
             "castor up": castors_fore_and_aft(), "mimic": two_wheeler(extra=MIMIC),
             "fixed wheels": fixed_wheels(),
+            "unlimited revolute": two_wheeler(limit='\n    <limit lower="-1e16" upper="1e16" '
+                                              'effort="1" velocity="20"/>').replace(
+                'type="continuous"', 'type="revolute"'),
             "frictionless wheels": two_wheeler(extra=FRICTIONLESS.format(
                 "wheel_left_link", "wheel_right_link")),
             "frictionless balls": castors_fore_and_aft().replace("</robot>", FRICTIONLESS.format(
@@ -156,3 +159,33 @@ def test_two_frictionless_ball_castors_rest(cli, robots):
     result, entry, drop = _drop(cli, robots["frictionless balls"])
     assert result.exit_code == 0, drop["message"]
     assert _figures(drop)["pitch"] < 1 and _figures(drop)["roll"] < 1
+
+
+def test_a_revolute_wheel_limited_to_1e16_is_a_wheel(cli, robots):
+    """Swerve bases limit their wheels' revolute joints to ±1e16: urdfdom and KDL turn
+    them without end. Simulated continuous, they are the drive wheels."""
+    result = cli("sim", robots["unlimited revolute"], "--format", "json")
+    (entry,) = json.loads(result.stdout)["files"]
+    assert result.exit_code == 0, [s["message"] for s in entry["scenarios"]]
+    assert (entry["drive"]["left"], entry["drive"]["right"]) == \
+        (["wheel_left_joint"], ["wheel_right_joint"])
+    assert entry["held"] == []
+    assert "joint wheel_left_joint: revolute limited to -1e+16..1e+16 rad turns without " \
+           "end, as urdfdom and KDL read it: simulated continuous" in entry["notes"]
+
+
+def test_an_axis_without_xyz_is_simulated_as_urdfdom_reads_it():
+    """``<axis xzy="0 0 1"/>``: MuJoCo refuses an <axis> without xyz; urdfdom keeps the
+    axis it cleared, 0 0 0, a joint that cannot move. (mcar check stops such a file at
+    E125 today; the simulation, asked directly, reads it as urdfdom does.)"""
+    from pathlib import Path
+
+    from mobile_car.sim.model import build_model
+
+    text = two_wheeler().replace('<axis xyz="0 0 1"/>', '<axis xzy="0 0 1"/>', 1)
+    assert text.count("xzy") == 1
+    sim = build_model(text.encode(), "xzy.urdf", Path.cwd(), None)
+    assert sim.notes == ["joint wheel_left_joint: <axis> has no xyz, urdfdom reads 0 0 0, a "
+                         "joint that cannot move: simulated fixed"]
+    assert sim.drive is None and "wheel_left_joint" not in \
+        [sim.model.joint(j).name for j in range(sim.model.njnt)]

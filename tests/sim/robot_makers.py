@@ -310,3 +310,43 @@ def fixed_wheels(gap: float = 0.0001) -> str:
         parts.append(_wheel(name, "base_link", (x, y, z), r, 0.03, 0.3, joint_type="fixed"))
     parts.append("\n</robot>\n")
     return "".join(parts)
+
+
+def kobuki_like(back_lift: float = 0.002, castor_mu: float | None = 0.0) -> str:
+    """Kobuki's base as its description has it: two drive wheels of 10 g with 0.001 kg m²
+    about every axis, a castor in front and one behind (``back_lift`` above the floor),
+    each a cylinder lying across the robot (rolling forward) of ``castor_mu`` friction
+    (<gazebo><mu1>; None: none given)."""
+    r, cr = 0.035, 0.017
+    parts = ['<?xml version="1.0"?>\n<robot name="kobuki_like">',
+             _body(2.3, (0.3, 0.3, 0.08), 0.0, axle=r)]
+    for side, y in (("left", 0.115), ("right", -0.115)):
+        parts.append(f"""
+  <joint name="wheel_{side}_joint" type="continuous">
+    <parent link="base_link"/><child link="wheel_{side}_link"/>
+    <origin xyz="0 {y:.6g} 0" rpy="-1.5707963 0 0"/><axis xyz="0 0 1"/>
+  </joint>
+  <link name="wheel_{side}_link">
+    <collision><geometry><cylinder length="0.0206" radius="{r:.6g}"/></geometry></collision>
+    <inertial><mass value="0.01"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0"
+      izz="0.001"/></inertial>
+  </link>""")
+    # (The front castor's 0.1 kg puts the centre of mass ahead of the axle: the robot
+    # leans on it, as Kobuki rests on its front castor.)
+    for name, x, lift, mass in (("front", 0.115, 0.0, 0.1), ("back", -0.135, back_lift, 0.01)):
+        parts.append(f"""
+  <joint name="caster_{name}_joint" type="fixed">
+    <parent link="base_link"/><child link="caster_{name}_link"/>
+    <origin xyz="{x:.6g} 0 {cr - r + lift:.6g}" rpy="-1.5707963 0 0"/>
+  </joint>
+  <link name="caster_{name}_link">
+    <collision><geometry><cylinder length="0.0176" radius="{cr:.6g}"/></geometry></collision>
+    <inertial><mass value="{mass:g}"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001"
+      iyz="0" izz="0.001"/></inertial>
+  </link>""")
+        if castor_mu is not None:
+            parts.append(f"""
+  <gazebo reference="caster_{name}_link"><mu1>{castor_mu:g}</mu1><mu2>{castor_mu:g}</mu2>
+  </gazebo>""")
+    parts.append("\n</robot>\n")
+    return "".join(parts)

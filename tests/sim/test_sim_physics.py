@@ -36,6 +36,8 @@ def robots(tmp_path_factory):
     made = {"sprung": sprung(), "sprung gazebo": sprung(gazebo=True),
             "castor up": castors_fore_and_aft(), "mimic": two_wheeler(extra=MIMIC),
             "fixed wheels": fixed_wheels(),
+            "lossy wheels": two_wheeler(limit='\n    <limit effort="0.1" velocity="20"/>'
+                                        '<dynamics damping="0.02" friction="0.05"/>'),
             "unlimited revolute": two_wheeler(limit='\n    <limit lower="-1e16" upper="1e16" '
                                               'effort="1" velocity="20"/>').replace(
                 'type="continuous"', 'type="revolute"'),
@@ -247,3 +249,17 @@ def test_control_kobuki_s_castors_on_a_friction_pyramid_of_mu_0_spin_it_wrong(ko
     finally:
         model.geom_condim[castors] = 1
     assert False in outcomes
+
+
+def test_wheels_whose_declared_losses_pass_their_effort_are_named(cli, robots):
+    """PMB2's wheels declare damping 1 and friction 2, 7.08 N·m at its command, over
+    their 6 N·m: the servo cannot help it, and the cause says why. Here: 0.02 × 10 + 0.05
+    = 0.25 N·m against 0.1 N·m."""
+    result = cli("sim", robots["lossy wheels"], "--scenario", "drive", "--format", "json")
+    (entry,) = json.loads(result.stdout)["files"]
+    assert result.exit_code == 1
+    message = entry["scenarios"][0]["message"]
+    assert message.startswith("drove short; likely cause: the motors' effort limit "
+                              "(wheel_left_joint 0.1 N·m, wheel_right_joint 0.1 N·m)"), message
+    assert "wheel_left_joint's declared damping 0.02 N·m·s/rad and friction 0.05 N·m take " \
+           "0.25 N·m at 10 rad/s, 250% of its 0.1 N·m" in message

@@ -476,11 +476,15 @@ def resting_tyres(sim: SimModel):
     its castor, then tipped back onto its body. Only for the drop: the tyres' grip while
     driving and spinning is what the drive figures were measured with."""
     wheels = {w.body_id for w in sim.drive.wheels} if sim.drive else set()
-    geoms = [g for g in range(sim.model.ngeom) if sim.model.geom_bodyid[g] in wheels]
-    kept = sim.model.geom_solref[geoms].copy()
-    sim.model.geom_solref[geoms] = RESTING_SOLREF
+    model = sim.model
+    geoms = [g for g in range(model.ngeom) if model.geom_bodyid[g] in wheels]
+    kept = model.geom_solref[geoms].copy(), model.geom_priority[geoms].copy()
+    model.geom_solref[geoms] = RESTING_SOLREF
+    # Over the floor's priority: MuJoCo takes the contact settings of the geom of higher
+    # priority, and mixes the pair's where they are equal (a tyre without <mu1>).
+    model.geom_priority[geoms] = 2
     try:
         yield
     finally:
-        sim.model.geom_solref[geoms] = kept
+        model.geom_solref[geoms], model.geom_priority[geoms] = kept
 

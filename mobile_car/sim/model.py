@@ -237,7 +237,7 @@ def _springs(mj, shape, data, joints, drive, blocks, mass, supports) -> list:
     if not names:
         return []
     springs = make_springs(mj, shape, data, joints, names, drive.wheels, supports, mass,
-                           blocks)
+                           blocks, TIMESTEP)
     mj.mj_kinematics(shape, data)  # (make_springs ran mj_forward: the same positions)
     return springs
 

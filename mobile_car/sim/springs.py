@@ -26,6 +26,13 @@ GRAVITY = 9.81
 # share of the mass on the spring, so that a drop settles within its 2 s.
 DAMPING_RATIO = 0.7
 LIMIT_TIME_CONSTANT = 0.004  # s, a spring's end stops (MuJoCo's default 0.02)
+# A suspension's travel is under a metre or a turn: a joint limited wider is no spring.
+MAX_TRAVEL = 1.0        # m
+MAX_TURN = 2 * np.pi    # rad
+# A declared spring is used where MuJoCo can follow it: its period on the mass it carries
+# at least this many steps, its reference within this many half-travels of the middle.
+STEPS_PER_PERIOD = 10
+REFERENCE_REACH = 100
 
 
 @dataclass
@@ -78,7 +85,7 @@ def sprung_joints(model, data, joints: dict, wheel_bodies, not_springs: set[str]
 
 
 def make_springs(mj, model, data, joints: dict, names: list[str], wheels, supports: int,
-                 mass: float, gazebo: dict) -> list[Spring]:
+                 mass: float, gazebo: dict, timestep: float) -> list[Spring]:
     """A Spring for each of ``names`` that has a travel (kinematics done on ``data``, every
     joint at 0); ``wheels``: the drive's wheels (Wheel), ``supports``: how many parts share
     the robot's weight (wheels and castors); ``gazebo``: joint -> its ``<gazebo>`` block."""
@@ -89,33 +96,52 @@ def make_springs(mj, model, data, joints: dict, names: list[str], wheels, suppor
         limit = _child(joints[name], "limit")
         lower = _number(limit, "lower")
         upper = _number(limit, "upper")
-        if lower is None or upper is None or upper - lower <= 0:
-            continue
+        prismatic = joints[name].get("type") == "prismatic"
+        if lower is None or upper is None or not 0 < upper - lower <= (
+                MAX_TRAVEL if prismatic else MAX_TURN):
+            continue  # no travel, or none a suspension has: held still
         joint = model.joint(name).id
         lever = _lever(mj, model, data, joint, [w for w in wheels
                                                  if _below(model, w.body_id, joint)])
         # The floor pushes the wheels up: towards higher q where the lever is > 0.
         load = share * sum(lever)  # generalised force of the floor's push at rest
         declared = gazebo.get(name, {})
-        stiffness = declared.get("springStiffness")
         mass_on = max(mass / max(1, supports), 1e-6)
-        if stiffness is not None and stiffness > 0:
-            reference = declared.get("springReference", 0.0)
-            source = "<gazebo> springStiffness"
-        else:
+        effective = mass_on * (max(map(abs, lever), default=1.0) ** 2 or 1.0)
+        stiffness, reference, source = _declared(declared, effective, timestep, lower, upper)
+        if stiffness is None:
             stiffness, reference = _default_spring(load, share, lever, lower, upper)
-            source = "default: carries its share of the weight at mid-travel"
+            source = "default: carries its share of the weight at mid-travel" + source
         rest = float(np.clip(reference + load / stiffness, lower, upper))
         damping = _number(_child(joints[name], "dynamics"), "damping")
         if damping is None or damping <= 0:
             damping = declared.get("damping")
         if damping is None or damping <= 0:
-            effective = mass_on * (max(map(abs, lever), default=1.0) ** 2 or 1.0)
             damping = 2 * DAMPING_RATIO * np.sqrt(stiffness * effective)
         springs.append(Spring(name, lower, upper, float(stiffness), float(reference),
-                              float(damping), source, rest,
-                              joints[name].get("type") == "prismatic"))
+                              float(damping), source, rest, prismatic))
     return springs
+
+
+def _declared(declared: dict, effective: float, timestep: float, lower: float,
+              upper: float) -> tuple[float | None, float, str]:
+    """(stiffness, reference, '') of the joint's <gazebo> spring, or (None, 0, why it is
+    not used): a stiffness MuJoCo cannot step (its period under STEPS_PER_PERIOD steps on
+    the mass it carries) or a reference over REFERENCE_REACH half-travels from the
+    middle would throw the robot into the air (1e300 N/m: NaN in one step)."""
+    stiffness = declared.get("springStiffness")
+    if stiffness is None or stiffness <= 0:
+        return None, 0.0, ""
+    reference = declared.get("springReference", 0.0)
+    most = effective * (2 * np.pi / (STEPS_PER_PERIOD * timestep)) ** 2
+    if stiffness > most:
+        return None, 0.0, (f" (<gazebo> springStiffness {stiffness:g} is over the {most:.4g} "
+                           "a 1 ms step can follow)")
+    middle, half = (lower + upper) / 2, (upper - lower) / 2
+    if abs(reference - middle) > REFERENCE_REACH * half:
+        return None, 0.0, (f" (<gazebo> springReference {reference:g} is far outside its "
+                           f"{lower:g}..{upper:g} travel)")
+    return stiffness, reference, "<gazebo> springStiffness"
 
 
 def _default_spring(load, share, lever, lower, upper) -> tuple[float, float]:

@@ -23,6 +23,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from floor_section import section_floor  # noqa: E402
 from measure import HAVE_GNU_TIME, REPO, machine, progress, versions  # noqa: E402
 from runtime_sections import (  # noqa: E402
     section_noop,
@@ -65,8 +66,8 @@ SECTIONS = {"check": section_check, "build": section_build, "startup": section_s
             "batch": section_batch, "folder": section_folder, "render": section_render,
             "noop": section_noop, "sim": section_sim, "robots": section_robots,
             "sweep": section_sweep, "gazebo": section_gazebo, "meshes": section_meshes,
-            "export": section_export}
-NEEDS_CHECK_URDF = {"check", "startup", "batch"}
+            "export": section_export, "floor": section_floor}
+NEEDS_CHECK_URDF = {"check", "startup", "batch", "floor"}
 
 
 def main() -> int:

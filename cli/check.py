@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
+import functools
 import gc
-import json
 import os
 import sys
 
@@ -130,13 +130,14 @@ def _document(result) -> dict:
 
 def _checked(inputs, options, stdin, basis, keep: bool) -> list:
     """Each input's result: read back where nothing changed since it was last checked
-    (mobile_car.check.replay), else checked and, where ``keep``, recorded."""
-    from mobile_car.freshness import Stamper
-
-    stamper = Stamper()
+    (mobile_car.check.replay), else checked and, where ``keep``, recorded. ``basis()``
+    gives the run's Basis, made (with the records' modules) only for an input that can
+    have a record: a plain URDF cannot."""
+    stamper = None
     results = []
     for inp in inputs:
-        replayed = replay.replay(inp, basis) if keep else None
+        replayable = keep and replay.replayable(inp)
+        replayed = replay.replay(inp, basis()) if replayable else None
         if replayed is not None:
             results.append(replayed)
             continue
@@ -144,8 +145,12 @@ def _checked(inputs, options, stdin, basis, keep: bool) -> list:
 
         result = check_input(inp, options, stdin=stdin)
         results.append(result)
-        if keep:
-            replay.record(inp, basis, result, stamper)
+        if replayable:
+            if stamper is None:
+                from mobile_car.freshness import Stamper
+
+                stamper = Stamper()
+            replay.record(inp, basis(), result, stamper)
     return results
 
 
@@ -172,6 +177,8 @@ def _json_pieces(document: dict):
     text in one list before joining it: for a 10,000-link robot, 9 MB of JSON held as a
     million small strings, ~80 MB. (json_safe works character by character: the pieces
     may be cut anywhere.)"""
+    import json
+
     piece: list[str] = []
     size = 0
     for token in json.JSONEncoder(indent=1, ensure_ascii=False).iterencode(document):
@@ -212,7 +219,8 @@ def command(words, output_format, strict, gazebo, quiet, package_paths, sets, co
     gc.disable()
     try:
         with load_inputs(words, package_paths, sets, config_files) as (selection, options):
-            basis = input_basis(options.mappings, package_paths, sets, config_files)
+            basis = functools.cache(lambda: input_basis(options.mappings, package_paths,
+                                                        sets, config_files))
             results = _checked(selection.inputs, options, stdin_for(selection), basis,
                                keep=not gazebo)
         if gazebo:

@@ -207,7 +207,8 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
                         if helper is not None:
                             pipeline.gazebo_step(item, item.strict)
                         if not no_sim:
-                            simulation.sim_step(item, simulation.skip_reason(item, configs))
+                            simulation.sim_step(item, simulation.skip_reason(item, configs),
+                                                simulation.drive_setting(item, configs))
                         if item.exports:
                             export_step(item, build_dir)
                     cache.record(item, basis, item.strict)
@@ -223,7 +224,8 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
     if manifest is not None and selection.kind in ("package", "folder"):
         # pictures of robot files since deleted leave the contact sheet (render's are kept)
         manifest.forget_orphans({manifest.key(item.png) for item in items if item.png})
-    if manifest is not None and any(item.ok for item in items):
+    # a robot whose sim failed is drawn too: its picture is what shows why
+    if manifest is not None and (checked or any(item.ok for item in items)):
         _render(checked, items, manifest, renderer, pictures)
     code = pipeline.exit_code(items)
     if junit_xml:
@@ -334,7 +336,7 @@ def _render(checked, items, manifest, renderer: str, basis) -> None:
                 pipeline.render_step(item, session, manifest, item_basis(item, basis))
         finally:
             manifest.save()
-        if any(item.ok for item in items):
+        if checked or any(item.ok for item in items):
             session.write_contact_sheet(manifest)
             manifest.save()
         for note in session.notes:

@@ -40,7 +40,8 @@ its packages: the robot file and every mesh it uses, paths relative to it.
 meshes/: visual geometry (geom group 2, touching nothing) and collision geometry
 (group 3), the description's masses, <mimic> as equality constraints, friction
 from <gazebo><mu1>, and on a vehicle the velocity servos `mcar sim` drives with
-(actuators mcar_motor_JOINT: data.ctrl is each drive wheel's speed, rad/s).
+(actuators mcar_motor_JOINT: data.ctrl is each drive wheel's speed, rad/s),
+sim's round tyres and castor friction.
 --base floating (a free joint, the default) or fixed; --floor (the default under
 a floating base) adds a floor with the robot standing on it. Meshes MuJoCo cannot
 read (COLLADA, PLY, ...) are converted to STL in metres, each listed.
@@ -55,16 +56,19 @@ the body fixed to it, in the same place (the converter makes no body of a frame)
 --to sdf: the SDF libsdformat writes from that URDF (the Gazebo helper, `make
 gazebo-helper`), mesh URIs relative to it; fixed joints lumped, as Gazebo does.
 
-Inertias MuJoCo refuses (principal moments that break A + B >= C, a moving link
-without mass) are named link by link (exit 1); --fix-inertia applies MuJoCo's own
-fixes instead, one warning per link.
+Inertias MuJoCo refuses (a tensor not positive definite, principal moments that
+break A + B >= C, a moving link without mass) are named link by link, with the line
+that writes each (exit 1); --fix-inertia makes them physical instead, one warning per
+link: the nearest physical tensor, a token mass for a frame without geometry, MuJoCo's
+own fixes for the rest (balanceinertia, inertia from geometry).
 
 --verify loads the export back from its folder with the target's engine: every
 file inside the folder, the total mass within 0.1% of the description's, the same
-moving joints; in MuJoCo a vehicle settles on a floor and drives forward under its
-actuators; a URDF loads in yourdfpy (meshes too) and urdfdom's check_urdf where
-installed; an SDF in libsdformat without errors. A mismatch is an error naming
-what differs, and nothing is written.
+moving joints; in MuJoCo a vehicle passes `mcar sim`'s own scenarios with sim's
+bounds (drop, drive, spin or turn), judged as sim judges the description; a USD
+weighs more than 0 kg; a URDF loads in yourdfpy (meshes too) and urdfdom's
+check_urdf where installed; an SDF in libsdformat without errors. A mismatch is an
+error naming what differs, and nothing is written.
 
 The robot is checked first, as by `mcar check`; one with errors is not exported.
 The folder is written whole or not at all (staged beside it, renamed into place);
@@ -99,8 +103,10 @@ Exit codes:
               help="mjcf: add a floor, the robot standing on it (default: with a floating "
                    "base).")
 @click.option("--fix-inertia", is_flag=True,
-              help="Apply MuJoCo's fixes to inertias it refuses (balanceinertia, inertia "
-                   "from geometry), warning per link, instead of failing.")
+              help="Make the inertias MuJoCo refuses physical, warning per link, instead "
+                   "of failing: the nearest physical tensor for one not positive definite, "
+                   "a token mass for a moving frame without mass or geometry, MuJoCo's own "
+                   "fixes otherwise (balanceinertia, inertia from geometry).")
 @click.option("--verify", is_flag=True,
               help="Load the export back with its engine and hold it to the description.")
 @click.option("-q", "--quiet", is_flag=True, help="Print only errors and warnings.")
@@ -109,6 +115,7 @@ Exit codes:
 def command(words, to, output, base, floor, fix_inertia, verify, quiet, package_paths, sets,
             config_files):
     from mobile_car.check.checker import check_input
+    from mobile_car.check.mujoco_inertia import places
     from mobile_car.export.mjcf import MjcfOptions
     from mobile_car.export.run import export_robot
 
@@ -128,7 +135,7 @@ def command(words, to, output, base, floor, fix_inertia, verify, quiet, package_
                 print_diagnostic(diagnostic)
             sys.exit(EXIT_PROBLEMS)
         report = export_robot(checked.loaded, Path(output), to,
-                              MjcfOptions(base, floor, fix_inertia), verify)
+                              MjcfOptions(base, floor, fix_inertia, places(checked)), verify)
     _print(report, checked.loaded.label, quiet)
 
 

@@ -24,8 +24,8 @@ from .common import (
     use_color,
 )
 
-SCENARIO_NAMES = ("drop", "drive", "spin", "turn")
-DRIVE_KINDS = ("differential", "skid-steer", "ackermann")
+SCENARIO_NAMES = ("drop", "drive", "spin", "turn", "strafe")
+DRIVE_KINDS = ("differential", "skid-steer", "ackermann", "mecanum")
 
 HELP = f"""Simulate the robot in MuJoCo, headless, and check that it stands, drives
 straight and turns as its geometry says.
@@ -46,30 +46,43 @@ Scenarios (bounds in docs/sim.md):
   drive  every driven wheel at one speed for 3 s: distance within 2% of r·ω·t (the
          0.5 s ramp accounted for), small drift and heading change, no wheel off
          the floor, the motors' effort limit enough for the speed
+  strafe a mecanum robot, wheels set to move it left: r·ω·t to its left (5%),
+         little forward drift, heading kept
   spin   left wheels forward, right wheels back: a differential robot turns at
          2·r·ω/track (5%) with its axle's centre within 1 cm; a skid-steer one
          clockwise about a point within its wheels, and the report gives its
-         effective track and multiplier against its X_control package's
+         effective track and multiplier against its X_control package's; a
+         mecanum one at r·ω/(half wheelbase + half track) (5%)
   turn   an Ackermann car, front wheels at their Ackermann angles: its turning
          radius within 10% of wheelbase / tan(steering angle)
 
 \b
-Drive kinds, found from the tree (--drive picks another the tree allows):
-  differential  two driven wheels (continuous joints with collision geometry,
-                y > 0 left, y < 0 right) and any castors
+Drive kinds: from --left/--right or --drive, else what the package declares (its
+<gazebo> drive plugin, a controller in its X_control package: diff_drive_controller,
+ackermann_steering_controller...; a bicycle model's virtual joints stand for the real
+wheels of their axle), else found from the tree (a wheel: a continuous joint about a
+level axis whose collision touches the floor at rest); the report says where each
+wheel came from:
+  differential  two driven wheels (y > 0 left, y < 0 right) and any castors
   skid-steer    two or three driven wheels a side
   ackermann     two front wheels on revolute steering joints (upright axis), one
                 a side; the rear wheels driven (the front too where a
                 <transmission> or <ros2_control> block drives them)
-Anything else (mecanum rollers, wheels on one side) runs drop only and says why.
+  mecanum       two wheels a side, declared so (mecanum_drive_controller in its
+                control package's YAML, a <gazebo> planar_move plugin, fdir1
+                with mu2 0) or carrying rollers on their rims; rollers grip at
+                45° (fdir1, the roller links, else the usual X pattern)
+A vehicle of any other kind (omni rollers, wheels on one side) runs drop, and its
+drive scenarios fail saying why (exit 1), unless only drop was asked for.
 --left/--right name the driven joints of each side (A,B for a group); the other
-wheels roll free.
+wheels roll free. --drive picks another kind the wheels allow.
 
 The motors' effort and speed limits come from the joint's <limit>, else its
-<ros2_control> command interfaces, else the <gazebo> drive plugin, else --effort and
---speed, else a default (the torque that holds the robot on a 10 degree slope; a
-skid-steer robot's, the torque that slips its wheels; no speed limit); the report says
-which.
+<ros2_control> command interfaces, else the <gazebo> drive plugin, else --effort, else
+a default (the torque that holds the robot on a 10 degree slope; a skid-steer or mecanum
+robot's, the torque that slips its wheels on its tyres' grip; no speed limit); --speed
+overrides every speed limit. A speed limit over 5 m/s at the rim (r·ω) is a placeholder:
+the robot is driven as if none were given. The report says which.
 
 Every robot is checked first, as by `mcar check`: one with errors is reported with
 check's diagnostics (exit 1). The <gazebo> DiffDrive plugin's wheel separation, radius
@@ -81,7 +94,8 @@ would invent are reported (E305, W304), as FILE:LINE: error: message [E301].
 \b
 Exit codes:
   0  every scenario passed
-  1  a scenario failed, the robot fails its check, or a sim rule error (E3xx)
+  1  a scenario failed (a vehicle that could not be driven fails its drive
+     scenarios), the robot fails its check, or a sim rule error (E3xx)
   2  usage, I/O or environment error: bad option, missing file, unknown scenario, a
      --record format that cannot be written, no offscreen renderer for --record
   130  interrupted (Ctrl-C); 143 terminated
@@ -112,10 +126,14 @@ def scenario_list(ctx, param, value):
                    "junit: JUnit XML, one testcase per scenario.")
 @click.option("--record", metavar="FILE.gif",
               help="Write an animation of the runs (one INPUT only); MP4 is refused.")
+@click.option("--record-size", metavar="WxH", default="640x480", show_default=True,
+              help="The animation's size in pixels; the camera follows the robot, an "
+                   "arrow over each driven wheel shows its command.")
 @click.option("--left", metavar="JOINT[,JOINT]", help="The left driven wheels' joints.")
 @click.option("--right", metavar="JOINT[,JOINT]", help="The right driven wheels' joints.")
 @click.option("--drive", "kind", type=click.Choice(DRIVE_KINDS), default=None,
-              help="The drive kind (default: found from the tree).")
+              help="The drive kind (default: declared by the package, else found from the "
+                   "tree).")
 @click.option("--steering-angle", type=click.FloatRange(min=0, max=80, min_open=True,
                                                         max_open=True), metavar="DEG",
               help="turn: the Ackermann steering angle (default 15, less where the joints' "
@@ -123,15 +141,21 @@ def scenario_list(ctx, param, value):
 @click.option("--effort", type=click.FloatRange(min=0), metavar="N·M",
               help="The drive motors' effort limit where the description gives none.")
 @click.option("--speed", type=click.FloatRange(min=0, min_open=True), metavar="RAD/S",
-              help="The drive motors' speed limit where the description gives none.")
+              help="The drive motors' speed limit, over any the description gives.")
+@click.option("--fix-inertia", is_flag=True,
+              help="Make the inertias MuJoCo refuses physical (the nearest tensor that "
+                   "satisfies the triangle inequality; a token mass for a moving link "
+                   "without one), saying what changed, instead of failing (E305, E310).")
 @robot_options
 @handle_errors
-def command(words, scenarios, output_format, record, left, right, kind, steering_angle, effort,
-            speed, package_paths, sets, config_files):
+def command(words, scenarios, output_format, record, record_size, left, right, kind,
+            steering_angle, effort, speed, fix_inertia, package_paths, sets, config_files):
+    size = None
     if record:
-        from mobile_car.sim.record import require_format
+        from mobile_car.sim.record import parse_size, require_format
 
         require_format(record)
+        size = parse_size(record_size)
     if bool(left) != bool(right):
         raise UsageError("--left and --right go together: name both drive joints")
     steering = None if steering_angle is None else math.radians(steering_angle)
@@ -158,9 +182,10 @@ def command(words, scenarios, output_format, record, left, right, kind, steering
                 codes.append(EXIT_PROBLEMS)
                 unchecked += 1
                 continue
-            result = simulate(checked, scenarios, left, right, record=bool(record),
+            result = simulate(checked, scenarios, left, right, record=size,
                               only_if_drives=not explicit, effort=effort, speed=speed,
-                              kind=kind, steering=steering)
+                              kind=kind, steering=steering, fix_inertia=fix_inertia,
+                              setting=_drive_setting(inp))
             if not result.simulated:
                 skipped.append((result.file, result.not_a_vehicle))
                 continue
@@ -171,6 +196,15 @@ def command(words, scenarios, output_format, record, left, right, kind, steering
         _write_recording(record, reports, codes)
     _emit(reports, output_format, combine_exit_codes(codes), unchecked)
     raise SystemExit(combine_exit_codes(codes))
+
+
+def _drive_setting(inp):
+    """The package's mcar.yaml ``sim.drive`` for the input, or None (stdin, no package)."""
+    from mobile_car.packages.package_config import load_package_config
+    from mobile_car.packages.search import enclosing_package
+
+    found = enclosing_package(inp.path) if inp.path is not None else None
+    return load_package_config(found[1]).sim_drive_for(inp.path) if found else None
 
 
 def say_not_simulated(skipped) -> None:

@@ -19,8 +19,6 @@ Kept free of anything heavy: a no-op run reads its records through this.
 
 from __future__ import annotations
 
-import hmac
-import json
 import os
 from pathlib import Path
 
@@ -42,6 +40,10 @@ def cache_dir() -> Path:
 def _seal_of(section: str, entries: dict) -> str | None:
     """The seal of these entries under this user's key, from the keeper; None where no
     key can be kept."""
+    # json, and hmac (which loads OpenSSL), only where a record is sealed or read:
+    # every check asks cache_dir(), and a plain URDF's check touches no record.
+    import json
+
     # Sealed as the reader will see it: after a JSON round trip, keys sorted.
     canonical = json.dumps([section, json.loads(json.dumps(entries))], sort_keys=True,
                            separators=(",", ":"), ensure_ascii=True)
@@ -53,6 +55,8 @@ def sealed_text(section: str, entries: dict) -> str | None:
     seal = _seal_of(section, entries)
     if seal is None:
         return None
+    import json
+
     document = {SEAL_FIELD: seal,
                 section: dict(sorted(entries.items()))}
     return json.dumps(document, indent=1) + "\n"
@@ -65,6 +69,8 @@ def unsealed_entries(document, section: str) -> dict[str, dict] | None:
     entries, seal = document.get(section), document.get(SEAL_FIELD)
     if not isinstance(entries, dict) or not isinstance(seal, str) or not seal.isascii():
         return None
+    import hmac
+
     expected = _seal_of(section, entries)
     if expected is None or not hmac.compare_digest(seal, expected):
         return None

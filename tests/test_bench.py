@@ -169,3 +169,21 @@ def test_quick_export_section_times_each_format_next_to_check(tmp_path, mcar_bin
         assert re.fullmatch(r"[\d.]+ m?s", cells[2]) and re.fullmatch(r"[\d.]+ m?s", cells[4])
         assert re.fullmatch(r"\d+\.\d\d", cells[3]) and re.fullmatch(r"\d+\.\d\d", cells[5])
         assert cells[7] == "0", cells
+
+
+def test_quick_floor_section_gives_each_ratio_from_real_runs(tmp_path, mcar_bin):
+    text = quick_section(tmp_path, "floor", timeout=180)
+    assert "## At the floor: mcar beside its yardsticks" in text
+    rows = [line.strip("| ").split(" | ") for line in text.splitlines()
+            if line.startswith("| `mcar ")]
+    labels = [cells[0] for cells in rows]
+    assert labels[:3] == ["`mcar check` the car (mobile_robot.urdf)",
+                          "`mcar check` 500-link tree, distinct",
+                          "`mcar check` 500-link tree, repeated"]
+    assert all(label.startswith("`mcar build` ") for label in labels[3:])
+    for cells in rows:
+        # Both sides ran and exited 0 (else "exit N / M" and no ratio), and the CPU
+        # ratio, from wait4, is judged against the row's target.
+        assert re.fullmatch(r"[\d.]+ ms / [\d.]+ ms", cells[2]), cells
+        assert re.fullmatch(r"\*\*\d+\.\d\dx\*\*", cells[3]), cells
+        assert re.fullmatch(r"(met|\*\*missed\*\*) \(<= 1\.\d+x\)", cells[7]), cells

@@ -15,7 +15,6 @@ from pathlib import Path
 from ..errors import BuildError, McarError
 from ..load.inputs import RobotInput
 from ..load.robot import LoadedRobot, LoadOptions, load_robot
-from ..packages.discover import package_macros
 from ..packages.search import PackageSearch
 from . import document
 from .context import Reporter
@@ -23,6 +22,7 @@ from .diagnostics import Counted, Diagnostic
 from .joints import check_joints
 from .link_bodies import check_link_bodies
 from .links import material_colours
+from .masses import check_masses
 from .meshes import MeshFile, check_meshes
 from .plausibility import check_plausibility
 from .rest_pose import rest_pose
@@ -36,7 +36,7 @@ from .urdf_reader import Robot, read_robot
 LARGE_ROBOT = 2000  # links: the rest pose is worked out with numpy (rest_pose_arrays.py)
 
 
-@dataclass
+@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class CheckResult(Counted):
     file: str
     robot: Robot | None = None
@@ -80,6 +80,14 @@ def check_urdf_data(data: bytes, file: str, *, base: Path, search: PackageSearch
     return result
 
 
+def _package_macros(base: Path):
+    """The package's macro names, asked only when an unknown element is found: finding
+    them imports the package discovery, which a sound robot's check does without."""
+    from ..packages.discover import package_macros
+
+    return package_macros(base)
+
+
 def _check_document(root, data: bytes, file: str, base: Path, search: PackageSearch, locate,
                     line_of: SourceLines, structure_only: bool,
                     quick_numbers: bool) -> CheckResult | None:
@@ -99,7 +107,7 @@ def _check_document(root, data: bytes, file: str, base: Path, search: PackageSea
         return _finish(result, report)
     document.check_raw_whitespace(root, data, report)
     check_joints(robot, report)
-    check_schema(robot, report, lambda: package_macros(base))
+    check_schema(robot, report, lambda: _package_macros(base))
     materials = material_colours(robot, report)
     top_level = {element.get("name") for element, _ in robot.materials}
     moving, root_link = moving_links(tree), tree.root if len(tree.roots) == 1 else None
@@ -118,6 +126,7 @@ def _check_document(root, data: bytes, file: str, base: Path, search: PackageSea
             pose = rest_pose(robot, tree, held, bounds)
         result.extents = pose.extents()
         check_plausibility(robot, tree, pose, report)
+        check_masses(robot, tree, held, bounds, report)
     if not report.numbers_confirmed():
         return None
     return _finish(result, report)

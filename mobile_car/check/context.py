@@ -182,15 +182,17 @@ class Reporter:
                                       f"\"{shorten(text)}\"> is not a number urdfdom can read")
         return value
 
-    def numbers(self, element, attr: str, count: int, owner: str) -> tuple[float, ...] | None:
-        """Exactly ``count`` numbers from ``attr``, or None (absent or unreadable: E114)."""
+    def numbers(self, element, attr: str, count: int, owner: str,
+                rule: str = "E114") -> tuple[float, ...] | None:
+        """Exactly ``count`` numbers from ``attr``, or None (absent or unreadable: ``rule``,
+        E114 but for a colour, which only changes how the robot looks)."""
         text = element.get(attr)
         if text is None:
             return None
         value = self.values(text, count)
         if value is None and not has_xacro_expression(text):
-            self.add("E114", element, f"{owner}: <{tag_name(element)} {attr}="
-                                      f"\"{shorten(text)}\">: {parse_numbers(text, count)}")
+            self.add(rule, element, f"{owner}: <{tag_name(element)} {attr}="
+                                    f"\"{shorten(text)}\">: {parse_numbers(text, count)}")
         return value
 
     def origin(self, origin, owner: str) -> None:

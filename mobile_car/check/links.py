@@ -2,6 +2,11 @@
 
 urdfdom logs most of these problems and then drops the visual or collision (``check_urdf``
 still exits 0): a robot silently missing a wheel in rviz. Here they are errors.
+
+A material's colour is the exception: urdfdom, rviz and Gazebo load a robot whose material
+is undefined, has no colour, or a colour they cannot read, and draw the part in a default
+colour. Nothing but the look changes, so those are warnings (W216, W217; errors under
+``--strict``), and mcar's pictures and exports draw such a part in the default grey too.
 """
 
 from __future__ import annotations
@@ -25,15 +30,15 @@ def material_colours(robot: Robot, report: Reporter) -> set[str]:
         if usable is not False:  # (None: its colour is wrong, reported as such)
             defined.add(name)
         else:
-            report.add("E116", element, f"material '{name}' has neither <color rgba=...> "
-                       "nor <texture filename=...>")
+            report.add("W216", element, f"material '{name}' has neither <color rgba=...> "
+                       "nor <texture filename=...>: drawn in the default grey")
     return defined
 
 
 def _material_body(parts: dict | None, owner: str, report: Reporter) -> bool | None:
     """True if a material's parts (None: it has none) define a usable colour or texture;
-    None if they define one that is wrong (reported here: the material is defined, so
-    saying it is not, E116, beside the real error would send the user the wrong way);
+    None if they define one that is wrong (reported here, W217: the material is defined, so
+    saying it is not, W216, beside the real problem would send the user the wrong way);
     False if they define neither."""
     if not parts:
         return False  # a reference by name: <material name="grey"/>
@@ -42,15 +47,15 @@ def _material_body(parts: dict | None, owner: str, report: Reporter) -> bool | N
     ok = texture is not None and texture.get("filename") is not None
     rgba_text = None if color is None else color.get("rgba")
     if rgba_text is not None:
-        rgba = report.numbers(color, "rgba", 4, owner)
+        rgba = report.numbers(color, "rgba", 4, owner, rule="W217")
         if rgba is not None and not all(0.0 <= c <= 1.0 for c in rgba):
-            report.add("E114", color, f"{owner}: rgba=\"{rgba_text}\" has a component "
-                       "outside 0..1")
+            report.add("W217", color, f"{owner}: rgba=\"{rgba_text}\" has a component "
+                       "outside 0..1; urdfdom drops the colour")
             return ok or None
         if rgba is not None or has_xacro_expression(rgba_text):
             ok = True
         elif not ok:
-            return None  # unreadable numbers: E114 from report.numbers
+            return None  # unreadable numbers: W217 from report.numbers
     return ok
 
 
@@ -138,7 +143,7 @@ def _check_visual_material(body: Body, owner: str, materials: set[str], top_leve
         # urdfdom registers a material defined in a visual for the links after it (one
         # with a wrong colour is reported where it is defined, not where it is used).
         materials.add(name)
-    elif name not in materials and name not in top_level:  # (colourless top-level: E116 there)
-        report.add("E116", material, f"{owner} uses material '{name}', which is not "
+    elif name not in materials and name not in top_level:  # (colourless top-level: W216 there)
+        report.add("W216", material, f"{owner} uses material '{name}', which is not "
                    "defined with a colour before it (a top-level <material> or an earlier "
-                   "visual)")
+                   "visual): drawn in the default grey, as urdfdom and rviz do")

@@ -18,13 +18,15 @@ Kept free of xacro, lxml and numpy: a no-op check reads its records through this
 
 from __future__ import annotations
 
-import hashlib
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from ..freshness import Basis, Stamper, key_of, read_record, stamps_current, write_record
 from .diagnostics import Counted, Diagnostic
+
+if TYPE_CHECKING:
+    from ..freshness import Basis, Stamper
 
 SECTION = "checks"
 FOLDER = "checks"
@@ -37,7 +39,7 @@ MAX_KEPT_BYTES = 4 << 20
 MAX_KEPT_LINKS = 2000
 
 
-@dataclass
+@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class ReplayedResult(Counted):
     """What :func:`replay` reads back: the parts of a CheckResult the output is made of."""
 
@@ -51,28 +53,41 @@ class ReplayedResult(Counted):
 
 
 def run_key(label: str, path: Path, basis: Basis) -> str:
+    from ..freshness import key_of
+
     limits = {name: value for name, value in os.environ.items()
               if name.startswith("MCAR_") and name != "MCAR_CACHE_DIR"}
     return key_of("check", label, os.path.abspath(path), os.getcwd(), basis.settings, limits)
 
 
 def _record_path(path: Path) -> Path:
+    import hashlib
+
     from ..record_seal import cache_dir
 
     name = hashlib.sha256(os.fsencode(os.path.abspath(path))).hexdigest()[:40]
     return cache_dir() / FOLDER / f"{name}.json"
 
 
+def replayable(inp) -> bool:
+    """Whether the input ``inp`` can have a record to read back (what xacro expands):
+    asked first, so that the check of a plain URDF needs no run key, no basis and no
+    records module."""
+    if inp.path is None:
+        return False
+    return inp.named_xacro or (_small(inp.path) and inp.xacro_use is not None)
+
+
 def replay(inp, basis: Basis) -> ReplayedResult | None:
     """The recorded result of checking the input ``inp`` (a RobotInput) under ``basis``,
     if nothing it depends on changed; else None. The note a ``.urdf`` that uses xacro gets
     (:mod:`mobile_car.load.xacro_use`) is said again, as loading it says it."""
+    if not replayable(inp):
+        return None
+    from ..freshness import read_record, stamps_current
+
     label, path = inp.label, inp.path
-    if path is None:
-        return None
-    use = None if inp.named_xacro else inp.xacro_use if _small(path) else None
-    if not inp.named_xacro and use is None:
-        return None
+    use = None if inp.named_xacro else inp.xacro_use
     key = run_key(label, path, basis)
     entry = read_record(_record_path(path), SECTION).get(key[:40])
     if not entry or entry.get("key") != key:
@@ -113,6 +128,8 @@ def record(inp, basis: Basis, result, stamper: Stamper) -> None:
     tree_text = _tree_text(result)
     if tree_text is False:
         return
+    from ..freshness import write_record
+
     reads = [r for m in result.mesh_files for r in m.reads]
     files = stamper.stamps([*result.loaded.deps, path, *basis.files,
                             *(m.path for m in result.mesh_files), *reads,

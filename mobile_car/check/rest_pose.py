@@ -133,7 +133,7 @@ class Shape:
         return placed_box(self.placed, *self.own)
 
 
-@dataclass
+@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class RestPose:
     """The rest pose as the plausibility rules read it (:mod:`.rest_pose_arrays` makes the
     same from numpy arrays for a large robot). Only the shapes a rule looks at one by one

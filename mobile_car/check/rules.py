@@ -41,7 +41,8 @@ class Rule:
 
 _TABLE = [
     # The document
-    Rule("E100", "xml-syntax", "not well-formed XML", "rejects"),
+    Rule("E100", "xml-syntax", "not well-formed XML", "rejects, but for a misspelt "
+         "`<?xml ...?>` declaration, which its TinyXML skips"),
     Rule("E101", "no-robot", "the root element is not `<robot>`", "rejects"),
     Rule("E102", "robot-name", "`<robot>` has no name, or an empty one", "rejects if absent"),
     Rule("E103", "urdf-version", "`version` is not `1.0` (the only version urdfdom 3.0 reads)",
@@ -65,12 +66,10 @@ _TABLE = [
     Rule("E113", "geometry-size-nonpositive", "a size, radius or length <= 0, or a mesh scale "
          "of 0", "accepts"),
     Rule("E114", "bad-number", "a value urdfdom cannot read as numbers: not a number, the "
-         "wrong count (xyz, rpy, size, scale need 3, rgba 4), a tab or line break between "
-         "numbers, an rgba component outside 0..1", "rejects in joints, ignores in links"),
+         "wrong count (xyz, rpy, size, scale need 3), a tab or line break between "
+         "numbers (a colour's rgba: W217)", "rejects in joints, ignores in links"),
     Rule("E115", "inertial-incomplete", "`<inertial>` without `<mass value>` or `<inertia>`, "
          "or an inertia missing one of ixx ixy ixz iyy iyz izz", "ignores"),
-    Rule("E116", "material-undefined", "a material used by name but never defined with a "
-         "`<color>` or `<texture>`", "ignores (warns)"),
     Rule("E117", "number-out-of-range", "a number urdfdom reads but no robot has, which "
          "overflows when drawn or simulated: a coordinate (origin xyz), size, radius or length "
          "beyond 1e6 m, an angle (rpy) beyond 1e6 rad, an axis component beyond 1e6, a mesh "
@@ -78,6 +77,12 @@ _TABLE = [
          "an inertia moment beyond 1e18 kg m² (nan, inf, 1e999: E114)", "accepts"),
     Rule("E118", "mass-negative", "a negative mass, on any link (a fixed link's mass counts "
          "in the robot's total; a massless frame has 0)", "accepts"),
+    Rule("E119", "mass-implausible", "a mass no built robot has: a wheel (a link a "
+         "continuous joint turns) over 5 times the robot without its wheels, or a link denser than "
+         "25 000 kg/m³ (osmium: 22 590) or, over 1 g, lighter than 1 kg/m³ (air: 1.2) in the "
+         "volume of its collision shapes (its visuals' if none; a mesh by its box; shapes "
+         "that fit in a 2 cm cube are a placeholder, not judged)",
+         "accepts"),
     # Joints
     Rule("E120", "joint-type", "a joint without a type, or of an unknown type", "rejects"),
     Rule("E121", "joint-link-missing", "a joint without `<parent link>` or `<child link>`",
@@ -153,6 +158,12 @@ _TABLE = [
          "`--asset-path`/`assets.paths` folders, or in a version-control folder (`.git`), "
          "or a URL other than `package://` and `file://` (RViz would fetch it): never read "
          "nor exported, drawn as a magenta box", "accepts"),
+    Rule("W216", "material-undefined", "a material used by name but never defined with a "
+         "`<color>` or `<texture>`, or defined with neither (was E116: only the look "
+         "changes; drawn in the default grey)", "warns"),
+    Rule("W217", "material-colour", "a `<color rgba>` urdfdom cannot read: not four numbers, "
+         "or a component outside 0..1 (was part of E114; urdfdom drops the colour, the part "
+         "is drawn in the default grey)", "ignores (logs an error)"),
     Rule("W220", "xacro-warning", "xacro printed a warning while expanding a `.xacro` input",
          "n/a"),
     Rule("W230", "gazebo-warning", "libsdformat warns while loading the robot", "n/a"),
@@ -174,6 +185,10 @@ _TABLE = [
 ]
 
 RULES: dict[str, Rule] = {rule.id: rule for rule in _TABLE}
+
+# Ids no longer reported, and the rule that took their place: an id never comes back
+# with another meaning (a CI that filtered E116 must not silently filter something new).
+RETIRED: dict[str, str] = {"E116": "W216"}
 
 _TREE_BLOCKERS = {"E100", "E101", "E102", "E104", "E106", "E107", "E108", "E120", "E121",
                   "E122", "E130", "E131", "E132", "E133", "E140"}

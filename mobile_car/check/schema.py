@@ -10,8 +10,6 @@ and of other XML namespaces (``xacro:`` is E105) are not checked.
 
 from __future__ import annotations
 
-import difflib
-
 from .context import Reporter
 from .urdf_model import tag_name
 from .urdf_reader import Anomalies, Robot
@@ -19,6 +17,8 @@ from .urdf_vocabulary import EXTENSIONS, ROBOT, SPECS
 
 
 def _suggest(name: str, known) -> str:
+    import difflib  # only for a name it does not know
+
     close = difflib.get_close_matches(name, sorted(known), n=1, cutoff=0.6)
     return f"; did you mean '{close[0]}'?" if close else ""
 

@@ -23,7 +23,7 @@ from .urdf_model import axis_of, first_child, origin_of, parse_number
 from .urdf_reader import Joint, Robot
 
 
-@dataclass
+@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class KinematicTree:
     links: list[str]                       # defined link names, document order
     root: str | None                       # the root urdfdom would pick, or the biggest tree's

@@ -104,7 +104,7 @@ class Joint:
         return self.element.sourceline
 
 
-@dataclass
+@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class Robot:
     """The content of a ``<robot>``, in document order."""
 

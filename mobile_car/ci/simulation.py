@@ -6,7 +6,8 @@ with its drive kind's scenarios. Then:
 * a robot that is not a vehicle (no wheels, one wheel, nothing but its wheels to stand
   on: :func:`mobile_car.sim.vehicle.not_a_vehicle`) is skipped, saying so;
 * a vehicle sim cannot drive (mecanum rollers, wheels on one side, a steering layout
-  that is no Ackermann pair) *fails*, with the reason, unless its package opts it out:
+  that is no Ackermann pair) *fails*, with the reason, as in ``mcar sim``
+  (:func:`mobile_car.sim.report.undriven`), unless its package opts it out:
   ``sim: skip: {GLOB: REASON}`` in the package's ``mcar.yaml``
   (:mod:`mobile_car.packages.package_config`), whose reason ci prints;
 * any other vehicle fails on any failed scenario or sim rule.
@@ -68,8 +69,15 @@ def skip_reason(item: CiItem, configs: dict[Path, PackageConfig]) -> str | None:
     return None
 
 
-def sim_step(item: CiItem, skip: str | None = None) -> None:
-    """Simulate an item that passed its check; ``skip``: its package's reason not to."""
+def drive_setting(item: CiItem, configs: dict[Path, PackageConfig]):
+    """({kind, left, right}, where) the item's package sets in ``sim.drive``, or None."""
+    config = config_for(item, configs)
+    return config.sim_drive_for(item.source) if config is not None else None
+
+
+def sim_step(item: CiItem, skip: str | None = None, setting=None) -> None:
+    """Simulate an item that passed its check; ``skip``: its package's reason not to;
+    ``setting``: its package's ``sim.drive`` (:func:`drive_setting`)."""
     from ..sim.report import failure_lines, junit_cases, simulate
 
     started = time.perf_counter()
@@ -78,7 +86,7 @@ def sim_step(item: CiItem, skip: str | None = None) -> None:
                                summary="opted out"))
         return
     try:
-        result = simulate(item.checked, only_if_drives=True)
+        result = simulate(item.checked, only_if_drives=True, setting=setting)
     except McarError as error:  # no engine, or drive wheels named that cannot drive
         item.steps.append(Step("sim", "failed", str(error), exit_code=error.exit_code,
                                error=error, seconds=time.perf_counter() - started))
@@ -91,12 +99,13 @@ def sim_step(item: CiItem, skip: str | None = None) -> None:
         return
     cases, problems, code = junit_cases(result), failure_lines(result), result.exit_code
     if result.drive is None and not result.error:  # a vehicle that only stood
+        # (sim failed its drive scenarios already, as mcar sim does: one line says why)
         why = (f"cannot drive this vehicle: {result.why_no_drive}; only drop ran ({OPT_OUT} "
                "that is not meant to drive)")
         for case in cases[1:]:
             if case["status"] == "skipped":
                 case.update(status="failed", message=why)
-        problems.append(why)
+        problems = [p for p in problems if "cannot drive this vehicle: " not in p] + [why]
         code = code or EXIT_PROBLEMS
     failed = [case["name"] for case in cases if case["status"] == "failed"]
     ran = ", ".join(case["name"] for case in cases[1:])

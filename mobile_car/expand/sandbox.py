@@ -88,8 +88,7 @@ def support() -> Support:
         seccomp_reason = "not Linux"
     else:
         try:
-            import pyseccomp
-
+            pyseccomp = import_pyseccomp()
             pyseccomp.SyscallFilter(pyseccomp.ALLOW)  # loads libseccomp.so.2
         except (ImportError, OSError, RuntimeError) as error:
             seccomp_reason = f"libseccomp could not be loaded ({error})"
@@ -103,6 +102,41 @@ def support() -> Support:
     except (OSError, AttributeError) as error:  # ENOSYS, EOPNOTSUPP: the kernel has none
         landlock_reason = f"the kernel offers no Landlock ({error.__class__.__name__})"
     return Support(seccomp_reason, abi, landlock_reason)
+
+
+# What ctypes.util.find_library answers for pyseccomp's two libraries on a glibc system.
+_SONAMES = {"c": "libc.so.6", "seccomp": "libseccomp.so.2"}
+
+
+def import_pyseccomp():
+    """pyseccomp, which finds libc and libseccomp with ctypes.util.find_library: that
+    runs ``ldconfig -p`` (a process) for each and imports shutil, subprocess and tempfile,
+    a seventh of a small robot's build. Where the dynamic linker loads both by the names
+    ldconfig would give, pyseccomp is handed those names instead; elsewhere (another libc,
+    ctypes.util already imported) it imports as it is. Once per process, in the parent,
+    before any thread of mcar's imports."""
+    if "pyseccomp" in sys.modules or "ctypes.util" in sys.modules:
+        import pyseccomp
+
+        return pyseccomp
+    import ctypes
+    import types
+
+    try:
+        for soname in _SONAMES.values():
+            ctypes.CDLL(soname)
+    except OSError:  # not glibc's names here: ldconfig finds them
+        import pyseccomp
+
+        return pyseccomp
+    names = types.ModuleType("ctypes.util")
+    names.find_library = _SONAMES.get
+    sys.modules["ctypes.util"] = ctypes.util = names
+    try:
+        import pyseccomp
+    finally:
+        del sys.modules["ctypes.util"], ctypes.util
+    return pyseccomp
 
 
 def note_unconfined(reason: str) -> None:
@@ -130,6 +164,10 @@ def prepare(read_roots: list[Path]) -> list[Path] | None:
     info = support()
     if info.seccomp is not None:
         note_unconfined(f"seccomp {info.seccomp}")
+    # An extension module the child loads may need a system library, which Landlock
+    # keeps it from reading: PyYAML (xacro's, at the first $(...)) imports base64, whose
+    # binascii needs libz. Loaded here, the child finds it mapped already.
+    import binascii  # noqa: F401
     roots = [Path(p) for p in sys.path if p and os.path.isdir(p)]
     roots += [Path(sys.prefix), Path(sys.base_prefix), *read_roots]
     return list(dict.fromkeys(p for p in roots if p.exists()))
@@ -260,7 +298,7 @@ _WRITE_FLAGS = (os.O_WRONLY, os.O_RDWR, os.O_CREAT, os.O_TRUNC, os.O_APPEND)
 
 
 def _deny_syscalls() -> None:
-    import pyseccomp as sc
+    sc = import_pyseccomp()
 
     rules = sc.SyscallFilter(sc.ALLOW)
     refuse = sc.ERRNO(errno.EPERM)

@@ -80,14 +80,24 @@ def principal_moments(body) -> tuple[float, ...]:
     return tuple(sorted(float(v) for v in body.inertia))
 
 
-def refuse(refused: list[Refused], label: str) -> None:
-    """ExportError naming every refused link, and the option that fixes them."""
-    if refused:
-        raise ExportError(f"MuJoCo refuses the inertia of {len(refused)} "
-                          f"link{'s' * (len(refused) != 1)} "
-                          f"({', '.join(r.link for r in refused)}); --fix-inertia applies "
-                          "MuJoCo's own fixes (balanceinertia, inertia from geometry)",
-                          file=label, details=[r.describe() for r in refused])
+def refuse(refused: list, label: str, place=None) -> None:
+    """ExportError naming every refused link (a Refused, or a Refusal found in the URDF
+    before MuJoCo read it), where its inertia is written when ``place`` (link name ->
+    "FILE:LINE") knows, and the option that fixes them."""
+    if not refused:
+        return
+    ours = [r for r in refused if not isinstance(r, Refused)]
+    fixes = "MuJoCo's own fixes (balanceinertia, inertia from geometry)"
+    if ours:
+        fixes = ("the nearest physical tensor, a token mass for a bare frame, and " + fixes)
+    details = []
+    for item in refused:
+        where = place(item.link) if place is not None else None
+        details.append(item.describe() + (f" ({where})" if where else ""))
+    raise ExportError(f"MuJoCo refuses the inertia of {len(refused)} "
+                      f"link{'s' * (len(refused) != 1)} "
+                      f"({', '.join(r.link for r in refused)}); --fix-inertia applies "
+                      f"{fixes}", file=label, details=details)
 
 
 def apply_fixes(mj, spec, refused: list[Refused], label: str) -> None:
@@ -99,6 +109,7 @@ def apply_fixes(mj, spec, refused: list[Refused], label: str) -> None:
     massless = [r.link for r in refused if r.problem == "massless"]
     if not massless:
         return
+    # (the bare ones have their token mass from mujoco_inertia before MuJoCo reads them)
     bare = [name for name in massless
             if not any(g.contype or g.conaffinity for g in spec.body(name).geoms)]
     if bare:

@@ -11,7 +11,9 @@ description only (``inertiafromgeom`` off). Then, the choices of an export for p
   (URDF's and Gazebo's default); a converted mesh without a URDF material keeps its
   own colour;
 * friction from the description's ``<gazebo reference><mu1>``, with a contact priority
-  so that the part's own value wins;
+  so that the part's own value wins; on a vehicle, sim's castor friction where none is
+  given and each wheel's collision cylinder a sphere of its radius (a round tyre), as
+  ``mcar sim`` has them, so that ``--verify`` judges the model sim judged;
 * ``--base floating`` (a free joint ``floating_base`` on the root link) or ``fixed``
   (welded to the world, as the importer leaves it);
 * ``--floor``: sim's floor and light, the robot standing on it (its lowest collision
@@ -31,6 +33,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from ..check.mujoco_inertia import TOKEN_MASS, bare_massless, make_physical, refusals
 from ..check.urdf_model import parse_number
 from ..errors import McarError
 from . import ExportError
@@ -47,6 +50,7 @@ class MjcfOptions:
     base: str = "floating"          # or "fixed"
     floor: bool | None = None       # None: a floor under a floating base
     fix_inertia: bool = False
+    place: object = None            # link name -> "FILE:LINE" of its inertia, or None
 
 
 @dataclass
@@ -65,6 +69,10 @@ class Exported:
     base: str = "floating"
     floor: bool = False
     added_mass: float = 0.0         # kg MuJoCo gave massless moving links (--fix-inertia)
+    # moving joint -> its URDF type (mjcf): MuJoCo's hinge does not say whether it was a
+    # revolute joint that --verify's drive finder must not take for a wheel (Hunter 2's
+    # steering, limits 0 to 0, is a hinge without a range)
+    joint_types: dict[str, str] = field(default_factory=dict)
 
 
 @dataclass
@@ -86,19 +94,24 @@ def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = Fal
     (an importer that does not read them must not trip on them); its ``<texture>``s
     copied too with ``copy_textures``, else taken out (MuJoCo reads none): the tool given
     the URDF never reads a file the export did not measure and allow."""
+    from ..check.colours import drop_unusable_colours
     from ..sim.drives import actuated_joints
+    from ..sim.mecanum import urdf_declarations
     from ..sim.model import gazebo_friction
     from ..sim.servos import DriveSources
 
     root = parse_robot(loaded.urdf, loaded.label)
     joints = {j.get("name"): j for j in root if j.tag == "joint"}
     sources = DriveSources([e for e in root if e.tag in ("gazebo", "ros2_control")],
-                           actuated_joints(root), gazebo_friction(root))
+                           actuated_joints(root), gazebo_friction(root),
+                           mecanum=urdf_declarations(root))
     if not keep_extras:
         for element in list(root.iter("gazebo", "transmission", "ros2_control")):
             element.getparent().remove(element)
     assets = Assets(folder, readable, binary_stl_only)
-    warnings = place_meshes(root, assets, loaded)
+    # As urdfdom does (W217): MuJoCo and urdf-usd-converter refuse an rgba of 3 numbers.
+    warnings = drop_unusable_colours(root)
+    warnings += place_meshes(root, assets, loaded)
     warnings += place_textures(root, assets, loaded, copy_textures)
     return Prepared(root, joints, sources, assets, warnings)
 
@@ -128,19 +141,41 @@ def export_mjcf(loaded, folder: Path, options: MjcfOptions) -> Exported:
 
     mj = mujoco()
     prepared = prepare(loaded, folder)
+    # What MuJoCo cannot mend itself, found and mended in the URDF first (then MuJoCo
+    # reads the robot, and names the rest: refused_links).
+    found = before_mujoco(prepared.root)
+    mended = make_physical(prepared.root, found)
     spec = mujoco_spec(mj, prepared, loaded.label)
-    return _complete(mj, spec, prepared.root, prepared.joints, prepared.sources,
-                     prepared.assets, loaded, options, prepared.warnings)
+    return _complete(mj, spec, prepared, loaded, options, (found, mended))
 
 
-def _complete(mj, spec, root, joints, sources, assets, loaded, options, warnings):
-    from ..sim.model import TIMESTEP, add_floor, lowest_points
+def before_mujoco(root) -> list:
+    """The inertias MuJoCo stops at without a fix of its own: a tensor that is not
+    positive definite, a moving link without mass nor collision geometry to take one
+    from (:mod:`mobile_car.check.mujoco_inertia`)."""
+    tensors = [r for r in refusals(root, massless=False)
+               if r.problem in ("not-positive", "no-inertia")]
+    return tensors + bare_massless(root)
+
+
+def _complete(mj, spec, prepared, loaded, options, mended_first):
+    from ..sim.model import (
+        TIMESTEP,
+        add_floor,
+        lowest_points,
+        resting_parts,
+        rolling_contacts,
+    )
     from ..sim.servos import add_motors, fit_drive
     from .inertia import apply_fixes, fix_warnings, refuse, refused_links
 
+    root, joints, sources = prepared.root, prepared.joints, prepared.sources
+    assets, warnings = prepared.assets, prepared.warnings
+    found, mended = mended_first
     refused = refused_links(mj, spec)
     if not options.fix_inertia:
-        refuse(refused, loaded.label)
+        refuse(found + refused, loaded.label, options.place)
+    warnings += mended
     apply_fixes(mj, spec, refused, loaded.label)
     _add_missing_mimics(spec, root, mj)
     for geom in spec.geoms:
@@ -162,12 +197,17 @@ def _complete(mj, spec, root, joints, sources, assets, loaded, options, warnings
     shape = _compile(spec, loaded.label)
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)
-    drive, why = fit_drive(mj, shape, data, joints, sources)
+    drive, why = fit_drive(mj, shape, data, joints, sources, lowest_points(mj, shape, data))
     mass = float(shape.body_mass.sum())
     add_motors(mj, spec, drive, mass)
+    points = lowest_points(mj, shape, data)
+    if drive is not None:  # sim's castor friction and round tyres: what --verify judges
+        rolling_contacts(mj, spec, drive, resting_parts(shape, points, drive.wheels)[1],
+                         sources.friction)
+    mecanum = _mecanum_tyres(spec, drive, sources)
     floor = options.floor if options.floor is not None else options.base == "floating"
     if floor:
-        lowest = [z for g, z in lowest_points(mj, shape, data).items()
+        lowest = [z for g, z in points.items()
                   if shape.geom_contype[g] or shape.geom_conaffinity[g]]
         if lowest:
             root_body.pos = [root_body.pos[0], root_body.pos[1], root_body.pos[2] - min(lowest)]
@@ -177,12 +217,37 @@ def _complete(mj, spec, root, joints, sources, assets, loaded, options, warnings
     (Path(spec.modelfiledir) / name).write_text(spec.to_xml(), encoding="utf-8")
     warnings += fix_warnings(model, refused)
     added = sum(float(model.body(r.link).mass[0]) for r in refused if r.problem == "massless")
+    tokens = TOKEN_MASS * sum(r.problem == "massless" for r in found)
     return Exported(
-        robot_file=name, urdf_mass=urdf_mass(root), model_mass=float(model.body_mass.sum()),
+        robot_file=name, urdf_mass=urdf_mass(root) - tokens,
+        model_mass=float(model.body_mass.sum()),
         moving_joints=moving_joints(root), meshes=sorted(assets.taken),
         converted=[f"{a.uri} -> {a.relative}" for a in assets.by_uri.values() if a.converted],
-        warnings=warnings, notes=[f"no drive actuators: {why}"] if drive is None and why else [],
-        drive=drive_summary(drive), base=options.base, floor=floor, added_mass=added)
+        warnings=warnings, notes=([f"no drive actuators: {why}"] if drive is None and why
+                                  else []) + mecanum,
+        drive=drive_summary(drive), base=options.base, floor=floor, added_mass=added + tokens,
+        joint_types={j.get("name"): j.get("type") for j in root.iterchildren("joint")
+                     if j.get("type") != "fixed"})
+
+
+def _mecanum_tyres(spec, drive, sources) -> list[str]:
+    """A mecanum robot's wheels grip as tyres in the file (their tyre's friction, not the
+    rollers' free roll of a planar_move robot's <mu1> 0.01): a file cannot hold the
+    rollers mcar sim models (their contact is re-aligned every step, sim/rollers.py), so
+    it drives forward and turns, but does not strafe; the note says so."""
+    from ..sim.rollers import tyre_grip
+
+    if drive is None or drive.kind != "mecanum":
+        return []
+    grips = {w.link: tyre_grip(w, sources)[0] for w in drive.wheels}
+    for geom in spec.geoms:
+        if geom.parent.name in grips and (geom.contype or geom.conaffinity):
+            geom.friction = [grips[geom.parent.name], geom.friction[1], geom.friction[2]]
+            geom.priority = 1
+    return ["mecanum wheels: their rollers are not in the file (mcar sim models them); "
+            "each wheel grips as a tyre of mu " + ", ".join(sorted({f"{g:g}" for g in
+                                                                  grips.values()}))
+            + ": the robot drives and turns, but does not strafe"]
 
 
 def parse_robot(urdf: bytes, label: str):

@@ -88,6 +88,7 @@ def _drive(loaded, prepared) -> dict | None:
     """The drive ``mcar sim`` finds on MuJoCo's reading of the robot, with its servos'
     gains, or None where MuJoCo cannot read it (the USD then has no drives)."""
     from ..sim.engine import mujoco
+    from ..sim.model import lowest_points
     from ..sim.servos import fit_drive
     from .mjcf import drive_summary, mujoco_spec
 
@@ -101,7 +102,8 @@ def _drive(loaded, prepared) -> dict | None:
         return None
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)
-    drive, _ = fit_drive(mj, shape, data, prepared.joints, prepared.sources)
+    drive, _ = fit_drive(mj, shape, data, prepared.joints, prepared.sources,
+                         lowest_points(mj, shape, data))
     return drive_summary(drive)
 
 

@@ -5,15 +5,16 @@ proven comes back as lines for the report.
 For every format: each file the robot file names is a relative path inside the folder
 (so the folder loads on a machine without the packages), the total mass equals the
 description's within :data:`MASS_TOLERANCE`, and the moving joints are the description's.
-For MuJoCo, a vehicle also settles on a floor (``mcar_floor``, added for the check when the
-export has none) and drives forward under its own actuators.
+For USD, a physics asset, the total mass is above 0 too.
+For MuJoCo, a vehicle (a floating base with a drive) is also judged as ``mcar sim`` judges
+the description, by the same scenarios and bounds (:mod:`.judge`), on a floor
+(``mcar_floor``, added for the judging when the export has none).
 
 Masses in kg, lengths in m, times in s, speeds in rad/s.
 """
 
 from __future__ import annotations
 
-import math
 import os
 from pathlib import Path
 
@@ -22,11 +23,6 @@ from lxml import etree
 from . import ExportError
 
 MASS_TOLERANCE = 0.001       # of the description's mass
-SETTLE_TIME = 1.0
-SETTLED_SPEED = 0.02         # m/s: the root slower than this after SETTLE_TIME
-UPRIGHT_DEGREES = 5.0        # roll and pitch after settling
-DRIVE_TIME = 2.0
-DRIVE_SHARE = (0.5, 1.1)     # of r·ω·t the robot must cover: forward, not faster
 MJCF_FILE_ATTRIBUTES = {"mesh": "file", "texture": "file", "hfield": "file", "skin": "file",
                         "include": "file", "model": "file"}
 
@@ -95,69 +91,28 @@ def verify_mjcf(folder: Path, exported, shown: str | None = None) -> list[str]:
              if model.joint(j).name != FREE_JOINT]
     proven.append(joints_match(names, exported.moving_joints, label))
     if exported.base == "floating" and exported.drive:
-        if not exported.floor:
-            from ..sim.model import add_floor
+        from .judge import judge
 
-            add_floor(spec, mj)
-            model = spec.compile()
-        proven += _settles_and_drives(mj, model, exported.drive, label)
+        proven += judge(mj, path, exported, str(label))
     return proven
 
 
-def _settles_and_drives(mj, model, drive: dict, folder: Path) -> list[str]:
-    data = mj.MjData(model)
-    root = int(model.jnt_bodyid[_free(mj, model)])
-    steps = round(SETTLE_TIME / model.opt.timestep)
-    mj.mj_step(model, data, nstep=steps)
-    free = model.jnt_dofadr[_free(mj, model)]
-    speed = float(sum(v * v for v in data.qvel[free:free + 3]) ** 0.5)
-    roll, pitch = _tilt(data.xquat[root])
-    if speed > SETTLED_SPEED or max(abs(roll), abs(pitch)) > UPRIGHT_DEGREES:
-        raise ExportError(f"does not settle on the floor: after {SETTLE_TIME:g} s it moves at "
-                          f"{speed:.3g} m/s, roll {roll:.1f}°, pitch {pitch:.1f}°",
-                          file=str(folder))
-    start = data.xpos[root].copy()
-    heading = data.xmat[root].reshape(3, 3)[:, 0].copy()
-    omega = float(drive["speed"])
-    for joint in drive["left"] + drive["right"]:
-        actuator = model.actuator(f"mcar_motor_{joint}").id
-        axis = data.xaxis[model.joint(joint).id]
-        data.ctrl[actuator] = omega if axis[1] >= 0 else -omega
-    mj.mj_step(model, data, nstep=round(DRIVE_TIME / model.opt.timestep))
-    moved = data.xpos[root] - start
-    along = float(moved[:2] @ heading[:2]) / max(1e-12, float(math.hypot(*heading[:2])))
-    ideal = float(drive["radius"]) * omega * DRIVE_TIME
-    low, high = DRIVE_SHARE
-    if not low * ideal <= along <= high * ideal:
-        raise ExportError(f"does not drive forward under its actuators: {along:.3g} m in "
-                          f"{DRIVE_TIME:g} s at {omega:.3g} rad/s, where r·ω·t is {ideal:.3g} m "
-                          f"(between {low:.0%} and {high:.0%} of it expected)",
-                          file=str(folder))
-    return [f"settled on the floor (roll {roll:.1f}°, pitch {pitch:.1f}°)",
-            f"drove {along:.3g} m forward in {DRIVE_TIME:g} s under its actuators "
-            f"({along / ideal:.0%} of r·ω·t)"]
-
-
-def _free(mj, model) -> int:
-    for j in range(model.njnt):
-        if model.jnt_type[j] == mj.mjtJoint.mjJNT_FREE:
-            return j
-    raise ExportError("no free joint to settle and drive on", file=None)
-
-
-def _tilt(quat) -> tuple[float, float]:
-    """Roll and pitch (degrees) of a unit quaternion (w, x, y, z)."""
-    w, x, y, z = (float(v) for v in quat)
-    roll = math.atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))
-    pitch = math.asin(max(-1.0, min(1.0, 2 * (w * y - z * x))))
-    return math.degrees(roll), math.degrees(pitch)
+def _has_mass(mass: float, label: Path) -> None:
+    """A USD asset is for physics (Isaac Sim, Newton): a stage whose rigid bodies weigh
+    nothing in all is no robot there, even when the description (a visual-only URDF for
+    RViz) weighs nothing too; each engine would make its masses up from the colliders."""
+    if not mass > 0:
+        raise ExportError(f"total mass {mass:.6g} kg: no rigid body of the stage has a mass "
+                          "(the description gives no link an <inertial> mass), so a physics "
+                          "engine would make every mass up from the colliders' volume",
+                          file=str(label))
 
 
 def verify_usd(folder: Path, exported, shown: str | None = None) -> list[str]:
     """Open the stage with ``pxr`` from the folder alone and hold it to ``exported``:
     every layer and asset it depends on inside the folder, metres, kilograms and Z-up,
-    the total mass, the moving joints, a rigid body at each end of each moving joint,
-    and a drive on each drive wheel."""
+    a total mass above 0 and equal to the description's, the moving joints, a rigid body
+    at each end of each moving joint, and a drive on each drive wheel."""
     from pxr import Usd, UsdGeom, UsdPhysics, UsdUtils
 
     label = Path(shown or folder)
@@ -179,6 +134,7 @@ def verify_usd(folder: Path, exported, shown: str | None = None) -> list[str]:
                           f"{units[2]}-up (metres, kilograms, Z-up expected)", file=str(label))
     from .usd import stage_mass
 
+    _has_mass(stage_mass(stage), label)
     proven = ["pxr opens it from the folder alone (metres, kilograms, Z-up)",
               mass_matches(stage_mass(stage), exported.urdf_mass, label)]
     moving = [p for p in stage.Traverse() if p.IsA(UsdPhysics.Joint) and p.IsActive()

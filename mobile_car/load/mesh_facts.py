@@ -17,6 +17,10 @@ What was found is kept in the user's cache folder (``mesh-facts/`` in
   hash (all but binary STL): a fresh clone, or a CI job that keeps the cache folder,
   hashes each mesh and skips trimesh.
 
+A small binary STL (the first 10,000 triangles a run meets) is neither looked up nor
+kept: reading it costs less than believing a record, which needs the seal keeper's
+process, so a robot whose meshes are all small starts no process to be checked.
+
 The cache is an input like the robot: a record planted there (by a CI cache shared with
 a pull request's jobs, say) could make a broken mesh look sound or a mesh look any size.
 So every record is sealed with this user's record key (:mod:`mobile_car.record_seal`, as
@@ -28,11 +32,11 @@ one more read: they are written by rename, without the fsync outputs get.
 
 from __future__ import annotations
 
-import hashlib
-import json
+import array
 import math
 import os
 import stat
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -63,6 +67,10 @@ class MeshFacts:
 
 
 _known: dict[tuple, MeshFacts] = {}
+# Triangles of binary STL one run reads without records (see _small_binary_stl): about
+# as long in Python as starting the seal keeper; 500 KB of STL.
+DIRECT_TRIANGLES = 10_000
+_direct_triangles = 0
 
 
 def mesh_facts(path: Path, shown: str) -> MeshFacts:
@@ -80,6 +88,9 @@ def mesh_facts(path: Path, shown: str) -> MeshFacts:
 def _facts(path: Path, shown: str, info, identity: list) -> MeshFacts:
     if not stat.S_ISREG(info.st_mode):
         scan_mesh(path, shown)  # raises the located InputError
+    direct = _small_binary_stl(path, shown, info.st_size)
+    if direct is not None:
+        return direct
     kept = _by_path(path, identity)
     if kept is not None and not _maybe_over_limit(info.st_size, kept):
         return kept
@@ -106,6 +117,32 @@ def _facts(path: Path, shown: str, info, identity: list) -> MeshFacts:
     facts = MeshFacts(found.problem, None, found.bounds, found.faces, found.vertices,
                       tuple(dict.fromkeys([*reads, *found.reads])))
     return _remember(path, identity, facts)
+
+
+def _small_binary_stl(path: Path, shown: str, size: int) -> MeshFacts | None:
+    """The facts of a binary STL small enough that reading it costs less than a record
+    would, or None. A record is only believed once its seal is checked, which starts the
+    keeper process (:mod:`mobile_car.seal_keeper`): a new interpreter, more time than
+    reading thousands of triangles in Python. So the first triangles a run meets are
+    read, within a budget, and never recorded; past it, the records spare numpy."""
+    global _direct_triangles
+    if path.suffix.lower() != ".stl" or size > 84 + 50 * DIRECT_TRIANGLES:
+        return None  # not worth opening: a large one's record is read
+    try:
+        triangles = binary_stl_triangles(path, size)
+    except (OSError, InputError):
+        return None  # the full path says why, as it did
+    if not triangles or _direct_triangles + triangles > DIRECT_TRIANGLES:
+        return None
+    try:
+        scan = scan_mesh(path, shown)
+    except MeshOverLimit as error:
+        return MeshFacts(over_limit=error.message)
+    except InputError as error:
+        return MeshFacts(problem=error.message)
+    _direct_triangles += triangles
+    return MeshFacts(bounds=_binary_stl_bounds(path, triangles), faces=triangles,
+                     vertices=3 * triangles, reads=tuple(scan.reads))
 
 
 def _maybe_over_limit(size: int, facts: MeshFacts) -> bool:
@@ -172,7 +209,9 @@ def _binary_stl_bounds(path: Path, triangles: int) -> tuple | None:
     """The box around a binary STL's corners: the nine floats of each 50-byte record
     copied out by numpy (a structured view), then each axis's minimum and maximum: no
     Python per triangle, and no reduction over a strided 3-D view, which is five times
-    slower."""
+    slower. A small one without numpy, whose import costs more than the reading."""
+    if triangles <= DIRECT_TRIANGLES:
+        return _small_stl_bounds(path, triangles)
     import numpy as np
 
     corners = np.dtype({"names": ["corners"], "formats": [("<f4", (9,))], "offsets": [12],
@@ -186,12 +225,35 @@ def _binary_stl_bounds(path: Path, triangles: int) -> tuple | None:
                                [points[:, k].max() for k in range(3)]))
 
 
+def _small_stl_bounds(path: Path, triangles: int) -> tuple | None:
+    """What _binary_stl_bounds finds, in Python: the 36 corner bytes of every record
+    gathered by 36 strided slice copies (C loops), read as little-endian floats."""
+    with open_regular(path) as handle:
+        handle.seek(84)
+        data = handle.read(50 * triangles)
+    if len(data) < 50 * triangles:
+        return None
+    corners = bytearray(36 * triangles)
+    for offset in range(36):
+        corners[offset::36] = data[12 + offset::50][:triangles]
+    floats = array.array("f", bytes(corners))
+    if sys.byteorder != "little":
+        floats.byteswap()
+    values = floats.tolist()
+    if not math.isfinite(sum(values)):  # a NaN or an infinity: numpy's box is not finite
+        return None
+    return (tuple(min(values[axis::3]) for axis in range(3)),
+            tuple(max(values[axis::3]) for axis in range(3)))
+
+
 def _identity(info) -> list:
     return [info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns, info.st_ctime_ns]
 
 
 def _content_digest(path: Path, reads) -> str | None:
     """SHA-256 of the mesh's bytes and of the files it reads, with the reader's version."""
+    import hashlib  # only for a mesh that is looked up: it loads OpenSSL
+
     digest = hashlib.sha256(f"mcar mesh facts {FACTS_VERSION}\0".encode())
     try:
         for file in (path, *reads):
@@ -215,6 +277,8 @@ def _folder() -> Path:
 
 
 def _path_name(path: Path) -> str:
+    import hashlib
+
     return "path-" + hashlib.sha256(os.fsencode(str(path))).hexdigest()[:40]
 
 
@@ -289,6 +353,8 @@ def _load(section: str, name: str) -> dict | None:
             data = handle.read(_RECORD_LIMIT + 1)
         if len(data) > _RECORD_LIMIT:
             return None
+        import json
+
         entries = unsealed_entries(json.loads(data), section)
     except (OSError, ValueError, RecursionError, InputError):
         return None

@@ -41,7 +41,7 @@ class MacroFileError(UsageError):
     """A ``.xacro`` whose ``<robot>`` has no name: it defines macros, it is not a robot."""
 
 
-@dataclass
+@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class LoadOptions:
     """How every input of one command is loaded."""
 
@@ -61,7 +61,7 @@ class LoadOptions:
         return bool(self.mappings) or self.overrides is not None
 
 
-@dataclass
+@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class LoadedRobot:
     """An expanded robot, ready to check and use."""
 

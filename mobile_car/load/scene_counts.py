@@ -5,7 +5,6 @@ expanded), and the images and buffers it reads. Part of :mod:`.mesh_limits`' sca
 
 from __future__ import annotations
 
-import json
 import urllib.parse
 from pathlib import Path
 
@@ -139,6 +138,8 @@ def _gltf_document(handle, size: int, shown: str, binary: bool) -> dict:
         text = handle.read(length)
     else:
         text = handle.read()
+    import json  # only for a glTF: every check imports this module
+
     try:
         document = json.loads(text)
     except (ValueError, RecursionError) as error:

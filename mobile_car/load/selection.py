@@ -20,7 +20,7 @@ from ..errors import UsageError
 from .inputs import STDIN, RobotInput, display_path
 
 
-@dataclass
+@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class Selection:
     """The inputs a command's words name, and how they were named."""
 

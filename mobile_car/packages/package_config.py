@@ -9,6 +9,9 @@ mcar cannot find out from the files themselves::
     sim:
       skip:                 # robots ci does not simulate, each with the reason it prints
         "urdf/arm.urdf.xacro": "an arm on a fixed base, not a vehicle"
+      drive:                # the drive of robots whose declarations and geometry mislead
+        "urdf/rover.urdf.xacro": {kind: skid-steer, left: [fl_joint, rl_joint],
+                                  right: [fr_joint, rr_joint]}
     export:                 # folders ci exports (and verifies) as build artefacts
       formats: [mjcf, urdf] # any of mjcf, usd, urdf, sdf (mcar export --to)
       robots: ["urdf/*.urdf.xacro"]   # which robots (default: every robot ci builds)
@@ -41,13 +44,17 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import InputError, UsageError
+from ..load.inputs import display_path
 
 FILE_NAME = "mcar.yaml"
 # Each section and the keys it takes; a list of globs or a mapping glob -> reason.
-_SCHEMA = {"robots": {"include": list, "exclude": list}, "sim": {"skip": dict},
+_SCHEMA = {"robots": {"include": list, "exclude": list},
+           "sim": {"skip": dict, "drive": "drive"},
            "export": {"formats": list, "robots": list}, "ci": {"strict": bool},
            "assets": {"paths": list}}
 EXPORT_FORMATS = ("mjcf", "usd", "urdf", "sdf")  # as mobile_car.export.FORMATS
+DRIVE_KINDS = ("differential", "skid-steer", "ackermann")  # as mobile_car.sim.drives.KINDS
+DRIVE_KEYS = ("kind", "left", "right")
 
 
 @dataclass(frozen=True)
@@ -59,6 +66,7 @@ class PackageConfig:
     include: tuple[str, ...] = ()
     exclude: tuple[str, ...] = ()
     sim_skip: tuple[tuple[str, str], ...] = ()  # (glob, reason), in the file's order
+    sim_drive: tuple[tuple[str, dict], ...] = ()  # (glob, {kind, left, right}), in order
     export_formats: tuple[str, ...] = ()
     export_robots: tuple[str, ...] = ()  # globs; none: every robot
     strict: bool | None = None  # ci.strict; None: not said
@@ -92,6 +100,19 @@ class PackageConfig:
         for glob, reason in self.sim_skip:
             if fnmatch.fnmatchcase(name, glob):
                 return reason
+        return None
+
+    def sim_drive_for(self, path: Path) -> tuple[dict, str] | None:
+        """({kind, left, right} the package sets for ``path``'s drive (each may be
+        missing), where it says so: ``mcar.yaml:LINE``), or None."""
+        name = self.relative(path)
+        if name is None:
+            return None
+        for glob, drive in self.sim_drive:
+            if fnmatch.fnmatchcase(name, glob):
+                line = self.lines.get(("sim", "drive", glob))
+                shown = display_path(self.path) if self.path is not None else FILE_NAME
+                return drive, f"{shown}:{line}" if line else shown
         return None
 
     def exports(self, path: Path) -> tuple[str, ...]:
@@ -166,7 +187,8 @@ def _parse(root: Path, path: Path) -> PackageConfig:
                 fail(f"unknown key '{section}.{key}': {section} takes "
                      f"{', '.join(_SCHEMA[section])}", section, str(key))
             found[(section, key)] = _checked(entry, kind, f"{section}.{key}",
-                                             lambda m, k=(section, str(key)): fail(m, *k))
+                                             lambda m, *more, k=(section, str(key)):
+                                             fail(m, *k, *more))
     skip = found.get(("sim", "skip"), {})
     formats = found.get(("export", "formats"), [])
     unknown = [f for f in formats if f not in EXPORT_FORMATS]
@@ -177,6 +199,7 @@ def _parse(root: Path, path: Path) -> PackageConfig:
                          include=tuple(found.get(("robots", "include"), ())),
                          exclude=tuple(found.get(("robots", "exclude"), ())),
                          sim_skip=tuple(skip.items()),
+                         sim_drive=tuple(found.get(("sim", "drive"), {}).items()),
                          export_formats=tuple(dict.fromkeys(formats)),
                          export_robots=tuple(found.get(("export", "robots"), ())),
                          strict=found.get(("ci", "strict")),
@@ -206,6 +229,8 @@ def _asset_paths(root: Path, paths: list[str], fail) -> tuple[Path, ...]:
 def _checked(entry, kind, name: str, fail):
     from ..config.bounded_yaml import short_repr
 
+    if kind == "drive":
+        return {} if entry is None else _drive(entry, name, fail)
     if kind is bool:
         if not isinstance(entry, bool):
             fail(f"{name}: expected true or false, got {short_repr(entry)}")
@@ -224,6 +249,44 @@ def _checked(entry, kind, name: str, fail):
     return {g: " ".join(r.split()) for g, r in entry.items()}
 
 
+def _drive(entry, name: str, fail) -> dict:
+    """sim.drive: glob -> {kind, left, right}, each side a joint or a list of joints."""
+    from ..config.bounded_yaml import short_repr
+
+    if not isinstance(entry, dict):
+        fail(f"{name}: expected a mapping of glob to {{kind, left, right}}, got "
+             f"{short_repr(entry)}")
+    found = {}
+    for glob, drive in entry.items():
+        def fail_here(message, glob=glob):  # at the glob's line
+            fail(message, str(glob))
+        if not isinstance(glob, str) or not glob or not isinstance(drive, dict) or not drive:
+            fail_here(f"{name}: expected a mapping of glob to {{kind, left, right}}, got "
+                      f"{short_repr({glob: drive})}")
+        unknown = [k for k in drive if k not in DRIVE_KEYS]
+        if unknown:
+            fail_here(f"{name} '{glob}': unknown key '{unknown[0]}' (it takes "
+                 f"{', '.join(DRIVE_KEYS)})")
+        if "kind" in drive and drive["kind"] not in DRIVE_KINDS:
+            fail_here(f"{name} '{glob}': kind {short_repr(drive['kind'])} is not one of "
+                 f"{', '.join(DRIVE_KINDS)}")
+        sides = {}
+        for side in ("left", "right"):
+            joints = drive.get(side)
+            joints = [joints] if isinstance(joints, str) else joints
+            if joints is not None and (not isinstance(joints, list) or not joints or not all(
+                    isinstance(j, str) and j.strip() for j in joints)):
+                fail_here(f"{name} '{glob}': {side}: expected a joint or a list of joints, got "
+                     f"{short_repr(drive.get(side))}")
+            if joints:
+                sides[side] = [j.strip() for j in joints]
+        if len(sides) == 1:
+            fail_here(f"{name} '{glob}': left and right go together: name the drive joints of "
+                 "each side")
+        found[glob] = {**({"kind": drive["kind"]} if "kind" in drive else {}), **sides}
+    return found
+
+
 def _key_lines(node) -> dict[tuple[str, ...], int]:
     """(section,) and (section, key) -> the line the key is written on."""
     import yaml
@@ -235,6 +298,10 @@ def _key_lines(node) -> dict[tuple[str, ...], int]:
         section = str(key.value)
         lines[(section,)] = key.start_mark.line + 1
         if isinstance(value, yaml.MappingNode):
-            for inner, _ in value.value:
+            for inner, entries in value.value:
                 lines[(section, str(inner.value))] = inner.start_mark.line + 1
+                if isinstance(entries, yaml.MappingNode):  # sim.drive's globs
+                    for glob, _ in entries.value:
+                        lines[(section, str(inner.value), str(glob.value))] = \
+                            glob.start_mark.line + 1
     return lines

@@ -103,7 +103,7 @@ def _decoded_readings(rest: str, host: bool = False) -> set[str]:
     return readings - {rest}
 
 
-@dataclass
+@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class PackageSearch:
     """Resolves package names to directories; build one per command and reuse it."""
 

@@ -20,6 +20,7 @@ from pathlib import Path
 from PIL import Image
 
 from ..atomic import atomic_write
+from ..check.colours import without_unusable_colours
 from ..errors import McarError, RenderError, RendererUnavailableError
 from ..freshness import Stamper, diagnostics_data, diagnostics_from
 from ..load.outputs import refuse_overwriting
@@ -90,9 +91,11 @@ def _drawing_error(job: RenderJob, exc: Exception) -> RenderError:
 
 
 def model_source(loaded: LoadedRobot) -> ModelSource:
-    """The URDF a loaded robot became, for the scene: a plain URDF's lines are its file's."""
+    """The URDF a loaded robot became, for the scene: a plain URDF's lines are its file's.
+    A colour urdfdom cannot read (W217) is left out, so the part is drawn grey as in rviz."""
     path = loaded.input.path if loaded.input.path is not None else Path.cwd() / "<stdin>"
-    return ModelSource(loaded.urdf, path, lines_match=not loaded.from_xacro)
+    return ModelSource(without_unusable_colours(loaded.urdf), path,
+                       lines_match=not loaded.from_xacro)
 
 
 class RenderSession:

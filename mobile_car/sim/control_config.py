@@ -1,13 +1,17 @@
-"""The ``wheel_separation_multiplier`` a skid-steer robot's control package ships, which
-spin's measured multiplier is compared with.
+"""What a robot's control package configures: the controllers that drive it
+(:func:`find_controllers`, the declarations :mod:`.declared` reads, which wheels drive
+before any geometry is looked at) and the ``wheel_separation_multiplier`` a skid-steer
+robot's controller ships, which spin's measured multiplier is compared with.
 
-A robot's description lives in a package ``X_description``; its controllers, by the ROS
-convention Clearpath, ROBOTIS and others follow, in ``X_control``, whose YAML files
+A robot's description lives in a package ``X_description`` (Hunter 2: ``X_base``); its
+controllers, by the ROS convention Clearpath, ROBOTIS, AgileX and others follow, in
+``X_control`` (or ``X_controller``, ``X_controllers``: Husarion), whose YAML files
 configure ``diff_drive_controller`` (ROS 1: ``controller: {wheel_separation_multiplier:
-1.875}``; ROS 2: the same under ``ros__parameters``). The description package is the one
-holding the robot file, else one its ``package://`` paths name (a URDF built elsewhere).
-Nothing here fails a simulation: a file that cannot be read is said in the finding, and a
-robot without such a package simply has no figure to compare with.
+1.875}``; ROS 2: the same under ``ros__parameters``), ``ackermann_steering_controller``
+and others. The description package is the one holding the robot file, else one its
+``package://`` paths name (a URDF built elsewhere). Nothing here fails a simulation: a
+file that cannot be read is said in the finding, and a robot without such a package
+simply has no controller to read.
 """
 
 from __future__ import annotations
@@ -21,9 +25,11 @@ from ..errors import McarError
 from ..load.inputs import display_path
 
 SUFFIX = "_description"
+SUFFIXES = (SUFFIX, "_base")  # of a description package; the control package's:
+CONTROL_SUFFIXES = ("_control", "_controller", "_controllers")
 KEY = "wheel_separation_multiplier"
 MAX_FILES = 20  # YAML files looked at in one control package
-_PACKAGE_URI = re.compile(rb"package://([A-Za-z0-9_]+" + SUFFIX.encode() + rb")/")
+_PACKAGE_URI = re.compile(rb"package://([A-Za-z0-9_]+(?:_description|_base))/")
 
 
 @dataclass(frozen=True)
@@ -42,15 +48,9 @@ def find_control_config(loaded, joints) -> tuple[ControlConfig | None, list[str]
     """(the multiplier of the controller driving ``joints`` (else the first one found),
     the sentences saying which files could not be read)."""
     problems: list[str] = []
-    for name in _description_packages(loaded):
-        control = name[: -len(SUFFIX)] + "_control"
-        try:
-            root = loaded.search.find(control)
-        except McarError:
-            continue
-        files = sorted(root.glob("config/*.yaml")) + sorted(root.glob("*.yaml"))
+    for files in _control_packages(loaded, problems):
         found = []
-        for path in files[:MAX_FILES]:
+        for path in files:
             found += _multipliers(path, problems)
         if found:
             wanted = set(joints)
@@ -59,21 +59,64 @@ def find_control_config(loaded, joints) -> tuple[ControlConfig | None, list[str]
     return None, problems
 
 
+def find_controllers(loaded) -> tuple[list, list[str], list[Path]]:
+    """(the drive controllers (:class:`.declared.Declaration`) the robot's control
+    packages configure, in file order, the sentences saying which files could not be
+    read, the files looked at)."""
+    from .declared import in_yaml_mapping
+
+    problems: list[str] = []
+    found, read = [], []
+    for files in _control_packages(loaded, problems):
+        read += files
+        for path in files:
+            shown = display_path(path)
+            declared = [in_yaml_mapping(keys, shown, _names_in_order)
+                        for keys in _mappings(path, problems)]
+            found += sorted((d for d in declared if d is not None), key=lambda d: d.line or 0)
+    return found, problems, read
+
+
+def _control_packages(loaded, problems: list[str]):
+    """Each control package's YAML files (at most MAX_FILES), nearest package first. A
+    file that is a link out of the repository holding its package (or into its ``.git``)
+    is not read, and said in ``problems``: a pull request commits
+    ``X_control/config/c.yaml`` -> a token file, and the YAML error quoting its first line
+    would print the token."""
+    from ..packages.asset_roots import link_out_of, repository_of
+
+    for name in _description_packages(loaded):
+        stem = next(name[: -len(s)] for s in SUFFIXES if name.endswith(s))
+        for suffix in CONTROL_SUFFIXES:
+            try:
+                root = loaded.search.find(stem + suffix)
+            except McarError:
+                continue
+            files = sorted(root.glob("config/*.yaml")) + sorted(root.glob("*.yaml"))
+            repository, kept = repository_of(root), []
+            for path in files[:MAX_FILES]:
+                why = link_out_of(path, repository)
+                if why is None:
+                    kept.append(path)
+                else:
+                    problems.append(f"{display_path(path)}: not read ({why})")
+            yield kept
+
+
 def _description_packages(loaded) -> list[str]:
     from ..packages.search import enclosing_package
 
     names = []
     if loaded.input.path is not None:
         own = enclosing_package(loaded.input.path)
-        if own is not None and own[0].endswith(SUFFIX):
+        if own is not None and own[0].endswith(SUFFIXES):
             names.append(own[0])
     names += [m.decode() for m in _PACKAGE_URI.findall(loaded.urdf)]
     return list(dict.fromkeys(names))
 
 
-def _multipliers(path: Path, problems: list[str]) -> list[tuple[ControlConfig, set[str]]]:
-    """(config, the wheel joints its controller names) of every mapping in the file that
-    sets the multiplier to a number."""
+def _mappings(path: Path, problems: list[str]) -> list[dict]:
+    """key -> (key node, value node) of every mapping in the YAML file."""
     import yaml
 
     from ..config.bounded_yaml import compose_and_load
@@ -93,6 +136,16 @@ def _multipliers(path: Path, problems: list[str]) -> list[tuple[ControlConfig, s
         if not isinstance(current, yaml.MappingNode):
             continue
         keys = {k.value: (k, v) for k, v in current.value if isinstance(k, yaml.ScalarNode)}
+        found.append(keys)
+        todo += [v for _, v in current.value]
+    return found
+
+
+def _multipliers(path: Path, problems: list[str]) -> list[tuple[ControlConfig, set[str]]]:
+    """(config, the wheel joints its controller names) of every mapping in the file that
+    sets the multiplier to a number."""
+    found = []
+    for keys in _mappings(path, problems):
         if KEY in keys:
             key, value = keys[KEY]
             number = _number(value)
@@ -102,7 +155,6 @@ def _multipliers(path: Path, problems: list[str]) -> list[tuple[ControlConfig, s
                              "right_wheel_names"):
                     wheels |= _names(keys.get(side, (None, None))[1])
                 found.append((ControlConfig(number, path, key.start_mark.line + 1), wheels))
-        todo += [v for _, v in current.value]
     return found
 
 
@@ -119,13 +171,17 @@ def _number(node) -> float | None:
 
 
 def _names(node) -> set[str]:
+    return set(_names_in_order(node))
+
+
+def _names_in_order(node) -> list[str]:
     import yaml
 
     if isinstance(node, yaml.ScalarNode):
-        return {node.value}
+        return [node.value] if node.value else []
     if isinstance(node, yaml.SequenceNode):
-        return {n.value for n in node.value if isinstance(n, yaml.ScalarNode)}
-    return set()
+        return [n.value for n in node.value if isinstance(n, yaml.ScalarNode) and n.value]
+    return []
 
 
 def _reason(error) -> str:

@@ -19,6 +19,13 @@ SIM_RULES = {
              "wheel of the robot, or puts the left wheel on the right"),
     "E305": ("moving-link-massless", "a moving link without mass: MuJoCo refuses to "
              "simulate it, Gazebo leaves it out with what moves below it"),
+    "E306": ("drive-joint-fixed", "a drive declaration (a Gazebo drive plugin, a controller "
+             "in the robot's control package) names a joint that is fixed or missing: the "
+             "robot cannot be driven as its package says"),
+    "E310": ("inertia-refused", "an inertia tensor MuJoCo refuses: not positive definite, "
+             "principal moments that break the triangle inequality (check warns: W204, "
+             "W205), or all zeros on a moving link with a mass; `--fix-inertia` puts the "
+             "nearest physical tensor in its place (a small sphere's for zeros)"),
     "W304": ("mass-invented", "a link with collision geometry and no `<inertial>`: Gazebo "
              "leaves it out if it moves, MuJoCo gives it a mass from its volume; mcar sim "
              "keeps it massless, as URDF says"),

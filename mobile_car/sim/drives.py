@@ -1,13 +1,18 @@
-"""Which joints drive and steer a robot, and so its drive kind, found from the tree MuJoCo
-compiled (every joint at 0, the root at the origin: positions in metres in the root frame,
-x forward, y left, z up).
+"""Which joints drive and steer a robot, and so its drive kind: first what the package
+declares (:mod:`.declared`: its Gazebo drive plugin, the controllers its control package
+configures), else what the tree MuJoCo compiled shows (every joint at 0, the root at the
+origin: positions in metres in the root frame, x forward, y left, z up).
 
-A *wheel* is a ``continuous`` joint whose child link has collision geometry (the URDF has
-no other mark of one); it is on the left if its centre has y > 0, on the right if y < 0.
-Above a wheel (between it and the root) may sit an upright hinge: a ``revolute`` one is a
-steering joint, a ``continuous`` one a castor's swivel (that wheel is a castor, not a
-drive wheel). A wheel below another wheel is a roller of an omni or mecanum wheel. The
-kinds:
+In the tree, a *wheel* is a ``continuous`` joint about a roughly horizontal axis (within
+HORIZONTAL of level) whose child's collision geometry reaches the floor at rest (within
+FLOOR_TOLERANCE of the robot's lowest point): a head's swivel (upright), a castor's
+swivel (upright), a dummy wheel in the air (Hunter 2's, 5 mm up) or a bicycle model's
+virtual wheel (steer_bot's, 75 mm up) is not one. A wheel is on the left if its centre
+has y > 0, on the right if y < 0. Above a wheel (between it and the root) may sit an
+upright hinge: a ``revolute`` one is a steering joint, a ``continuous`` one a castor's
+swivel (that wheel is a castor, not a drive wheel). A wheel below another wheel is a
+roller of an omni or mecanum wheel; a small one on a level wheel's rim makes that wheel a
+mecanum hub (:mod:`.mecanum`). The kinds:
 
 * ``differential``: one wheel each side, none steered, any castors (TurtleBot3, Kobuki);
 * ``skid-steer``: two or three wheels each side (4 or 6), none steered, all driven
@@ -15,130 +20,98 @@ kinds:
 * ``ackermann``: two steered wheels in front, one each side, each on its own steering
   joint, and unsteered wheels behind them; the rear wheels are driven, the front ones
   too where a ``<transmission>`` or ``<ros2_control>`` block gives their joint an actuator;
-* anything else (rollers, wheels on one side or on the centre line, steering that is not
-  one Ackermann pair, legs): no drive, with a sentence saying what was found.
+* ``mecanum``: two wheels a side, none steered, that the package declares mecanum or that
+  carry rollers on their rims (:mod:`.mecanum`), each gripping at 45°;
+* anything else (rollers that are not on four hubs, wheels on one side or on the centre
+  line, steering that is not one Ackermann pair, legs): no drive, with a sentence saying
+  what was found.
 
-``--drive KIND`` picks a kind the tree allows (an Ackermann car driven as skid-steer, its
-steering held straight); ``--left/--right`` name the driven wheels (a joint or a
-comma-separated group per side), the others roll free.
+A declaration names joints; each maps onto the tree's wheels: a wheel is itself, a joint
+that is no wheel of the tree (a bicycle model's ``rear_wheel_joint`` on the centre line,
+``front_steer_joint``) stands for the real wheels (steering joints) at its x, both sides.
+A declaration naming a ``fixed`` or missing joint is skipped here (lint reports it, E306).
+
+``--drive KIND`` overrides the declared or found kind with one the tree's wheels allow
+(an Ackermann car driven as skid-steer, its steering held straight); ``--left/--right``
+name the driven wheels (a joint or a comma-separated group per side), the others roll
+free. Each driven wheel carries where it came from (``Drive.sources``), for the report.
 """
 
 from __future__ import annotations
-
-from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..check.urdf_model import parse_number
 from ..errors import UsageError
+from .drive_parts import Drive, Steering, Tree, Wheel
+from .mecanum import (
+    bare_hubs,
+    declared_drive,
+    declared_mecanum,
+    grip_of_rollers,
+    has_rollers,
+    is_roller,
+    mecanum_drive,
+)
 
-KINDS = ("differential", "skid-steer", "ackermann")
+KINDS = ("differential", "skid-steer", "ackermann", "mecanum")
 UPRIGHT = 0.9       # |z| of an axis in the root frame above which a hinge steers (or swivels)
 SIDE_EPSILON = 1e-6  # m: a wheel closer than this to the centre line is on neither side
 ACKERMANN_X_TOLERANCE = 0.05  # of the wheelbase: the steering pivots stand side by side
+HORIZONTAL = 0.5     # |z| of a wheel's axis in the root frame below which it can roll (30°)
+FLOOR_TOLERANCE = 0.003  # m: a wheel's tyre this close to the robot's lowest point touches
+# A declared virtual joint stands for the axle nearest its x: the wheels within this share
+# of a wheel's radius of the nearest (steer_bot's share its axle, Hunter 2's is 0.14 m off).
+VIRTUAL_X_TOLERANCE = 0.5
+CENTRE_SHARE = 0.1  # of the nearest side wheel's |y|: a declared joint this near is virtual
+GEOMETRY = "geometry: a wheel that touches the floor"
 
 
-@dataclass
-class Wheel:
-    joint: str
-    link: str
-    joint_id: int
-    body_id: int
-    geom_ids: list[int]
-    radius: float       # m
-    x: float            # wheel centre in the root frame (m)
-    y: float
-    effort: float | None = None
-    velocity: float | None = None
-    actuator_id: int = -1
-    motor: object = None  # MotorFigures: effort and speed limits with their sources
-    gain: float = 0.0     # the velocity servo's kv (N·m·s/rad)
-    steering: str | None = None  # the revolute joint that steers it
-
-
-@dataclass
-class Steering:
-    """A steering joint and the wheel it turns; ``sign`` is +1 when a positive joint angle
-    turns the wheel to the left (its axis points up), -1 when it points down."""
-
-    joint: str
-    joint_id: int
-    wheel: Wheel
-    x: float            # pivot in the root frame (m)
-    y: float
-    sign: float
-    lower: float | None  # rad, the joint's <limit>
-    upper: float | None
-    effort: float | None  # N·m, the joint's <limit effort>, None when it gives none
-    actuator_id: int = -1
-
-
-@dataclass
-class Drive:
-    kind: str
-    left: list[Wheel]    # the driven wheels, by side
-    right: list[Wheel]
-    free: list[Wheel] = field(default_factory=list)  # wheels that roll undriven
-    steering: list[Steering] = field(default_factory=list)  # ackermann: left, right
-    chosen: str = "found from the tree"  # or "--drive", "--left/--right"
-
-    @property
-    def driven(self) -> list[Wheel]:
-        return self.left + self.right
-
-    @property
-    def wheels(self) -> list[Wheel]:
-        """Every wheel that rolls on the floor, driven or not."""
-        return self.driven + self.free
-
-    @property
-    def track(self) -> float:
-        """The distance between the left and right driven wheels' centre lines (m)."""
-        return float(np.mean([w.y for w in self.left]) - np.mean([w.y for w in self.right]))
-
-    @property
-    def radius(self) -> float:
-        return float(np.mean([w.radius for w in self.driven]))
-
-    @property
-    def rear(self) -> list[Wheel]:
-        """Ackermann: the unsteered wheels (their axle is the turn's reference)."""
-        return [w for w in self.wheels if w.steering is None]
-
-    @property
-    def wheelbase(self) -> float:
-        """Ackermann: from the rear axle to the steering pivots (m)."""
-        return float(np.mean([s.x for s in self.steering]) - np.mean([w.x for w in self.rear]))
-
-
-@dataclass
-class Tree:
-    """What was found of the robot's wheels before a kind is chosen."""
-
-    wheels: list[Wheel]            # drive candidates: neither rollers nor castors
-    steering: list[Steering]       # revolute upright joints, each above one wheel
-    rollers: list[str]             # wheels below another wheel
-    castor_wheels: list[str]       # links of wheels on a swivel
-    odd_steering: list[str] = field(default_factory=list)  # above several wheels
-    joints: dict = field(default_factory=dict)  # URDF joint name -> element
-    make: object = None            # joint name -> Wheel, for a wheel named on the command line
-
-
-def find_tree(mj, model, data, joints: dict) -> Tree:
+def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
     """The wheels, steering joints, rollers and castor wheels of a compiled model
-    (``joints``: URDF joint name -> element, the robot's own joints)."""
+    (``joints``: URDF joint name -> element, the robot's own joints; ``lowest``: geom ->
+    the z of its lowest point, :func:`.model.lowest_points`)."""
     names = {model.joint(j).name for j in range(model.njnt)}
-    candidates = [_wheel(mj, model, data, joints, name) for name, element in joints.items()
-                  if element.get("type") == "continuous" and name in names]
-    candidates = [w for w in candidates if w.geom_ids]
+    rolling = [_wheel(mj, model, data, joints, name) for name, element in joints.items()
+               if element.get("type") == "continuous" and name in names]
+    bare = [w for w in rolling if not w.geom_ids]
+    rolling = [w for w in rolling if w.geom_ids]
+    hubs = bare_hubs(model, data, bare, rolling)  # hubs that roll on rollers only
+    # The floor is where the lowest level wheel touches: a body lower than its wheels rests
+    # on its belly, which drop fails naming the part; it does not make its wheels no wheels.
+    # (Collision geometry only: an export's visuals touch nothing.)
+    level = [g for w in rolling if abs(data.xaxis[w.joint_id][2]) < HORIZONTAL
+             for g in w.geom_ids]
+    floor = min((lowest[g] for g in level), default=min(
+        (z for g, z in lowest.items() if model.geom_contype[g] or model.geom_conaffinity[g]),
+        default=0.0))
+    not_wheels = {}
+    for wheel in rolling:
+        why = _not_a_wheel(model, data, wheel, lowest, floor)
+        if why is not None:
+            not_wheels[wheel.joint] = why
+    wheel_bodies = {w.body_id: w for w in rolling + hubs if w.joint not in not_wheels}
+    # A roller sits on a wheel's rim: any rolling joint below a floor wheel, touching or not.
+    for wheel in rolling:
+        if wheel.joint in not_wheels and _below(model, wheel.body_id, wheel_bodies):
+            del not_wheels[wheel.joint]
+    # Rollers on a level hub drawn without a tyre that is no mecanum hub (omni rollers
+    # across the axle) are rollers too, not four small wheels.
+    bare_level = {w.body_id for w in bare if w not in hubs
+                  and abs(data.xaxis[w.joint_id][2]) < HORIZONTAL}
+    on_bare = [w.joint for w in rolling if _below(model, w.body_id, bare_level)]
+    candidates = [w for w in rolling if w.joint not in not_wheels
+                  and w.joint not in on_bare] + hubs
     wheel_bodies = {w.body_id: w for w in candidates}
-    wheels, rollers, castors, above = [], [], [], {}
+    wheels, rollers, castors, above, on_rims = [], [], [], {}, {}
     for wheel in candidates:
         hinge, below_wheel = None, False
         body = int(model.body_parentid[wheel.body_id])
         while body > 0:
             if body in wheel_bodies:
                 below_wheel = True
+                if is_roller(mj, model, data, wheel_bodies[body], wheel):
+                    on_rims.setdefault(wheel_bodies[body].joint, []).append(wheel)
                 break
             hinge = hinge or _upright_hinge(mj, model, data, body)
             body = int(model.body_parentid[body])
@@ -151,6 +124,9 @@ def find_tree(mj, model, data, joints: dict) -> Tree:
             if hinge is not None:
                 above.setdefault(hinge, []).append(wheel)
             wheels.append(wheel)
+    for joint in on_bare:
+        not_wheels.pop(joint, None)
+    rollers += on_bare
     steering, odd = [], []
     for name, under in above.items():
         if len(under) != 1:
@@ -159,39 +135,84 @@ def find_tree(mj, model, data, joints: dict) -> Tree:
                 wheel.steering = None
             continue
         steering.append(_steering(model, data, joints[name], name, under[0]))
+    grips = {hub: grip_of_rollers(model, data, on_rim) for hub, on_rim in on_rims.items()}
     return Tree(wheels, steering, rollers, castors, odd, joints,
-                lambda name: _wheel(mj, model, data, joints, name))
+                lambda name: _wheel(mj, model, data, joints, name), not_wheels=not_wheels,
+                roller_grip={hub: grip for hub, grip in grips.items() if grip is not None})
+
+
+def _not_a_wheel(model, data, wheel: Wheel, lowest: dict, floor: float) -> str | None:
+    """Why a continuous joint moving collision geometry is no wheel, or None."""
+    axis = data.xaxis[wheel.joint_id]
+    if abs(axis[2]) >= HORIZONTAL:
+        return "its axis stands upright (a swivel, not a wheel)"
+    gap = min(lowest[g] for g in wheel.geom_ids) - floor
+    if gap > FLOOR_TOLERANCE:
+        return f"{1000 * gap:.1f} mm above the floor at rest (not a wheel)"
+    return None
+
+
+def _below(model, body: int, bodies) -> bool:
+    body = int(model.body_parentid[body])
+    while body > 0:
+        if body in bodies:
+            return True
+        body = int(model.body_parentid[body])
+    return False
 
 
 def choose_drive(tree: Tree, actuated: set[str], left=None, right=None,
-                 kind: str | None = None) -> tuple[Drive | None, str | None]:
+                 kind: str | None = None, declared=(),
+                 mecanum=()) -> tuple[Drive | None, str | None]:
     """(the drive, None), or (None, why the robot is no vehicle sim can drive);
+    ``declared``: the package's declarations (:mod:`.declared`), the first that maps
+    onto the tree wins; ``mecanum``: its mecanum declarations (:mod:`.mecanum`);
     UsageError where --left/--right/--drive ask for what the tree does not allow."""
     if kind is not None and kind not in KINDS:
         raise UsageError(f"--drive {kind}: the drive kinds are {', '.join(KINDS)}")
     if left or right:
         return _named(tree, _names(left), _names(right), kind), None
+    if kind is None:
+        # The mecanum reader's declarations first: it checks a controller's wheel radius
+        # against the wheels' (ROSbot XL ships a diff-drive and a mecanum controller for the
+        # same four joints); the other readers' mecanum declarations are plugins.
+        drive = mecanum_drive(tree, list(mecanum)) if declared_mecanum(tree, mecanum) else None
+        if drive is not None:
+            drive.chosen = "declared"
+            drive.sources = _each(drive.driven, drive.declared)
+            return drive, None
+        for declaration in declared:
+            found = _from_declaration(tree, declaration)
+            if found is not None:
+                return found
+    lefts = [w for w in tree.wheels if w.y > SIDE_EPSILON]
+    rights = [w for w in tree.wheels if w.y < -SIDE_EPSILON]
     why = _why_not(tree)
-    if why is not None:
+    if why is not None and (kind is None or not (lefts and rights)):
         if kind is not None:
             raise UsageError(f"--drive {kind}: {why}")
         return None, why
-    lefts = [w for w in tree.wheels if w.y > SIDE_EPSILON]
-    rights = [w for w in tree.wheels if w.y < -SIDE_EPSILON]
-    found = _kind_of(tree, lefts, rights)
-    if found is None:
-        why = _no_kind(tree, lefts, rights)
-        if kind is None:
-            return None, why
+    found = None if why is not None else _kind_of(tree, lefts, rights, mecanum)
+    if found is None and kind is None:
+        return None, _no_kind(tree, lefts, rights)
     kind = kind or found
     chosen = "found from the tree" if kind == found else "--drive"
+    source = GEOMETRY if chosen == "found from the tree" else "--drive " + kind
     if kind == "ackermann":
         if found != "ackermann":
             raise UsageError(f"--drive ackermann: {_no_ackermann(tree, lefts, rights)}")
         driven = [w for w in tree.wheels if w.steering is None or w.joint in actuated]
         free = [w for w in tree.wheels if w not in driven]
         return Drive("ackermann", _side(driven, 1), _side(driven, -1), free,
-                     _sorted_steering(tree.steering), chosen=chosen), None
+                     _sorted_steering(tree.steering), chosen=chosen,
+                     sources=_each(driven, source)), None
+    if kind == "mecanum":
+        drive = mecanum_drive(tree, list(mecanum))
+        if drive is None:
+            raise UsageError(f"--drive mecanum: {len(lefts)} wheel(s) on the left, "
+                             f"{len(rights)} on the right; mecanum drives two a side")
+        drive.chosen, drive.sources = chosen, _each(drive.driven, source)
+        return drive, None
     if kind == "differential" and (len(lefts) != 1 or len(rights) != 1):
         raise UsageError(f"--drive differential: {len(lefts)} wheels on the left, "
                          f"{len(rights)} on the right; name the two driven ones with "
@@ -199,7 +220,118 @@ def choose_drive(tree: Tree, actuated: set[str], left=None, right=None,
     if kind == "skid-steer" and (len(lefts) < 2 or len(rights) < 2):
         raise UsageError(f"--drive skid-steer: {len(lefts)} wheel(s) on the left, "
                          f"{len(rights)} on the right; skid-steer drives two or more a side")
-    return Drive(kind, lefts, rights, chosen=chosen), None
+    return Drive(kind, lefts, rights, chosen=chosen, sources=_each(lefts + rights, source)), None
+
+
+def _each(wheels, source: str) -> dict[str, str]:
+    return {w.joint: source for w in wheels}
+
+
+def _from_declaration(tree: Tree, declaration) -> tuple[Drive | None, str | None] | None:
+    """The drive a declaration gives, (None, why) when it declares a kind sim does not
+    drive, or None when it does not fit this robot (a joint fixed, missing or no wheel):
+    the next declaration, else the geometry, decides."""
+    if any(tree.joints.get(n) is None or tree.joints[n].get("type") == "fixed"
+           for n in declaration.joints):
+        return None
+    if declaration.kind == "mecanum":
+        if declaration.element is None:  # a controller YAML: the mecanum reader's to judge
+            return None
+        drive = declared_drive(tree, "mecanum",
+                               declaration.left + declaration.right + declaration.driven,
+                               declaration.source)
+        if drive is None:
+            return None
+        drive.chosen = "declared"
+        drive.sources = _each(drive.driven, declaration.source)
+        return drive, None
+    if declaration.kind not in KINDS:
+        return None, (f"{declaration.kind} wheels ({declaration.source}): not a drive kind "
+                      f"mcar sim drives ({', '.join(KINDS)})")
+    sources: dict[str, str] = {}
+    wheels = {w.joint: w for w in tree.wheels}
+
+    def mapped(names) -> list[Wheel] | None:
+        found = []
+        for name in names:
+            real = [wheels[name]] if name in wheels else _stands_for(tree, name)
+            if not real:
+                return None
+            for wheel in real:
+                sources[wheel.joint] = declaration.source + (
+                    "" if wheel.joint == name else f" ({name} stands for it)")
+            found += [w for w in real if w not in found]
+        return found
+    if declaration.kind == "ackermann":
+        driven = mapped(declaration.driven)
+        steering = _steering_for(tree, declaration.steering)
+        if not driven or steering is None:
+            return None
+        tree_steering = tree.steering
+        tree.steering = steering
+        try:
+            why = _no_ackermann(tree, _side(tree.wheels, 1), _side(tree.wheels, -1))
+        finally:
+            tree.steering = tree_steering
+        if why is not None:
+            return None, f"{why} ({declaration.source})"
+        free = [w for w in tree.wheels if w not in driven]
+        return Drive("ackermann", _side(driven, 1), _side(driven, -1), free,
+                     _sorted_steering(steering), chosen="declared", sources=sources), None
+    driven = mapped(declaration.left + declaration.right)
+    if not driven:
+        return None
+    lefts, rights = _side(driven, 1), _side(driven, -1)
+    if not lefts or len(lefts) != len(rights) or 2 * len(lefts) != len(driven):
+        return None  # (a wheel on the centre line, or named on both sides: E303 says so)
+    kind = "differential" if len(lefts) == len(rights) == 1 else "skid-steer"
+    free = [w for w in tree.wheels if w not in driven]
+    return Drive(kind, lefts, rights, free, chosen="declared", sources=sources), None
+
+
+def _stands_for(tree: Tree, name: str) -> list[Wheel]:
+    """The wheels a declared joint that is no wheel of the tree drives: a bicycle model's
+    virtual wheel (on the centre line) stands for the tree's wheels at its x (the axle's
+    two); a wheel off the centre line is itself, touching the floor or not (drop then
+    says it does not); a joint moving no collision geometry drives nothing."""
+    element = tree.joints.get(name)
+    if element is None or element.get("type") not in ("continuous", "revolute"):
+        return []
+    virtual = tree.make(name)
+    sides = [abs(w.y) for w in tree.wheels if abs(w.y) > SIDE_EPSILON]
+    if not sides or abs(virtual.y) > CENTRE_SHARE * min(sides):
+        return [virtual] if virtual.geom_ids else []
+    return _nearest_axle(tree.wheels, virtual.x, lambda w: w.x,
+                         max(w.radius for w in tree.wheels))
+
+
+def _nearest_axle(items, x: float, x_of, radius: float) -> list:
+    """The items nearest ``x`` along the robot, with those within VIRTUAL_X_TOLERANCE of a
+    wheel's radius of them: one axle (a virtual joint may sit off it: Hunter 2's)."""
+    if not items:
+        return []
+    nearest = min(abs(x_of(i) - x) for i in items)
+    return [i for i in items if abs(x_of(i) - x) <= nearest + VIRTUAL_X_TOLERANCE * radius]
+
+
+def _steering_for(tree: Tree, names: list[str]) -> list[Steering] | None:
+    """The tree's steering joints the declared ones name or stand for (a bicycle model's
+    ``front_steer_joint``: the real steering joints at its x), or None."""
+    by_name = {s.joint: s for s in tree.steering}
+    found = []
+    for name in names:
+        if name in by_name:
+            real = [by_name[name]]
+        else:
+            element = tree.joints.get(name)
+            if element is None:
+                return None
+            radius = max((w.radius for w in tree.wheels), default=0.0)
+            real = _nearest_axle(tree.steering, tree.make(name).x, lambda s: s.x, radius)
+        if not real:
+            return None
+        found += [s for s in real if s not in found]
+    return found
 
 
 def actuated_joints(root) -> set[str]:
@@ -246,8 +378,16 @@ def _named(tree: Tree, lefts: list[str], rights: list[str], kind: str | None) ->
     if kind == "skid-steer" and (len(left) < 2 or len(right) < 2):
         raise UsageError("--drive skid-steer drives two or more wheels a side: name them "
                          "with --left A,B --right C,D")
+    if kind == "mecanum":
+        drive = mecanum_drive(tree, [], lefts + rights)
+        if drive is None or {w.joint for w in drive.left} != set(lefts):
+            raise UsageError("--drive mecanum drives two wheels a side, one in front of the "
+                             "other: name them with --left A,B --right C,D")
+        drive.chosen = "--left/--right"
+        return drive
     steering = _sorted_steering(tree.steering) if kind == "ackermann" else []
-    return Drive(kind, left, right, free, steering, chosen="--left/--right")
+    return Drive(kind, left, right, free, steering, chosen="--left/--right",
+                 sources=_each(left + right, "--left/--right"))
 
 
 def _named_wheel(tree: Tree, name: str) -> Wheel:
@@ -275,7 +415,7 @@ def _named_wheel(tree: Tree, name: str) -> Wheel:
 
 def _why_not(tree: Tree) -> str | None:
     """Why the tree has no drive of any kind, or None."""
-    if tree.rollers:
+    if tree.rollers and not has_rollers(tree):
         return (f"omni or mecanum wheels (rollers {', '.join(tree.rollers[:4])}"
                 f"{', ...' if len(tree.rollers) > 4 else ''} turn about the wheels): not a drive "
                 f"kind mcar sim drives ({', '.join(KINDS)})")
@@ -283,6 +423,9 @@ def _why_not(tree: Tree) -> str | None:
         if tree.castor_wheels:
             return ("no drive wheels: only castor wheels on swivels "
                     f"({', '.join(tree.castor_wheels)})")
+        if tree.not_wheels:
+            return ("no drive wheels: no continuous joint about a level axis touches the floor ("
+                    + "; ".join(f"{j}: {why}" for j, why in tree.not_wheels.items()) + ")")
         return "no drive wheels: no continuous joint moves a link with collision geometry"
     centre = [w.joint for w in tree.wheels if abs(w.y) <= SIDE_EPSILON]
     if centre:
@@ -291,10 +434,13 @@ def _why_not(tree: Tree) -> str | None:
     return None
 
 
-def _kind_of(tree: Tree, lefts, rights) -> str | None:
+def _kind_of(tree: Tree, lefts, rights, declared=()) -> str | None:
     steered = [w for w in tree.wheels if w.steering is not None]
     if steered or tree.odd_steering:
         return "ackermann" if _no_ackermann(tree, lefts, rights) is None else None
+    if len(lefts) == len(rights) == 2 and (has_rollers(tree)
+                                           or declared_mecanum(tree, declared)):
+        return "mecanum"
     if len(lefts) == len(rights) == 1:
         return "differential"
     if len(lefts) == len(rights) and len(lefts) in (2, 3):

@@ -15,6 +15,7 @@ import numpy as np
 from .causes import Watch, why_short
 from .engine import mujoco
 from .figures import Figure, ScenarioResult
+from .mecanum import half_spans
 from .model import SimModel
 from .run import (
     BOUNCE_TIME,
@@ -153,6 +154,12 @@ def run_spin(sim: SimModel, frame=None) -> ScenarioResult:
     ideal = 2 * drive.radius * omega / drive.track
     detail = (f"{rate:.4f} rad/s of 2·r·ω/track = {ideal:.4f} rad/s "
               f"(track {drive.track:.4f} m)")
+    lever = drive.track / 2  # the arc a wheel's rolling turns the robot through, per rad
+    if drive.kind == "mecanum":  # each wheel's grip pushes at 45°: r·ω / (a + b)
+        a, b = half_spans(drive)
+        ideal, lever = drive.radius * omega / (a + b), a + b
+        detail = (f"{rate:.4f} rad/s of r·ω/(a + b) = {ideal:.4f} rad/s (half wheelbase "
+                  f"{a:.4f} m, half track {b:.4f} m)")
     if skid:
         offset, (x, y) = centre.offset()
         footprint = min(max(w.x for w in drive.driven) - min(w.x for w in drive.driven),
@@ -173,7 +180,7 @@ def run_spin(sim: SimModel, frame=None) -> ScenarioResult:
                                "with its left wheels forward and its right wheels back")
     if not all(f.ok for f in result.figures) or rate < 0:
         # the arc each wheel's track turned through, against what its wheels rolled
-        cause = why_short(watch, -yaw.turned * drive.track / 2, "turned them through an arc of",
+        cause = why_short(watch, -yaw.turned * lever, "turned them through an arc of",
                           slip_counts=not skid)
         if cause is not None:
             result.problems.append(f"turned short; likely cause: {cause}")

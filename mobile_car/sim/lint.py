@@ -10,9 +10,11 @@ from __future__ import annotations
 
 import re
 
+from ..check.mujoco_inertia import make_physical, refusals
 from ..check.urdf_model import parse_number
 from ..load.bounded import read_text_quietly
 from ..load.inputs import display_path
+from .declared import joint_problems, meant_for
 from .diagnostics import SimDiagnostic
 
 RELATIVE_TOLERANCE = 0.01
@@ -69,14 +71,52 @@ def moving_links_without_mass(checked) -> list[SimDiagnostic]:
             found.append(_at(locate, "E305", link.element,
                              f"link {link.name} moves (child of a non-fixed joint) but has no "
                              "mass: MuJoCo cannot simulate it, Gazebo leaves it out with what "
-                             "moves below it (mcar check --gazebo); give it an <inertial>"))
+                             "moves below it (mcar check --gazebo); give it an <inertial> "
+                             "(--fix-inertia gives it a token mass)"))
     return found
 
 
-def lint(checked, sim) -> list[SimDiagnostic]:
-    """Every sim diagnostic of a checked robot and its model, sorted."""
+def refused_inertias(checked) -> list[SimDiagnostic]:
+    """E310 for each inertia tensor MuJoCo refuses (not positive definite, or breaking the
+    triangle inequality: check only warns, W204 and W205; all zeros on a moving link with
+    a mass), at its <inertia>: run before the engine, which would stop at the first
+    without naming its link."""
     locate = Locator(checked)
-    found = []
+    return [_at(locate, "E310", item.element, f"{item.describe()}: MuJoCo refuses it; "
+                + ("--fix-inertia gives it a small sphere's" if item.problem == "no-inertia"
+                   else "--fix-inertia puts the nearest physical tensor in its place"))
+            for item in refusals(checked.robot.element, massless=False)]
+
+
+def refused_error(diagnostics: list[SimDiagnostic]) -> str:
+    """The one-line reason a robot with E305 or E310 is not simulated."""
+    if any(d.message.startswith("root link") for d in diagnostics):
+        return "a link MuJoCo must move has no mass (E305 above)"
+    links = len(diagnostics)
+    return (f"MuJoCo refuses {links} link{'s' * (links != 1)} (E305/E310 above); "
+            "--fix-inertia makes {} physical".format("them" if links != 1 else "it"))
+
+
+def physical_urdf(urdf: bytes) -> tuple[bytes, list[str]]:
+    """``urdf`` with every inertia MuJoCo refuses made physical (--fix-inertia), and one
+    line per link changed (:mod:`mobile_car.check.mujoco_inertia`)."""
+    from lxml import etree
+
+    root = etree.fromstring(urdf, etree.XMLParser(resolve_entities=False, no_network=True))
+    found = refusals(root)
+    if not found:
+        return urdf, []
+    lines = make_physical(root, found)
+    return etree.tostring(root, encoding="utf-8"), lines
+
+
+def lint(checked, sim, declared=()) -> list[SimDiagnostic]:
+    """Every sim diagnostic of a checked robot and its model, sorted; ``declared``: the
+    package's drive declarations (:mod:`.declared`), whose joints must turn."""
+    locate = Locator(checked)
+    found = _declared_joints(checked, declared, locate)
+    named_badly = {name for d in declared for name, _ in
+                   joint_problems(d, {j.name: j.type for j in checked.robot.joints})}
     for link in checked.robot.links:
         if link.collisions and link.inertial is None:
             found.append(_at(locate, "W304", link.element,
@@ -84,8 +124,33 @@ def lint(checked, sim) -> list[SimDiagnostic]:
                              "Gazebo leaves it out if it moves (lumps it if fixed), MuJoCo "
                              "gives it a mass from its volume; mcar sim keeps it massless"))
     for plugin in _diff_drive_plugins(checked.robot.element):
-        found += _check_plugin(plugin, sim, locate)
+        found += _check_plugin(plugin, sim, locate, named_badly)
     return sorted(found, key=lambda d: (d.file, d.line or 0, d.rule))
+
+
+def _declared_joints(checked, declared, locate) -> list[SimDiagnostic]:
+    """E306 for each joint a drive declaration names that is fixed or missing, at the
+    declaration: the plugin's tag naming it, or the controller YAML's line. A control
+    package's YAML naming none of this robot's joints is another robot's, not flagged."""
+    types = {j.name: j.type for j in checked.robot.joints}
+    found, said = [], set()
+    for declaration in declared:
+        if not meant_for(declaration, types):
+            continue
+        for name, why in joint_problems(declaration, types):
+            if name in said:  # once per joint, at its first declaration
+                continue
+            said.add(name)
+            message = (f"{declaration.kind} drive declaration names joint {name}: {why}; "
+                       "the robot cannot be driven as its package says")
+            if declaration.element is not None:
+                tag = next((c for c in declaration.element if (c.text or "").strip() == name),
+                           declaration.element)
+                found.append(_at(locate, "E306", tag, message))
+            else:
+                found.append(SimDiagnostic("E306", declaration.file, declaration.line,
+                                           message))
+    return found
 
 
 def _diff_drive_plugins(root):
@@ -107,7 +172,7 @@ def _value(element) -> float | None:
     return parse_number((element.text or "").strip()) if element is not None else None
 
 
-def _check_plugin(plugin, sim, locate) -> list[SimDiagnostic]:
+def _check_plugin(plugin, sim, locate, named_badly=frozenset()) -> list[SimDiagnostic]:
     found = []
     drive = sim.drive
     lefts, rights = (drive.left, drive.right) if drive else ([], [])
@@ -116,7 +181,7 @@ def _check_plugin(plugin, sim, locate) -> list[SimDiagnostic]:
         # gz-sim's DiffDrive takes a <left_joint> per wheel of a side (skid-steer).
         for element in (e for e in plugin if e.tag in tags):
             name = (element.text or "").strip()
-            if name in {w.joint for w in group}:
+            if name in {w.joint for w in group} or name in named_badly:  # (E306 says it)
                 continue
             other = next((w for w in others if w.joint == name), None)
             if other is not None:

@@ -25,6 +25,8 @@ The simulation-only choices (docs/sim.md) are made here and nowhere else:
   as motors grow with what they drive: without it light wheels chatter against the stiff
   velocity servo and the robot over-travels as the speed ramps up (the car ~7%, Jackal
   2.8%); and a 1 ms step (0.6% over-travel, 2% at MuJoCo's default 2 ms);
+* a mecanum wheel touches the floor through a capsule that grips along its rollers' axis
+  and rolls freely across it (:mod:`.rollers`);
 * an Ackermann car's steering joints get a position servo stiff enough that a tyre's
   whole friction moves them by 0.3° at most (:func:`.servos.steering_gain`), within the joint's
   effort limit;
@@ -53,7 +55,9 @@ from ..check.urdf_model import parse_number
 from ..errors import EXIT_PROBLEMS, InputError, McarError
 from .drives import Drive, actuated_joints
 from .engine import mujoco
+from .mecanum import urdf_declarations
 from .resting import RestPose, rest_pose
+from .rollers import Rollers, add_rollers, roller_bodies
 from .servos import DriveSources, add_motors, fit_drive
 from .springs import apply_springs, gazebo_joint_blocks, make_springs, sprung_joints
 
@@ -109,6 +113,7 @@ class SimModel:
     support_geoms: list[int] = field(default_factory=list)  # ... and the castors': its pose
     rest: RestPose | None = None  # how the geometry rests (leaning on a low castor)
     control: object = None  # skid-steer: its control package's ControlConfig, if found
+    rollers: object = None  # mecanum: .rollers.Rollers, to align before every step
 
     @property
     def kind(self) -> str | None:
@@ -125,11 +130,14 @@ class SimModel:
 
 def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=None,
                 effort: float | None = None, speed: float | None = None,
-                kind: str | None = None) -> SimModel:
+                kind: str | None = None, declared=None, mecanum=()) -> SimModel:
     """``left``, ``right``: the driven joints of each side (a name, comma-separated names
-    or a list), ``kind``: a drive kind (:mod:`.drives`), else found from the tree;
+    or a list), ``kind``: a drive kind (:mod:`.drives`), else declared or found from the
+    tree; ``declared``: the package's drive declarations (:func:`.report.declarations`),
+    None for the URDF's plugins alone;
     ``effort`` (N·m), ``speed`` (rad/s): the drive motors' figures where the description
-    gives none (:mod:`.motors`)."""
+    gives none (:mod:`.motors`); ``mecanum``: the mecanum declarations of the
+    robot's control package (:func:`.mecanum.yaml_declarations`)."""
     mj = mujoco()
     root = etree.fromstring(urdf, etree.XMLParser(resolve_entities=False, no_network=True))
     read_as = as_urdfdom_reads(root)
@@ -141,6 +149,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     root_figures = [e for e in root if e.tag in ("gazebo", "ros2_control")]
     actuated = actuated_joints(root)
     joint_blocks = gazebo_joint_blocks(root)
+    mecanum = urdf_declarations(root) + list(mecanum)
     notes = read_as + _prepare(root, base, search)
     try:
         spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
@@ -170,12 +179,12 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)
     lowest = lowest_points(mj, shape, data)
-    drive, why = fit_drive(mj, shape, data, joints, DriveSources(root_figures, actuated,
-                                                                friction), left, right, kind,
-                           effort, speed)
+    sources = DriveSources(root_figures, actuated, friction, declared, mecanum)
+    drive, why = fit_drive(mj, shape, data, joints, sources, lowest, left, right, kind, effort,
+                           speed)
     wheels = drive.wheels if drive else []
     mass = float(shape.body_mass.sum())
-    robot_geoms = [g for g in range(shape.ngeom) if shape.geom_bodyid[g] != 0]
+    robot_geoms = _colliding(shape)
     if not robot_geoms:
         raise SimModelError("no link has <collision> geometry: nothing can rest on the "
                             "floor, the robot would fall through it", file=label)
@@ -189,19 +198,13 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
             data.qpos[shape.jnt_qposadr[shape.joint(name).id]] = position
         mj.mj_kinematics(shape, data)
         lowest = lowest_points(mj, shape, data)
-    ground = min(lowest[g] for g in ground_geoms)
-    parts, clearance = _castors(shape, lowest, ground, robot_geoms, wheel_bodies)
+    _ground, parts, clearance = resting_parts(shape, lowest, wheels, data)
     castor_bodies = set(parts.values())
     supports = ground_geoms + [g for g in robot_geoms if shape.geom_bodyid[g] in castor_bodies
                                and g not in ground_geoms]
     rest = rest_pose(mj, shape, data, root_body_id(shape), supports, lowest_points)
-    if wheels:
-        for geom in spec.geoms:
-            if geom.parent.name in parts and geom.parent.name not in friction:
-                geom.friction = [CASTOR_FRICTION, geom.friction[1], geom.friction[2]]
-                geom.priority = 1
-    for wheel in wheels:
-        _round_tyre(spec, wheel, mj)
+    rolling_contacts(mj, spec, drive, parts, friction)
+    add_rollers(mj, spec, shape, drive, sources)
     add_motors(mj, spec, drive, mass)
     steering = drive.steering if drive else []
     apply_springs(mj, spec, springs)
@@ -214,13 +217,14 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     for steer in steering:
         steer.joint_id = model.joint(steer.joint).id
         steer.actuator_id = model.actuator(f"mcar_steer_{steer.joint}").id
+    aligned = Rollers(mj, model, drive) if drive and drive.kind == "mecanum" else None
     return SimModel(model=model, spec=spec, root=root_body.name,
                     root_body=model.body(root_body.name).id, drive=drive,
                     why_no_drive=why, rest_height=rest.height, ground_parts=parts,
                     clearance=clearance,
                     floor_geom=model.geom("mcar_floor").id, notes=notes, mass=mass, held=held,
                     springs=springs, start=start, ground_geoms=ground_geoms,
-                    support_geoms=supports, rest=rest)
+                    support_geoms=supports, rest=rest, rollers=aligned)
 
 
 def root_body_id(model) -> int:
@@ -249,29 +253,6 @@ def _supports(shape, lowest, ground_geoms, robot_geoms, wheel_bodies) -> int:
     others = {int(shape.geom_bodyid[g]) for g in robot_geoms
               if lowest[g] <= ground + GROUND_TOLERANCE} - wheel_bodies
     return len(wheel_bodies) + len(others)
-
-
-def _castors(shape, lowest, ground, robot_geoms, wheel_bodies):
-    """(link -> body of each castor, link -> its lowest point above the wheels' floor).
-    Of the parts other than the wheels within GROUND_TOLERANCE of the floor, a castor is
-    one named so (CASTOR_WORDS); where none is, the lowest ones (within CASTOR_TIE): what
-    the robot rests on besides its wheels. A bracket or motor housing a few mm up is then
-    neither a castor nor a part that must touch the floor (the car on 15 mm wheels)."""
-    near, clearance = {}, {}
-    for g in robot_geoms:
-        body = int(shape.geom_bodyid[g])
-        name = shape.body(body).name
-        if body in wheel_bodies or lowest[g] <= ground + GROUND_TOLERANCE:
-            clearance[name] = min(clearance.get(name, np.inf), lowest[g] - ground)
-        if body not in wheel_bodies and lowest[g] <= ground + GROUND_TOLERANCE:
-            near[name] = body
-    named = {n: b for n, b in near.items() if any(w in n.lower() for w in CASTOR_WORDS)}
-    if named:
-        return named, clearance
-    if not near:
-        return {}, clearance
-    least = min(clearance[n] for n in near)
-    return {n: b for n, b in near.items() if clearance[n] <= least + CASTOR_TIE}, clearance
 
 
 def rest_after(sim: SimModel, data) -> RestPose:
@@ -460,10 +441,80 @@ def lowest_points(mj, model, data) -> dict[int, float]:
     return lowest
 
 
-def _round_tyre(spec, wheel, mj) -> None:
-    """The wheel's cylinders touch the floor through a sphere of the same radius."""
+def resting_parts(shape, lowest: dict[int, float], wheels,
+                  data=None) -> tuple[float, dict, dict]:
+    """(the floor's z under the robot: the drive wheels' lowest point, else the lowest
+    colliding geom's; its castors, link -> body id (:func:`_castors`); link -> its lowest
+    point above that floor, for the wheels and the links within GROUND_TOLERANCE of it),
+    the joints where ``lowest`` was measured (every one at 0, or sim's springs at rest).
+    Shared by ``mcar sim`` and ``mcar export --verify``, which judge alike; a geom that
+    touches nothing (an export's visual) rests on nothing. A mecanum wheel's roller links
+    are its own (its capsule touches for them, :mod:`.rollers`); a mecanum hub without
+    geometry of its own reaches its radius below its centre (``data``: the kinematics)."""
+    robot_geoms = _colliding(shape)
+    wheels_lowest = [lowest[g] for w in wheels for g in w.geom_ids]
+    if data is not None:
+        wheels_lowest += [float(data.xpos[w.body_id][2]) - w.radius for w in wheels
+                          if not w.geom_ids]
+    ground = min(wheels_lowest) if wheels_lowest else min(lowest[g] for g in robot_geoms)
+    wheel_bodies = {w.body_id for w in wheels}
+    rollers = roller_bodies(shape, wheels)
+    near, clearance = {}, {}
+    for g in robot_geoms:
+        body = int(shape.geom_bodyid[g])
+        if body in rollers:
+            continue
+        name = shape.body(body).name
+        if body in wheel_bodies or lowest[g] <= ground + GROUND_TOLERANCE:
+            clearance[name] = min(clearance.get(name, np.inf), lowest[g] - ground)
+        if body not in wheel_bodies and lowest[g] <= ground + GROUND_TOLERANCE:
+            near[name] = body
+    return ground, _castors(near, clearance), clearance
+
+
+def _castors(near: dict, clearance: dict) -> dict:
+    """Of the parts other than the wheels within GROUND_TOLERANCE of the floor (``near``,
+    link -> body), the castors: those named so (CASTOR_WORDS); where none is, the lowest
+    ones (within CASTOR_TIE): what the robot rests on besides its wheels. A bracket or
+    motor housing a few mm up is then neither a castor nor a part that must touch the
+    floor (the car on 15 mm wheels)."""
+    named = {n: b for n, b in near.items() if any(w in n.lower() for w in CASTOR_WORDS)}
+    if named or not near:
+        return named
+    least = min(clearance[n] for n in near)
+    return {n: b for n, b in near.items() if clearance[n] <= least + CASTOR_TIE}
+
+
+def rolling_contacts(mj, spec, drive, parts: dict, friction: dict) -> None:
+    """Sim's contact choices for a vehicle (the module's docstring), which ``mcar export
+    --to mjcf`` writes too: a castor's friction where the description gives none, and
+    round tyres."""
+    if drive is None:
+        return
     for geom in spec.geoms:
-        if geom.parent.name == wheel.link and geom.type == mj.mjtGeom.mjGEOM_CYLINDER:
+        if geom.parent.name in parts and geom.parent.name not in friction and _touches(geom):
+            geom.friction = [CASTOR_FRICTION, geom.friction[1], geom.friction[2]]
+            geom.priority = 1
+    for wheel in drive.wheels:
+        _round_tyre(spec, wheel, mj)
+
+
+def _colliding(shape) -> list[int]:
+    """The robot's geoms that collide (every one in sim; not an export's visuals)."""
+    return [g for g in range(shape.ngeom) if shape.geom_bodyid[g] != 0
+            and (shape.geom_contype[g] or shape.geom_conaffinity[g])]
+
+
+def _touches(geom) -> bool:
+    return bool(geom.contype or geom.conaffinity)
+
+
+def _round_tyre(spec, wheel, mj) -> None:
+    """The wheel's colliding cylinders touch the floor through a sphere of the same
+    radius (an export's visual cylinder stays one)."""
+    for geom in spec.geoms:
+        if geom.parent.name == wheel.link and geom.type == mj.mjtGeom.mjGEOM_CYLINDER \
+                and _touches(geom):
             geom.type = mj.mjtGeom.mjGEOM_SPHERE
             geom.size = [geom.size[0], 0, 0]
 

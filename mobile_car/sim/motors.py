@@ -12,13 +12,20 @@ came from, which the report prints:
 3. a ``<gazebo>`` diff-drive or skid-steer plugin naming the joint (or naming no joints):
    the wheel torque (``max_wheel_torque``, ROS 1 ``wheelTorque`` or ``torque``) and, of
    gz-sim's DiffDrive, ``max_linear_velocity`` / wheel radius;
-4. ``mcar sim --effort`` / ``--speed``;
+4. ``mcar sim --effort``;
 5. a default: the torque that holds the robot on a 10 degree slope, shared by the drive
    wheels (m·g·sin 10°·r / n); for a skid-steer robot, which turns by dragging its tyres
    sideways, the torque that slips its wheels on the floor (mu·m·g·r / n, mu their
    friction): with the slope's torque, a Husky's wheels stall and it cannot turn (0.01 of
    the rate it should). No speed limit (the scenarios then command
    :data:`~mobile_car.sim.run.DEFAULT_SPEED`, slower on large wheels).
+
+``--speed`` is the speed limit whatever the description says (the user knows the motor).
+A speed limit whose rim speed r·ω is over MAX_RIM_SPEED is a placeholder, not a motor's:
+no wheeled robot these packages describe runs its wheels faster (Warthog, the fastest,
+5 m/s; Husky 1 m/s, Jackal 2 m/s), while Summit XL's ``velocity="100"`` on 0.11 m wheels
+is 11 m/s, and driving at half of it fails on wheel hop and slip. The figure is kept and
+said to be a placeholder; the scenarios drive as if no limit were given.
 """
 
 from __future__ import annotations
@@ -30,6 +37,7 @@ from ..check.urdf_model import parse_number
 
 SLOPE_DEGREES = 10.0
 GRAVITY = 9.81
+MAX_RIM_SPEED = 5.0  # m/s: a wheel speed limit faster at the rim is a placeholder
 # Parameter names of the drive plugins: ROS 2 gazebo_ros, ROS 1 libgazebo_ros_diff_drive and
 # libgazebo_ros_skid_steer_drive.
 TORQUE_TAGS = ("max_wheel_torque", "wheelTorque", "torque")  # the last: skid-steer plugin
@@ -45,19 +53,30 @@ class MotorFigures:
     effort_from: str
     velocity: float | None   # rad/s; None: the description sets no speed limit
     velocity_from: str
+    placeholder: str | None = None  # why the velocity is not a motor's, or None
+
+    @property
+    def usable_velocity(self) -> float | None:
+        """The speed limit the scenarios drive by: None for a placeholder."""
+        return None if self.placeholder else self.velocity
 
     def as_json(self) -> dict:
-        return {"effort": round(self.effort, 6), "effort_from": self.effort_from,
-                "velocity": None if self.velocity is None else round(self.velocity, 6),
-                "velocity_from": self.velocity_from}
+        document = {"effort": round(self.effort, 6), "effort_from": self.effort_from,
+                    "velocity": None if self.velocity is None else round(self.velocity, 6),
+                    "velocity_from": self.velocity_from}
+        if self.placeholder:
+            document["placeholder"] = self.placeholder
+        return document
 
 
 def motor_figures(extras, joint, radius: float, drive_wheels: int, mass: float,
                   effort_flag: float | None = None, speed_flag: float | None = None,
-                  slip_friction: float | None = None) -> MotorFigures:
+                  slip_friction: float | None = None,
+                  kind: str = "skid-steer") -> MotorFigures:
     """The figures of the drive joint element ``joint``; ``extras``: the robot's top-level
     ``<ros2_control>`` and ``<gazebo>`` elements; ``slip_friction``: a skid-steer robot's
-    tyre friction, whose default torque slips the wheels rather than holds the slope."""
+    tyre friction, whose default torque slips the wheels rather than holds the slope (a
+    mecanum robot's too: ``kind`` names it in the source)."""
     name = joint.get("name")
     efforts, velocities = [], []
     limit = _first(joint, "limit")
@@ -74,12 +93,13 @@ def motor_figures(extras, joint, radius: float, drive_wheels: int, mass: float,
         velocities.append((linear / radius if linear is not None and radius > 0 else None,
                            f"<gazebo> plugin {label} max_linear_velocity / wheel radius"))
     efforts.append((effort_flag, "--effort"))
-    velocities.append((speed_flag, "--speed"))
+    if speed_flag is not None:  # the user's figure overrides every other source
+        velocities.insert(0, (speed_flag, "--speed"))
     effort, effort_from = _first_given(efforts)
     if effort is None and slip_friction is not None:
         effort = slip_friction * mass * GRAVITY * radius / max(1, drive_wheels)
         effort_from = (f"default: slips the wheels of {mass:.3g} kg at mu {slip_friction:g} "
-                       f"(mu·m·g·r / {drive_wheels}, skid-steer)")
+                       f"(mu·m·g·r / {drive_wheels}, {kind})")
     elif effort is None:
         effort = slope_torque(mass, radius, drive_wheels)
         effort_from = (f"default: holds {mass:.3g} kg on a {SLOPE_DEGREES:g}° slope "
@@ -87,7 +107,17 @@ def motor_figures(extras, joint, radius: float, drive_wheels: int, mass: float,
     velocity, velocity_from = _first_given(velocities)
     if velocity is None:
         velocity_from = "none given"
-    return MotorFigures(effort, effort_from, velocity, velocity_from)
+    return MotorFigures(effort, effort_from, velocity, velocity_from,
+                        _placeholder(velocity, velocity_from, radius))
+
+
+def _placeholder(velocity: float | None, source: str, radius: float) -> str | None:
+    """Why a speed limit is a placeholder (its rim speed over MAX_RIM_SPEED), or None."""
+    if velocity is None or source == "--speed" or velocity * radius <= MAX_RIM_SPEED:
+        return None
+    return (f"a placeholder: {velocity:g} rad/s is {velocity * radius:.3g} m/s at the rim "
+            f"(r·ω, r {radius:.4g} m), over the {MAX_RIM_SPEED:g} m/s no wheeled robot "
+            "exceeds")
 
 
 def slope_torque(mass: float, radius: float, drive_wheels: int) -> float:

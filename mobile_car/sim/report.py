@@ -8,9 +8,17 @@ import time
 from dataclasses import dataclass, field
 from xml.etree import ElementTree as ET
 
-from ..errors import EXIT_OK, EXIT_PROBLEMS
+from ..errors import EXIT_OK, EXIT_PROBLEMS, UsageError
 from .junit import junit_case, junit_document
-from .lint import SimDiagnostic, lint, moving_links_without_mass
+from .lint import (
+    SimDiagnostic,
+    lint,
+    moving_links_without_mass,
+    physical_urdf,
+    refused_error,
+    refused_inertias,
+)
+from .rollers import mecanum_lines, mecanum_summary
 from .scenarios import (
     ScenarioResult,
     command_speed,
@@ -50,18 +58,24 @@ class SimReport:
         return EXIT_OK
 
 
-def simulate(checked, names=None, left=None, right=None, record: bool = False,
+def simulate(checked, names=None, left=None, right=None,
+             record: bool | tuple[int, int] = False,
              only_if_drives: bool = False, effort: float | None = None,
              speed: float | None = None, kind: str | None = None,
-             steering: float | None = None) -> SimReport:
+             steering: float | None = None, fix_inertia: bool = False,
+             setting=None) -> SimReport:
     """Lint and run ``names`` (default: the drive kind's scenarios) on a robot that passed
     ``mcar check`` (a CheckResult); ``left``/``right``: the driven joints of each side,
     ``kind``: the drive kind (:mod:`.drives`; both else found from the tree); ``record``:
-    keep a GIF of the runs; ``only_if_drives``: a robot that is not a vehicle
+    keep a GIF of the runs (True, or its size in pixels, width x height);
+    ``only_if_drives``: a robot that is not a vehicle
     (:func:`.vehicle.not_a_vehicle`) is not simulated (``simulated`` False), as for the
     files of a package and in ``mcar ci``; ``effort``, ``speed``: the drive motors'
     figures where the description gives none (:mod:`.motors`); ``steering``: the turn's
-    steering angle (rad)."""
+    steering angle (rad); ``setting``: ({kind, left, right}, where) of the package's
+    mcar.yaml ``sim.drive``
+    (:meth:`~mobile_car.packages.package_config.PackageConfig.sim_drive_for`), which the
+    options override."""
     from .model import SimModelError, build_model
 
     started = time.perf_counter()
@@ -79,19 +93,42 @@ def simulate(checked, names=None, left=None, right=None, record: bool = False,
                             ScenarioResult(name, skipped=report.why_no_drive)
                             for name in (names or ("drop", "drive", "spin"))]
         return report
-    report.diagnostics = moving_links_without_mass(checked)
+    urdf, fixed = loaded.urdf, []
+    massless = moving_links_without_mass(checked)
+    if fix_inertia:  # (a robot whose root has no mass is not one a token mass mends)
+        report.diagnostics = [d for d in massless if d.message.startswith("root link")]
+        if not report.diagnostics:
+            urdf, fixed = physical_urdf(urdf)
+    else:
+        report.diagnostics = refused_inertias(checked) + massless
     if report.diagnostics:
-        report.error = "a link MuJoCo must move has no mass (E305 above)"
+        report.error = refused_error(report.diagnostics)
         return report
+    declared, unread, report.reads = declarations(checked)
+    chosen_in = None  # where the package's mcar.yaml chose the drive
+    if setting is not None and not (left or right or kind):
+        (drive_set, chosen_in) = setting
+        left, right, kind = drive_set.get("left"), drive_set.get("right"), drive_set.get("kind")
+    from .mecanum import yaml_declarations
+
+    mecanum, unread_mecanum = yaml_declarations(loaded)
+    unread = list(dict.fromkeys(unread + unread_mecanum))
     try:
-        sim = build_model(loaded.urdf, checked.file, loaded.base, loaded.search, left, right,
-                          effort, speed, kind)
+        sim = build_model(urdf, checked.file, loaded.base, loaded.search, left, right,
+                          effort, speed, kind, declared, mecanum)
     except SimModelError as error:
         report.error = error.message
         return report
-    report.notes = list(sim.notes)
+    except UsageError as error:
+        if chosen_in is None:
+            raise
+        raise UsageError(f"sim.drive: {error.message}", file=chosen_in) from None
+    if chosen_in is not None and sim.drive is not None:
+        sim.drive.chosen = f"{chosen_in} sim.drive"
+        sim.drive.sources = {joint: sim.drive.chosen for joint in sim.drive.sources}
+    report.notes = [f"--fix-inertia: {line}" for line in fixed] + list(sim.notes) + unread
     report.held = list(sim.held)
-    report.diagnostics = lint(checked, sim)
+    report.diagnostics = lint(checked, sim, declared)
     report.why_no_drive = str(why_not) if why_not else sim.why_no_drive
     delta = None
     if sim.drives:
@@ -100,8 +137,8 @@ def simulate(checked, names=None, left=None, right=None, record: bool = False,
             from .control_config import find_control_config
 
             sim.control, unread = find_control_config(loaded, [w.joint for w in sim.drive.driven])
-            report.notes += unread
-            if sim.control is not None:
+            report.notes = list(dict.fromkeys(report.notes + unread))
+            if sim.control is not None and sim.control.file not in report.reads:
                 report.reads.append(sim.control.file)
         if sim.kind == "ackermann" and "turn" in scenarios_for(sim, names):
             from .turning import steering_angle
@@ -112,9 +149,12 @@ def simulate(checked, names=None, left=None, right=None, record: bool = False,
     if record:
         from .record import Recorder
 
-        recorder = Recorder(sim, scenarios_for(sim, names))
+        recorder = Recorder(sim, scenarios_for(sim, names),
+                            record if isinstance(record, tuple) else None)
     try:
         report.scenarios = run_scenarios(sim, names, recorder, delta)
+        if not sim.drives and why_not is None:
+            undriven(report.scenarios)
         if recorder is not None:
             report.recording = recorder.gif()
     finally:
@@ -122,6 +162,29 @@ def simulate(checked, names=None, left=None, right=None, record: bool = False,
             recorder.close()
     report.seconds = time.perf_counter() - started
     return report
+
+
+def declarations(checked) -> tuple[list, list[str], list]:
+    """(what the package declares drives the robot: its URDF's drive plugins, located in
+    the sources, then its control package's controllers; the control files that could not
+    be read; the control files looked at)."""
+    from .control_config import find_controllers
+    from .declared import in_urdf
+    from .lint import Locator
+
+    locate = Locator(checked)
+    plugins = in_urdf(list(checked.robot.element), lambda e: locate(e))
+    controllers, unread, read = find_controllers(checked.loaded)
+    return plugins + controllers, unread, read
+
+
+def undriven(scenarios) -> None:
+    """A vehicle that could not be driven is not a pass: the drive scenarios it was asked
+    for fail, with the reason (drop alone, asked for, still passes)."""
+    for scenario in scenarios:
+        if scenario.name != "drop" and scenario.skipped:
+            scenario.problems = [f"cannot drive this vehicle: {scenario.skipped}"]
+            scenario.skipped = None
 
 
 def drive_summary(sim) -> dict:
@@ -136,9 +199,14 @@ def drive_summary(sim) -> dict:
                "castors": sorted(set(sim.ground_parts) - {w.link for w in drive.wheels}),
                "mass": round(sim.mass, 6),
                "motors": {w.joint: {**w.motor.as_json(), "servo_gain": round(w.gain, 6)}
-                          for w in drive.driven}}
+                          for w in drive.driven},
+               "sources": {w.joint: drive.sources.get(w.joint, drive.chosen)
+                           for w in drive.driven},
+               "not_wheels": dict(drive.not_wheels)}
     if drive.kind == "ackermann":
         summary["wheelbase"] = round(drive.wheelbase, 6)
+    if drive.kind == "mecanum":
+        summary.update(mecanum_summary(sim))
     summary["sprung"] = [s.as_json() for s in sim.springs]  # suspension, wheel drop
     return summary
 
@@ -189,14 +257,26 @@ def _drive_lines(d: dict) -> list[str]:
     castors = ", ".join(d["castors"]) or "none"
     lines = [f"  {kind} drive wheels {wheels}: {sizes}, command {d['command_speed']:g} rad/s; "
              f"on the floor too: {castors}; mass {d['mass']:.4g} kg"]
+    by_source: dict[str, list[str]] = {}  # one line per place the wheels came from
+    for joint, source in d.get("sources", {}).items():
+        by_source.setdefault(source, []).append(joint)
+    lines += [f"  wheels {', '.join(joints)} from {source}"
+              for source, joints in by_source.items()]
+    if d.get("not_wheels"):
+        lines.append("  not wheels: " + "; ".join(f"{joint}: {why}" for joint, why
+                                                   in d["not_wheels"].items()))
     alike: dict[str, list[str]] = {}  # one line for the motors that share their figures
     for joint, motor in d["motors"].items():
         speed = ("no limit" if motor["velocity"] is None else
                  f"{motor['velocity']:g} rad/s ({motor['velocity_from']})")
+        if motor.get("placeholder"):
+            speed += f", {motor['placeholder']}: driven as if no limit were given"
         text = (f"{motor['effort']:.4g} N·m ({motor['effort_from']}), {speed}, servo gain "
                 f"{motor['servo_gain']:.4g} N·m·s/rad")
         alike.setdefault(text, []).append(joint)
     lines += [f"  motor {', '.join(joints)}: {text}" for text, joints in alike.items()]
+    if "rollers" in d:
+        lines += mecanum_lines(d)
     lines += [f"  sprung {_spring_text(s)}" for s in d.get("sprung", [])]
     return lines
 

@@ -39,6 +39,9 @@ class Run:
             self.data.qpos[adr + 3:adr + 7] = sim.rest.quat
         for joint, position in sim.start.items():  # the springs at rest under the weight
             self.data.qpos[self.model.jnt_qposadr[self.model.joint(joint).id]] = position
+        self.rollers = getattr(sim, "rollers", None)  # mecanum: kept level every step
+        if self.rollers is not None:
+            self.rollers.align(self.model, self.data)
         self.mj.mj_forward(self.model, self.data)
         self.frame = frame
 
@@ -47,6 +50,8 @@ class Run:
         for _ in range(steps):
             if control is not None:
                 control(self.data.time)
+            if self.rollers is not None:
+                self.rollers.align(self.model, self.data)
             self.mj.mj_step(self.model, self.data)
             if each is not None:
                 each()
@@ -92,8 +97,7 @@ class Run:
         """Height of the wheel's lowest sphere (its tyre) above the floor, or None when
         its geometry is no sphere (then contacts tell)."""
         gaps = [float(self.data.geom_xpos[g][2] - self.model.geom_size[g][0])
-                for g in wheel.geom_ids
-                if self.model.geom_type[g] == self.mj.mjtGeom.mjGEOM_SPHERE]
+                for g in wheel.geom_ids if int(self.model.geom_type[g]) in _tyres(self.mj)]
         return min(gaps) if gaps else None
 
     def wheel_speed(self, wheel) -> float:
@@ -107,6 +111,12 @@ class Run:
         return self.data.xpos[[w.body_id for w in wheels]].mean(axis=0)
 
 
+def _tyres(mj) -> tuple:
+    """The geom types a wheel rolls on whose lowest point is its centre's height less its
+    radius: a sphere, and a mecanum wheel's capsule, kept level (:mod:`.rollers`)."""
+    return (int(mj.mjtGeom.mjGEOM_SPHERE), int(mj.mjtGeom.mjGEOM_CAPSULE))
+
+
 def ramp(t: float) -> float:
     """The share of the commanded speed at time ``t``: 0 while settling, then a linear
     ramp to 1."""
@@ -114,14 +124,22 @@ def ramp(t: float) -> float:
 
 
 def command_speed(sim: SimModel) -> float:
-    """Half the smallest velocity limit of the driven joints (rad/s); without one,
-    DEFAULT_SPEED or DEFAULT_LINEAR_SPEED, whichever is slower on these wheels."""
+    """Half the smallest velocity limit of the driven joints (rad/s); without one (or
+    where it is a placeholder, :data:`.motors.MAX_RIM_SPEED`), DEFAULT_SPEED or
+    DEFAULT_LINEAR_SPEED, whichever is slower on these wheels."""
     driven = sim.drive.driven
-    limits = [w.velocity for w in driven if w.velocity and w.velocity > 0]
+    limits = [_usable(w) for w in driven]
+    limits = [v for v in limits if v and v > 0]
     if limits:
         return 0.5 * min(limits)
     radius = max(w.radius for w in driven)
     return min(DEFAULT_SPEED, DEFAULT_LINEAR_SPEED / radius) if radius > 0 else DEFAULT_SPEED
+
+
+def _usable(wheel) -> float | None:
+    """The wheel's speed limit, None where its motor figures call it a placeholder."""
+    motor = wheel.motor
+    return motor.usable_velocity if motor is not None else wheel.velocity
 
 
 def forward_sign(run: Run, wheel) -> float:
@@ -145,10 +163,9 @@ class OffFloor:
         self.current, self.total = 0, 0
         # Each wheel's tyre spheres, read at once every step (numpy, not a loop per wheel);
         # a wheel without one is judged by its contacts.
-        sphere = run.mj.mjtGeom.mjGEOM_SPHERE
         model = run.model
         pairs = [(i, g) for i, w in enumerate(self.wheels) for g in w.geom_ids
-                 if model.geom_type[g] == sphere]
+                 if int(model.geom_type[g]) in _tyres(run.mj)]
         self.owner = np.array([i for i, _ in pairs], dtype=int)
         self.spheres = np.array([g for _, g in pairs], dtype=int)
         self.radii = model.geom_size[self.spheres, 0]

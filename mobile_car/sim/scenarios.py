@@ -1,6 +1,7 @@
 """The runs that prove a robot, chosen by its drive kind: drop (it stands) for every robot;
 drive (it rolls straight as far as its wheels say) for every vehicle; spin (it turns in
-place) for differential and skid-steer ones (:mod:`.driving`), turn (it steers round the
+place) for differential, skid-steer and mecanum ones (:mod:`.driving`), strafe (it moves
+sideways) for mecanum ones (:mod:`.strafe`), turn (it steers round the
 circle its geometry says) for Ackermann ones (:mod:`.turning`). Each returns its measured
 figures against their bounds; a figure out of bounds fails the scenario."""
 
@@ -13,15 +14,18 @@ import numpy as np
 from .driving import DRIVE_TIME, run_drive, run_spin
 from .figures import Figure, ScenarioResult, show_bound, show_value
 from .model import SimModel, lowest_points, rest_after, resting_tyres
+from .resting import RestPose
 from .run import BOUNCE_HEIGHT, Run, command_speed
+from .strafe import run_strafe
 from .turning import run_turn
 
-SCENARIOS = ("drop", "drive", "spin", "turn")
+SCENARIOS = ("drop", "drive", "strafe", "spin", "turn")
 # The scenarios each drive kind runs when none are named; a robot that is no vehicle
 # runs drop.
 KIND_SCENARIOS = {"differential": ("drop", "drive", "spin"),
                   "skid-steer": ("drop", "drive", "spin"),
-                  "ackermann": ("drop", "drive", "turn")}
+                  "ackermann": ("drop", "drive", "turn"),
+                  "mecanum": ("drop", "drive", "strafe", "spin")}
 DROP_HEIGHT = 0.005      # m above the rest height it is released from
 DROP_TIME = 2.0          # s
 # Bounds (docs/sim.md).
@@ -47,7 +51,8 @@ def run_drop(sim: SimModel, frame=None) -> ScenarioResult:
     roll, pitch, _ = run.euler()
     height = float(run.position[2])
     # Sprung, the rest is the geometry's with the springs where they came to rest.
-    pose = rest_after(sim, run.data) if sim.springs else sim.rest
+    pose = rest_after(sim, run.data) if sim.springs else sim.rest or RestPose(
+        sim.rest_height, [1.0, 0.0, 0.0, 0.0], 0.0, 0.0)  # (an export judged: level)
     rest = pose.height
     speed = float(np.linalg.norm(run.data.qvel[:3]))
     detail = f"rest height {_mm(rest)} m, measured {_mm(height)} m"
@@ -156,8 +161,10 @@ def _not_for(sim: SimModel, name: str) -> str | None:
     """Why scenario ``name`` does not fit the robot's drive kind, or None."""
     if name == "spin" and sim.kind == "ackermann":
         return "an Ackermann car does not turn in place: turn proves its steering"
-    if name == "turn" and sim.kind in ("differential", "skid-steer"):
+    if name == "turn" and sim.kind in ("differential", "skid-steer", "mecanum"):
         return f"turn steers an Ackermann car: spin proves a {sim.kind} robot's turning"
+    if name == "strafe" and sim.kind != "mecanum":
+        return f"strafe moves a mecanum robot sideways: a {sim.kind} robot cannot"
     return None
 
 
@@ -175,6 +182,6 @@ def run_scenarios(sim: SimModel, names=None, frame=None,
         elif name == "turn":
             results.append(run_turn(sim, frame, steering))
         else:
-            results.append({"drop": run_drop, "drive": run_drive, "spin": run_spin}[name](
-                sim, frame))
+            results.append({"drop": run_drop, "drive": run_drive, "spin": run_spin,
+                            "strafe": run_strafe}[name](sim, frame))
     return results

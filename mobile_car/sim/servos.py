@@ -7,10 +7,11 @@ motor's rotor inertia seen through its gearbox. The choices are explained in
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from .drives import Drive, choose_drive, find_tree
 from .motors import motor_figures
+from .rollers import tyre_grip
 
 # kv of the wheel motors' velocity servo (N m s/rad) for a wheel driving up to
 # SERVO_REFERENCE_INERTIA: stiff enough to follow a ramp of a few rad/s², within the effort
@@ -20,9 +21,6 @@ from .motors import motor_figures
 # (0.71 kg on 32.5 mm wheels) and its variants', which keep the gain they were tuned with.
 SERVO_GAIN = 0.5
 SERVO_REFERENCE_INERTIA = 1e-3  # kg m²
-# The servo's integral gain (N m/rad) over its kv (1/s): the wheel's lag under a steady
-# load decays at this rate (20 ms), well over damped for every load (kv/inertia ~1000/s).
-INTEGRAL_RATE = 50.0
 WHEEL_ARMATURE = 1e-4  # kg m², the least, see model.py's docstring ...
 ARMATURE_SHARE = 0.25  # ... and of the wheel's share of the robot's m·r², if more
 STEER_STIFFNESS = 0.005  # rad a steering servo yields to a tyre's full friction
@@ -33,25 +31,43 @@ GRAVITY = 9.81
 class DriveSources:
     """What a drive's motor figures and friction are read from, kept from the URDF before
     anything is taken out of it: its top-level ``<gazebo>`` and ``<ros2_control>``
-    elements, the joints a transmission drives, link -> ``<mu1>``."""
+    elements, the joints a transmission drives, link -> ``<mu1>``; and ``declared``, the
+    drive declarations (:mod:`.declared`: the URDF's plugins, located, then the controllers
+    its control package configures), None for the URDF's plugins alone."""
 
     figures: list
     actuated: set[str]
     friction: dict[str, float]
+    declared: list | None = None
+    mecanum: list = field(default_factory=list)  # .mecanum.Declaration: what says mecanum
+
+    def declarations(self, joints: dict) -> list:
+        """The drive declarations that are this robot's, the URDF's plugins first."""
+        from .declared import in_urdf, meant_for
+
+        found = in_urdf(self.figures) if self.declared is None else self.declared
+        return [d for d in found if meant_for(d, joints)]
 
 
-def fit_drive(mj, shape, data, joints: dict, sources: DriveSources, left=None, right=None,
-              kind=None, effort=None, speed=None) -> tuple[Drive | None, str | None]:
-    """The drive of a compiled model (kinematics done on ``data``) with its driven wheels'
-    motor figures and servo gains, or (None, why there is none); what ``mcar export
-    --to mjcf`` gives MuJoCo users too."""
-    tree = find_tree(mj, shape, data, joints)
-    drive, why = choose_drive(tree, sources.actuated, left, right, kind)
+def fit_drive(mj, shape, data, joints: dict, sources: DriveSources, lowest: dict, left=None,
+              right=None, kind=None, effort=None,
+              speed=None) -> tuple[Drive | None, str | None]:
+    """The drive of a compiled model (kinematics done on ``data``; ``lowest``: its geoms'
+    lowest points, :func:`.model.lowest_points`) with its driven wheels' motor figures and
+    servo gains, or (None, why there is none); what ``mcar export --to mjcf`` gives MuJoCo
+    users too."""
+    tree = find_tree(mj, shape, data, joints, lowest)
+    drive, why = choose_drive(tree, sources.actuated, left, right, kind,
+                              sources.declarations(joints), sources.mecanum)
+    if drive is not None:
+        drive.not_wheels = dict(tree.not_wheels)
     mass = float(shape.body_mass.sum())
     for wheel in drive.driven if drive else []:
         slip = sources.friction.get(wheel.link, 1.0) if drive.kind == "skid-steer" else None
+        if drive.kind == "mecanum":  # its tyre's grip, not its rollers' free roll
+            slip = tyre_grip(wheel, sources)[0]
         wheel.motor = motor_figures(sources.figures, joints[wheel.joint], wheel.radius,
-                                    len(drive.driven), mass, effort, speed, slip)
+                                    len(drive.driven), mass, effort, speed, slip, drive.kind)
         wheel.effort, wheel.velocity = wheel.motor.effort, wheel.motor.velocity
         wheel.gain = servo_gain(mass, wheel.radius, len(drive.driven),
                                 wheel_armature(mass, drive.radius, len(drive.wheels)))
@@ -69,12 +85,7 @@ def add_motors(mj, spec, drive: Drive | None, mass: float) -> None:
     for wheel in drive.driven:
         actuator = spec.add_actuator(name=f"mcar_motor_{wheel.joint}", target=wheel.joint,
                                      trntype=mj.mjtTrn.mjTRN_JOINT)
-        # A velocity servo with integral action: the actuator integrates the commanded
-        # speed into a position (its activation) and pulls the wheel to it, so that a
-        # load the wheel carries (declared joint friction or damping) costs the servo a
-        # lag in angle, not in speed: a plain velocity servo (kv only) stalled 4% short
-        # of its speed against 0.2 N·m with torque to spare.
-        actuator.set_to_intvelocity(kp=INTEGRAL_RATE * wheel.gain, kv=wheel.gain)
+        actuator.set_to_velocity(kv=wheel.gain)
         _limit_force(actuator, wheel.effort)
     for steer in drive.steering:
         spec.joint(steer.joint).armature = armature

@@ -57,8 +57,9 @@ def shown(value, limit: int = 60) -> str:
     return short.repr(value)
 
 
-def refusal(handle, updates) -> str | None:
-    """Why ``updates`` (from the page) is no value of ``handle``, or None when it is."""
+def refusal(handle, updates, bounds: tuple[float, float] | None = None) -> str | None:
+    """Why ``updates`` (from the page) is no value of ``handle``, or None when it is; a
+    slider's value must be within ``bounds`` when given, else within the slider."""
     if not isinstance(updates, dict) or list(updates) != ["value"]:
         keys = sorted(map(str, updates)) if isinstance(updates, dict) else updates
         return f"it may change only its value, not {shown(keys)}"
@@ -70,8 +71,9 @@ def refusal(handle, updates) -> str | None:
     if isinstance(handle, viser.GuiSliderHandle):
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             return f"{shown(value)} is not a number"
-        if not (math.isfinite(value) and handle.min <= value <= handle.max):
-            return f"{shown(value)} is not within {handle.min:g}..{handle.max:g}"
+        low, high = bounds if bounds is not None else (handle.min, handle.max)
+        if not (math.isfinite(value) and low <= value <= high):
+            return f"{shown(value)} is not within {low:g}..{high:g}"
         return None
     if isinstance(handle, viser.GuiTextHandle):
         if not isinstance(value, str):
@@ -97,13 +99,15 @@ class Inbound:
 
     def __init__(self, warn: Callable[[str], None]):
         self.warn = OncePer(warn)
-        self._controls: dict[str, object] = {}
+        self._controls: dict[str, tuple] = {}  # uuid -> (handle, bounds or None)
         self._lock = threading.Lock()
 
-    def accept(self, handle):
-        """Let the page set ``handle``'s value (checked); returns ``handle``."""
+    def accept(self, handle, bounds: tuple[float, float] | None = None):
+        """Let the page set ``handle``'s value (checked); returns ``handle``. A slider
+        takes values within ``bounds`` when given (a dimension's box takes any value of
+        its plausible range, beyond the neighbourhood its slider spans)."""
         with self._lock:
-            self._controls[_uuid(handle)] = handle
+            self._controls[_uuid(handle)] = (handle, bounds)
         return handle
 
     def forget(self, handles) -> None:
@@ -116,10 +120,10 @@ class Inbound:
         A control not (or no longer) offered is dropped quietly: a page may still drag
         a slider a reload has just replaced."""
         with self._lock:
-            handle = self._controls.get(getattr(message, "uuid", None))
+            handle, bounds = self._controls.get(getattr(message, "uuid", None), (None, None))
         if handle is None:
             return False
-        reason = refusal(handle, getattr(message, "updates", None))
+        reason = refusal(handle, getattr(message, "updates", None), bounds)
         if reason is not None:
             self.warn(("value", _uuid(handle)),
                       f"mcar view: ignored what the page sent for the {_kind(handle)} "

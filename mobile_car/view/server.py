@@ -16,6 +16,7 @@ said on stderr through ``warn``, one line per kind of refusal.
 from __future__ import annotations
 
 import contextlib
+import html
 import io
 import logging
 import math
@@ -31,21 +32,28 @@ from viser.extras import ViserUrdf
 from ..errors import McarError, UsageError
 from .dimensions import Dimensions
 from .inbound import Inbound, UnreadableMessages
-from .model import ViewModel, error_lines
+from .markers import THICKNESS_PX, marker_segments
+from .model import MOVING, ViewModel, error_lines
 from .origin import PageOrigin, guarding_requests
 from .watch import FileWatch
 
 ROBOT_NODE = "/robot"
 FRAMES_NODE = "/frames"
+MARKERS_NODE = "/joint_markers"
 # Collision geometry has no colour in URDF: a see-through orange tells it from the visual.
 COLLISION_RGBA = (0.95, 0.55, 0.15, 0.6)
 # Where the camera looks from at start, as rviz's default view does: front-left-above.
 CAMERA_DIRECTION = np.array([1.0, 0.8, 0.7])
 CAMERA_FOV = math.radians(50)
 
+# The error box: every line whole, wrapped at the panel's edge (a path or a message has no
+# spaces to break at for long stretches), never behind a scroll bar.
+ERROR_BOX_STYLE = ("white-space: pre-wrap; overflow-wrap: anywhere; font-family: monospace; "
+                   "font-size: 0.75rem; line-height: 1.35; padding: 0 0.75rem 0.5rem")
+
 # Rows of the control panel, top to bottom.
-_ORDER = {"status": 0, "visual": 1, "collision": 2, "frames": 3, "reset": 4, "joints": 10,
-          "dimensions": 20}
+_ORDER = {"status": 0, "errors": 0.5, "visual": 1, "collision": 2, "frames": 3,
+          "markers": 3.5, "reset": 4, "joints": 10, "dimensions": 20}
 
 
 def url_of(host: str, port: int) -> str:
@@ -69,13 +77,15 @@ class RobotView:
         # One dimension change at a time, so that each builds on the last one accepted.
         self._dimension_lock = threading.RLock()  # (putting a slider back re-enters)
         self.dimensions = dimensions
-        self.dimension_sliders: dict[str, viser.GuiSliderHandle] = {}
+        self.dimension_sliders: dict[str, viser.GuiSliderHandle] = {}  # (in shown units)
+        self._dimension_items: dict = {}  # name -> its DimensionRange
         self.overrides_yaml = None  # the text area the copy button fills
         self.model: ViewModel | None = None
         self.errors: list[str] = []  # the last failed rebuild's lines; empty when current
         self.reloads = 0  # rebuilds shown (for the tests and the status line)
         self.sliders: dict[str, viser.GuiSliderHandle] = {}
         self.frames: dict[str, viser.FrameHandle] = {}
+        self.markers: dict[str, viser.LineSegmentsHandle] = {}  # by joint name
         self._robot: ViserUrdf | None = None
         self._joints_folder = None
         self.watch = FileWatch()
@@ -124,6 +134,7 @@ class RobotView:
     def _build_panel(self) -> None:
         gui, accept = self.server.gui, self._inbound.accept
         self.status = gui.add_markdown("", order=_ORDER["status"])
+        self.error_box = gui.add_html("", order=_ORDER["errors"], visible=False)
         self.show_visual = accept(gui.add_checkbox("Visual geometry", True,
                                                    order=_ORDER["visual"]))
         self.show_collision = accept(gui.add_checkbox("Collision geometry", False,
@@ -131,12 +142,16 @@ class RobotView:
         self.show_frames = accept(gui.add_checkbox(
             "Link frames", False, order=_ORDER["frames"],
             hint="x/y/z axes (red/green/blue) of every link"))
+        self.show_markers = accept(gui.add_checkbox(
+            "Joint markers", True, order=_ORDER["markers"],
+            hint="each moving joint's axis (amber) and a spoke that turns with it (magenta)"))
         self.reset = accept(gui.add_button("Reset joints", order=_ORDER["reset"],
                                            hint="Every joint back to zero (or its nearer limit)"))
         visibility = self._on_page(self._apply_visibility, "showing or hiding geometry")
         self.show_visual.on_update(visibility)
         self.show_collision.on_update(visibility)
         self.show_frames.on_update(visibility)
+        self.show_markers.on_update(visibility)
         self.reset.on_click(self._on_page(self.reset_joints, "resetting the joints"))
         if self.dimensions is not None and self.dimensions.ranges:
             self._build_dimension_panel()
@@ -154,6 +169,8 @@ class RobotView:
                     self._robot.show_collision = self.show_collision.value
             for frame in self.frames.values():
                 frame.visible = self.show_frames.value
+            for marker in self.markers.values():
+                marker.visible = self.show_markers.value
 
     def _set_status(self) -> None:
         model = self.model
@@ -164,8 +181,9 @@ class RobotView:
             lines[0] += f"; reloaded {self.reloads}×"
         if self.errors:
             lines.append("**The last change does not build; showing the last good model:**")
-            lines.append("```\n" + "\n".join(self.errors) + "\n```")
         self.status.content = "\n\n".join(lines)
+        self.error_box.content = error_box_html(self.errors)
+        self.error_box.visible = bool(self.errors)
 
     # -- the robot ---------------------------------------------------------------------
 
@@ -178,8 +196,8 @@ class RobotView:
                 with warnings.catch_warnings():  # it removes children its parents took along
                     warnings.simplefilter("ignore", UserWarning)
                     self._robot.remove()
-            for frame in self.frames.values():
-                frame.remove()
+            for node in [*self.frames.values(), *self.markers.values()]:
+                node.remove()
             if self._joints_folder is not None:
                 self._inbound.forget(self.sliders.values())
                 self._joints_folder.remove()
@@ -189,6 +207,7 @@ class RobotView:
                                     load_meshes=True, load_collision_meshes=model.has_collision,
                                     collision_mesh_color_override=COLLISION_RGBA)
             self._add_frames(model)
+            self._add_markers(model)
             self._add_sliders(model, kept)
             self._pose()
             self._apply_visibility()
@@ -203,6 +222,19 @@ class RobotView:
             self.frames[link.name] = self.server.scene.add_frame(
                 f"{FRAMES_NODE}/{index}", axes_length=0.15 * size, axes_radius=0.006 * size,
                 visible=False)
+
+    def _add_markers(self, model: ViewModel) -> None:
+        """A marker on every joint that moves (mimic joints too: they move with theirs)."""
+        size = _robot_size(model)
+        self.markers = {}
+        for index, joint in enumerate(model.urdf.robot.joints):
+            if joint.type not in MOVING:
+                continue
+            axis = joint.axis if joint.axis is not None else (1.0, 0.0, 0.0)
+            points, colours = marker_segments(axis, joint.type, size)
+            self.markers[joint.name] = self.server.scene.add_line_segments(
+                f"{MARKERS_NODE}/{index}", points, colours, thickness=THICKNESS_PX,
+                thickness_units="screen")
 
     def _add_sliders(self, model: ViewModel, kept: dict[str, float]) -> None:
         self.sliders = {}
@@ -236,9 +268,9 @@ class RobotView:
                 self._robot.update_cfg(values)  # yourdfpy takes {joint name: value} too
             urdf = self.model.urdf
             for name, frame in self.frames.items():
-                pose = urdf.get_transform(name, urdf.base_link)
-                frame.wxyz = vtf.SO3.from_matrix(pose[:3, :3]).wxyz
-                frame.position = pose[:3, 3]
+                _place(frame, urdf.get_transform(name, urdf.base_link))
+            for name, marker in self.markers.items():  # in the joint's frame: its child's
+                _place(marker, urdf.get_transform(urdf.joint_map[name].child, urdf.base_link))
 
     def _add_ground(self, model: ViewModel) -> None:
         """A grid under the robot at start, with round spacing, for scale."""
@@ -274,23 +306,27 @@ class RobotView:
                                                       visible=False))
             copy.on_click(self._on_page(self.show_overrides_yaml, "showing the overrides"))
             for item in dims.ranges:
+                value = min(max(dims.value(item.name), item.low), item.high)
+                start, end, step = item.neighbourhood(value)
+                unit = "" if item.shown_unit in ("1", "count") else f" {item.shown_unit}"
                 slider = gui.add_slider(
-                    item.label, min=item.low, max=item.high, step=item.step,
-                    initial_value=min(max(dims.value(item.name), item.low), item.high),
-                    hint=f"{item.meaning} (default {item.default:g}, "
-                         f"{item.low:g} to {item.high:g})")
+                    item.label, min=start, max=end, step=step, initial_value=item.shown(value),
+                    hint=f"{item.meaning} (default {item.shown(item.default):g}{unit}; "
+                         f"the slider spans half to twice the value, the box takes any "
+                         f"value of {item.plausible})")
                 slider.on_update(self._inbound.guarded(
-                    lambda event, name=item.name: self._slid(name, event.target),
+                    lambda event, item=item: self._slid(item, event.target),
                     f"setting dimension {item.name!r}"))
-                self.dimension_sliders[item.name] = accept(slider)
+                self.dimension_sliders[item.name] = accept(slider, bounds=item.bounds())
+                self._dimension_items[item.name] = item
 
-    def _slid(self, name: str, slider) -> None:
+    def _slid(self, item, slider) -> None:
         # Dragging sends values faster than the robot builds: each callback, once its turn
         # comes, builds the slider's newest value, and the ones queued behind it see it built.
         with self._dimension_lock:
-            value = slider.value
-            if value != self.dimensions.value(name):
-                self.set_dimension(name, value)
+            shown = slider.value
+            if shown != item.shown(self.dimensions.value(item.name)):
+                self.set_dimension(item.name, shown * item.factor)
 
     def set_dimension(self, name: str, value: float) -> McarError | None:
         """Rebuild with dimension ``name`` at ``value``, validated as ``--set`` is. A value
@@ -307,6 +343,7 @@ class RobotView:
             error = self.rebuild(lambda: dims.load(values))
             if error is not None:
                 return self._refuse_dimension(name, error)
+            self._span(name)
             if self.overrides_yaml is not None and self.overrides_yaml.visible:
                 self.show_overrides_yaml()
             return None
@@ -316,9 +353,19 @@ class RobotView:
             self.errors = error_lines(error)
             self._set_status()
         slider = self.dimension_sliders.get(name)
-        if slider is not None:
-            slider.value = self.dimensions.value(name)
+        if slider is not None:  # put back (a typed value may have been past its end)
+            self._span(name)
+            slider.value = self._dimension_items[name].shown(self.dimensions.value(name))
         return error
+
+    def _span(self, name: str) -> None:
+        """A dimension built at a value past its slider's ends (typed in the box): the
+        slider spans the neighbourhood of that value instead. (Its value is left alone:
+        a drag may have sent newer ones, which are on their way.)"""
+        slider, item = self.dimension_sliders.get(name), self._dimension_items.get(name)
+        value = self.dimensions.value(name)
+        if slider is not None and not slider.min <= item.shown(value) <= slider.max:
+            slider.min, slider.max, slider.step = item.neighbourhood(value)
 
     def show_overrides_yaml(self) -> str:
         """Show the overrides as a ``--config`` file in the page, to copy from (a page
@@ -352,6 +399,22 @@ class RobotView:
             self.reloads += 1
             self.show(model)
         return None
+
+
+def _place(node, pose: np.ndarray) -> None:
+    node.wxyz = vtf.SO3.from_matrix(pose[:3, :3]).wxyz
+    node.position = pose[:3, 3]
+
+
+def error_box_html(lines: list[str]) -> str:
+    """The error lines as the page shows them: text, never markup (a message quotes the
+    files' names and contents), each line whole and wrapped.
+
+    (A markdown code block, as before, kept a long line on one row behind a scroll bar.)"""
+    if not lines:
+        return ""
+    text = html.escape("\n".join(lines), quote=True)
+    return f'<div class="mcar-errors" style="{ERROR_BOX_STYLE}">{text}</div>'
 
 
 def _no_share_url(*args, **kwargs) -> None:

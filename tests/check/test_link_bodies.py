@@ -26,7 +26,7 @@ ROBOT = "\n".join([
     f'<link name="e">{BAD}</link>',                             # 8: E113 again
     f'<link name="f">{HEAVY}</link>',                           # 9: as the root's, not root
     '<link name="g"><visual><geometry><box size="1 1 1"/></geometry>'
-    '<material name="blue"/></visual></link>',                  # 10: E116, blue undefined yet
+    '<material name="blue"/></visual></link>',                  # 10: W216, blue undefined yet
     '<link name="h"><visual><geometry><box size="1 1 1"/></geometry>'
     '<material name="blue"><color rgba="0 0 1 1"/></material></visual></link>',
     '<link name="i"><visual><geometry><box size="1 1 1"/></geometry>'
@@ -44,6 +44,6 @@ def test_repeated_link_contents_are_judged_in_their_own_role(cli, tmp_path):
     result = cli("check", "--format", "json", path)
     found = sorted((d["rule"], d["line"]) for d in
                    json.loads(result.stdout)["files"][0]["diagnostics"])
-    assert found == [("E113", 7), ("E113", 8), ("E116", 10), ("W202", 6), ("W206", 5),
-                     ("W208", 3)]
+    assert found == [("E113", 7), ("E113", 8), ("W202", 6), ("W206", 5), ("W208", 3),
+                     ("W216", 10)]
     assert result.exit_code == 1

@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from mobile_car.check.rules import RULES, markdown_table
+from mobile_car.check.rules import RETIRED, RULES, markdown_table
 
 TESTS = Path(__file__).resolve().parents[1]
 RULES_PAGE = TESTS.parent / "docs" / "rules.md"
@@ -39,3 +39,10 @@ def test_ids_are_stable_in_form_and_severity():
         assert rule.severity == {"E": "error", "W": "warning", "N": "note"}[rule_id[0]]
         assert re.fullmatch(r"[a-z0-9-]+", rule.name)
     assert len({rule.name for rule in RULES.values()}) == len(RULES)
+
+
+def test_a_retired_id_is_never_reused_and_names_its_successor():
+    assert not set(RETIRED) & set(RULES)
+    for old, new in RETIRED.items():
+        assert new in RULES and f"was {old}" in RULES[new].summary
+        assert f"**{old}**" in RULES_PAGE.read_text(encoding="utf-8")

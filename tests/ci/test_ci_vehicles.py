@@ -1,7 +1,7 @@
 """`mcar ci` never passes a vehicle it did not watch move: on packages generated under
 tmp_path, a skid-steer robot and an Ackermann car are simulated with their own scenarios,
-a mecanum base (a vehicle sim cannot drive) fails the run with the reason until the
-package's mcar.yaml opts it out, and an arm is "not a vehicle", said plainly."""
+a vehicle sim cannot drive (a fifth wheel on its centre line) fails the run with the
+reason until the package's mcar.yaml opts it out, and an arm is "not a vehicle", said plainly."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import re
 from xml.etree import ElementTree as ET
 
 import pytest
-from sim.robot_makers import ackermann, arm, mecanum, skid_steer
+from sim.robot_makers import ackermann, arm, centre_wheel, skid_steer
 
 PACKAGE_XML = """<?xml version="1.0"?>
 <package format="3"><name>{name}</name><version>0.0.1</version>
@@ -64,23 +64,22 @@ def test_skid_steer_and_ackermann_vehicles_are_simulated_with_their_scenarios(
 
 
 @pytest.fixture
-def mecanum_package(tmp_path):
+def odd_package(tmp_path):
     return make_package(tmp_path / "base_description", "base_description",
-                        {"mecanum.urdf": mecanum(), "arm.urdf": arm()})
+                        {"centre_wheel.urdf": centre_wheel(), "arm.urdf": arm()})
 
 
-def test_a_vehicle_sim_cannot_drive_fails_ci_with_the_reason(run_mcar, mecanum_package,
+def test_a_vehicle_sim_cannot_drive_fails_ci_with_the_reason(run_mcar, odd_package,
                                                              tmp_path):
-    result, found = ci(run_mcar, mecanum_package, tmp_path)
+    result, found = ci(run_mcar, odd_package, tmp_path)
     assert result.returncode == 1, result.stderr
-    reason = ("cannot drive this vehicle: omni or mecanum wheels (rollers "
-              "front_left_wheel_roller_1, front_left_wheel_roller_2")
-    assert f"mecanum.urdf: error: sim {reason}" in result.stderr
+    reason = "cannot drive this vehicle: a wheel on the centre line (centre_wheel_joint)"
+    assert f"centre_wheel.urdf: error: sim {reason}" in result.stderr
     assert "mcar.yaml sim: skip: {GLOB: REASON} opts a robot out" in result.stderr
-    drop = found[("mcar.sim.drop", "mecanum.urdf")]
+    drop = found[("mcar.sim.drop", "centre_wheel.urdf")]
     assert drop.find("failure") is None and drop.find("skipped") is None  # it stood
     for name in ("drive", "spin"):  # but nobody watched it move: failures, not skips
-        failure = found[(f"mcar.sim.{name}", "mecanum.urdf")].find("failure")
+        failure = found[(f"mcar.sim.{name}", "centre_wheel.urdf")].find("failure")
         assert failure is not None and failure.get("message").startswith(reason)
     # The arm has no wheels: not a vehicle, said so, and no failure.
     skipped = found[("mcar.sim", "arm.urdf")].find("skipped")
@@ -89,40 +88,40 @@ def test_a_vehicle_sim_cannot_drive_fails_ci_with_the_reason(run_mcar, mecanum_p
         "arm_1_joint (revolute), arm_2_joint (revolute), arm_3_joint (revolute))")
     assert "mcar: arm.urdf: not simulated: not a vehicle: no wheels" in result.stderr
     rows = {row.split()[0]: row for row in result.stdout.splitlines()[1:]}
-    assert rows["mecanum.urdf"].split()[5:] == ["cannot", "drive", "-", "FAILED", "(sim)"]
+    assert rows["centre_wheel.urdf"].split()[5:] == ["cannot", "drive", "-", "FAILED", "(sim)"]
     assert rows["arm.urdf"].split()[5:] == ["not", "a", "vehicle", "-", "ok"]
 
 
-def test_a_package_opts_a_robot_out_in_mcar_yaml_and_ci_prints_why(run_mcar, mecanum_package,
+def test_a_package_opts_a_robot_out_in_mcar_yaml_and_ci_prints_why(run_mcar, odd_package,
                                                                    tmp_path):
-    (mecanum_package / "mcar.yaml").write_text(
-        'sim:\n  skip:\n    "urdf/mecanum*.urdf": "mecanum rollers: driven on the real robot"\n')
-    result, found = ci(run_mcar, mecanum_package, tmp_path)
+    (odd_package / "mcar.yaml").write_text(
+        'sim:\n  skip:\n    "urdf/centre*.urdf": "a centre wheel: driven on the real robot"\n')
+    result, found = ci(run_mcar, odd_package, tmp_path)
     assert result.returncode == 0, result.stderr
-    assert ("mcar: mecanum.urdf: not simulated: mecanum rollers: driven on the real robot "
+    assert ("mcar: centre_wheel.urdf: not simulated: a centre wheel: driven on the real robot "
             "(mcar.yaml:2)") in result.stderr
-    skipped = found[("mcar.sim", "mecanum.urdf")].find("skipped")
-    assert skipped.get("message").startswith("not simulated: mecanum rollers")
+    skipped = found[("mcar.sim", "centre_wheel.urdf")].find("skipped")
+    assert skipped.get("message").startswith("not simulated: a centre wheel")
     assert not [key for key in found if key[0].startswith("mcar.sim.")]
     assert "  opted out  " in next(row for row in result.stdout.splitlines()
-                                   if row.startswith("mecanum.urdf"))
+                                   if row.startswith("centre_wheel.urdf"))
     # The opt-out is part of what a no-op run compares: removed, the robot fails again.
-    again = run_mcar("ci", mecanum_package, "--no-render", "--build-dir",
+    again = run_mcar("ci", odd_package, "--no-render", "--build-dir",
                      tmp_path / "report-build", cwd=tmp_path, timeout=300)
-    assert again.returncode == 0 and "mecanum rollers: driven on" in again.stderr
-    (mecanum_package / "mcar.yaml").unlink()
-    after = run_mcar("ci", mecanum_package, "--no-render", "--build-dir",
+    assert again.returncode == 0 and "a centre wheel: driven on" in again.stderr
+    (odd_package / "mcar.yaml").unlink()
+    after = run_mcar("ci", odd_package, "--no-render", "--build-dir",
                      tmp_path / "report-build", cwd=tmp_path, timeout=300)
     assert after.returncode == 1
-    assert "mecanum.urdf: error: sim cannot drive this vehicle" in after.stderr
+    assert "centre_wheel.urdf: error: sim cannot drive this vehicle" in after.stderr
 
 
-def test_a_mistake_in_mcar_yaml_stops_ci_before_anything_is_built(run_mcar, mecanum_package,
+def test_a_mistake_in_mcar_yaml_stops_ci_before_anything_is_built(run_mcar, odd_package,
                                                                   tmp_path):
-    (mecanum_package / "mcar.yaml").write_text("sim:\n  skipp: {}\n")
-    result = run_mcar("ci", mecanum_package, "--no-render", "--build-dir", tmp_path / "out",
+    (odd_package / "mcar.yaml").write_text("sim:\n  skipp: {}\n")
+    result = run_mcar("ci", odd_package, "--no-render", "--build-dir", tmp_path / "out",
                       cwd=tmp_path, timeout=300)
     assert result.returncode == 2
     assert result.stderr.strip().endswith(
-        "mcar.yaml:2: error: unknown key 'sim.skipp': sim takes skip")
+        "mcar.yaml:2: error: unknown key 'sim.skipp': sim takes skip, drive")
     assert not (tmp_path / "out").exists()

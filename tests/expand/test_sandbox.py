@@ -229,3 +229,34 @@ def test_render_of_several_files_bounds_every_expansion(run_mcar, tmp_path, repo
     assert "d.xacro: error: xacro did not finish within 3 s" in result.stderr
     assert not (tmp_path / "PWNED").exists()
     assert sorted(p.name for p in (tmp_path / "pictures").glob("*.png")) == ["a.png", "b.png"]
+
+
+@needs_landlock
+def test_a_fresh_mcar_finds_libseccomp_by_soname_and_runs_yaml_in_the_child(mcar_bin,
+                                                                             tmp_path):
+    """pyseccomp is imported without ctypes.util (no `ldconfig -p` process, no shutil or
+    subprocess: sandbox.import_pyseccomp), so nothing mapped libz into mcar by the way:
+    the sandboxed child, which Landlock keeps out of the system's library folder, must
+    still import PyYAML (at xacro's first $(...)), whose base64 needs libz. A real
+    process: the tests' launcher has preloaded both."""
+    package = tmp_path / "demo_pkg"
+    (package / "urdf").mkdir(parents=True)
+    (package / "package.xml").write_text("<package><name>demo_pkg</name></package>\n")
+    (package / "urdf" / "part.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="part"/></robot>\n')
+    robot = package / "urdf" / "robot.urdf.xacro"
+    robot.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                     '  <xacro:include filename="$(find demo_pkg)/urdf/part.xacro"/>\n'
+                     '</robot>\n')
+    done = subprocess.run([str(mcar_bin), "build", str(robot), "-o", "-"],
+                          capture_output=True, text=True, timeout=120, cwd=tmp_path,
+                          env={k: v for k, v in os.environ.items()
+                               if k not in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")})
+    assert done.returncode == 0, done.stderr
+    assert '<link name="part"/>' in done.stdout
+    spawned = subprocess.run(
+        [str(mcar_bin.parent / "python"), "-c",
+         "import sys\nfrom mobile_car.expand import sandbox\nsandbox.support()\n"
+         "print(sorted(m for m in ('ctypes.util', 'subprocess', 'shutil') "
+         "if m in sys.modules))"], capture_output=True, text=True, timeout=60)
+    assert spawned.stdout.strip() == "[]", spawned.stderr

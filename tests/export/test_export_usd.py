@@ -185,3 +185,25 @@ def test_rehanging_keeps_turned_children_in_place():
         for link in ("body", "arm", "tag"):
             assert after.get_transform(link, "root") == pytest.approx(
                 before.get_transform(link, "root"), abs=1e-12), link
+
+
+def test_a_usd_that_weighs_nothing_fails_verify_and_writes_nothing(run_mcar, tmp_path):
+    """urdf_tutorial's 06-flexible.urdf (no <inertial> anywhere) made a 0 kg USD that
+    --verify passed: its mass equalled the description's 0 kg. A physics asset of no mass
+    now fails; the same car with its masses verifies."""
+    from sim.robot_makers import massless, two_wheeler
+
+    (tmp_path / "ghost.urdf").write_text(massless(two_wheeler()))
+    result = run_mcar("export", "ghost.urdf", "--to", "usd", "-o", "out", "--verify",
+                      cwd=tmp_path)
+    assert result.returncode == 1
+    assert result.stderr.splitlines()[-1] == (
+        "out: error: total mass 0 kg: no rigid body of the stage has a mass (the description "
+        "gives no link an <inertial> mass), so a physics engine would make every mass up "
+        "from the colliders' volume")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["ghost.urdf"]
+    (tmp_path / "car.urdf").write_text(two_wheeler())
+    control = run_mcar("export", "car.urdf", "--to", "usd", "-o", "out", "--verify",
+                       cwd=tmp_path)
+    assert control.returncode == 0, control.stderr
+    assert "verified: mass 0.7 kg, the description's 0.7 kg" in control.stderr

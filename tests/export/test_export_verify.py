@@ -2,7 +2,7 @@
 exported from a copy of its packages under tmp, the copy then deleted, and the folder
 loaded by MuJoCo here (not by mcar): the total mass equals the URDF's (summed by this test
 from the URDF mcar build writes) within 0.1%, the moving joints are the URDF's, and the
-car settles on a floor and drives forward under its own actuators. Then the PR2-like
+car passes sim's scenarios (drop, drive, spin) under its own actuators. Then the PR2-like
 inertias: refused with every link named, or fixed by MuJoCo with one warning per link;
 and a tampered export that --verify's checks catch, naming what differs."""
 
@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import shutil
 
 import pytest
@@ -120,7 +121,7 @@ def test_a_real_robot_loads_with_its_packages_gone(exports, robot):
     code, stderr, mass, moving, folder = exports[robot]
     assert code == 0, stderr
     assert "verified: MuJoCo loads it from the folder alone" in stderr
-    assert "verified: drove" in stderr
+    assert "verified: drive passed as mcar sim judges it: distance error " in stderr
     _check_loaded(folder, mass, moving)
 
 
@@ -167,9 +168,9 @@ def test_inertias_that_break_the_triangle_inequality_are_named(run_mcar, tmp_pat
         "pr2ish.urdf: error: MuJoCo refuses the inertia of 2 links (arm_link, hand_link); "
         "--fix-inertia applies MuJoCo's own fixes (balanceinertia, inertia from geometry)",
         "  link arm_link: principal moments 0.001, 0.002, 0.01 kg m² break A + B >= C "
-        "(0.001 + 0.002 < 0.01)",
+        "(0.001 + 0.002 < 0.01) (pr2ish.urdf:39)",  # where each <inertia> is written
         "  link hand_link: principal moments 0.0001, 0.0001, 0.0003 kg m² break A + B >= C "
-        "(0.0001 + 0.0001 < 0.0003)"]
+        "(0.0001 + 0.0001 < 0.0003) (pr2ish.urdf:48)"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["pr2ish.urdf"]
 
 
@@ -237,7 +238,8 @@ def test_verify_names_a_mass_that_differs(tmp_path):
 
 def test_a_robot_that_tips_over_fails_verify_and_writes_nothing(run_mcar, tmp_path):
     """A 1 kg mast on a 0.7 kg two-wheeler (its mass from a 10 cm box of water) pitches the
-    car over: --verify says so at the folder asked for, and nothing is written."""
+    car over: --verify says so, as sim would, at the folder asked for, and nothing is
+    written."""
     mast = """
   <link name="mast_link"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
   </link>
@@ -248,6 +250,10 @@ def test_a_robot_that_tips_over_fails_verify_and_writes_nothing(run_mcar, tmp_pa
     result = run_mcar("export", "mast.urdf", "--to", "mjcf", "-o", "out", "--fix-inertia",
                       "--verify", cwd=tmp_path)
     assert result.returncode == 1
-    assert result.stderr.startswith("out: error: does not settle on the floor: after 1 s it "
-                                    "moves at ")
+    # Released in the pose it rests in, it stands, on the edge; it goes over as it drives.
+    assert result.stderr.startswith("out: error: drive failed as mcar sim judges it: ")
+    turned = re.search(r"heading change (\d+\.\d+) deg \(bound <= 2.00 deg\)", result.stderr)
+    assert float(turned.group(1)) > 90  # over on its back
+    assert result.stderr.endswith(" (spin failed too)\n")
+    assert len(result.stderr.splitlines()) == 1
     assert sorted(p.name for p in tmp_path.iterdir()) == ["mast.urdf"]

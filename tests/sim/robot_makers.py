@@ -234,6 +234,321 @@ def arm(links: int = 3) -> str:
     return "".join(parts)
 
 
+def heavy_wheels(wheel_mass: float = 1000.0) -> str:
+    """two_wheeler() whose wheels weigh ``wheel_mass`` kg each, their inertia scaled with
+    it (a TurtleBot3 burger's 28 g wheel typed as 1000 kg: every tensor stays physical)."""
+    import re
+
+    text = two_wheeler()
+
+    def scaled(link):
+        old = float(re.search(r'<mass value="([^"]+)"', link.group(0)).group(1))
+        return re.sub(r'(mass value|ixx|iyy|izz)="([^"]+)"',
+                      lambda m: f'{m.group(1)}="{float(m.group(2)) * wheel_mass / old:.6g}"',
+                      link.group(0))
+
+    return re.sub(r'<link name="wheel_(left|right)_link">.*?</link>', scaled, text,
+                  flags=re.DOTALL)
+
+
+# PMB2's antenna inertia as released (pmb2_description urdf/objects/antenna.urdf.xacro):
+# principal moments -3.5e-8, 3.5e-8, 9.1e-8 kg m², not positive definite.
+_ANTENNA = """
+  <joint name="antenna_joint" type="fixed">
+    <parent link="base_link"/><child link="antenna_link"/><origin xyz="-0.05 0 0.08"/>
+  </joint>
+  <link name="antenna_link">
+    <inertial><mass value="0.001"/>
+      <inertia ixx="2.371e-08" ixy="6.119e-08" ixz="1.179e-08" iyy="2.833e-08"
+        iyz="7.74e-09" izz="3.849e-08"/>
+    </inertial>
+  </link>"""
+
+# PR2's gripper gap (pr2_description urdf/gripper_v0/gripper.urdf.xacro): a frame with no
+# mass and no geometry at the end of a prismatic joint.
+_FINGER_FRAME = """
+  <joint name="gap_joint" type="prismatic">
+    <parent link="base_link"/><child link="gap_frame"/><origin xyz="0.05 0 0.08"/>
+    <axis xyz="0 1 0"/><limit effort="10" lower="0" upper="0.09" velocity="0.2"/>
+  </joint>
+  <link name="gap_frame"/>"""
+
+
+def non_positive_antenna() -> str:
+    """two_wheeler() carrying PMB2's antenna, whose tensor MuJoCo refuses."""
+    return two_wheeler(extra=_ANTENNA)
+
+
+def massless_frame() -> str:
+    """two_wheeler() carrying PR2's gripper-gap frame, moving without mass."""
+    return two_wheeler(extra=_FINGER_FRAME)
+
+
+# A swivel with a mass and an inertia of zeros, which MuJoCo refuses on a moving body.
+_ZERO_TENSOR = """
+  <joint name="swivel_joint" type="continuous">
+    <parent link="base_link"/><child link="swivel_link"/><origin xyz="0 0 0.09"/>
+    <axis xyz="0 0 1"/>
+  </joint>
+  <link name="swivel_link">
+    <inertial><mass value="0.01"/>
+      <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial>
+  </link>"""
+
+
+def zero_tensor_swivel() -> str:
+    """two_wheeler() with a swivel of 10 g whose inertia is all zeros."""
+    return two_wheeler(extra=_ZERO_TENSOR)
+
+
+def pr2_like_inertias() -> str:
+    """two_wheeler() with both of the above: PMB2's antenna and PR2's gripper-gap frame."""
+    return two_wheeler(extra=_ANTENNA + _FINGER_FRAME)
+
+
+def skid_plate(sag: float = 0.004) -> str:
+    """The two-wheeler with a skid plate fixed under its body just ahead of the axle, its
+    bottom ``sag`` m below the wheels' (negative: above them): a body lower than the
+    wheels rests on its belly."""
+    r = 0.033
+    size = (0.06, 0.08, 0.01)
+    plate = f"""
+  <joint name="plate_joint" type="fixed">
+    <parent link="base_link"/><child link="plate_link"/>
+    <origin xyz="0.05 0 {-r - sag + size[2] / 2:.6g}"/>
+  </joint>
+  <link name="plate_link">
+    <collision><geometry><box size="{size[0]:.6g} {size[1]:.6g} {size[2]:.6g}"/></geometry>
+    </collision>
+    <inertial><mass value="0.02"/>{box_inertia(0.02, *size)}</inertial>
+  </link>"""
+    return two_wheeler(extra=plate)
+
+
+def weak_motors(effort: float = 0.004) -> str:
+    """The two-wheeler whose wheel joints allow ``effort`` N·m (and 20 rad/s): too little
+    to turn its wheels at 10 rad/s against its own inertia in time."""
+    return two_wheeler(limit=f'<limit effort="{effort:g}" velocity="20"/>')
+
+
+def massless(robot: str) -> str:
+    """``robot`` with every <inertial> taken out: a visual-only description (as
+    urdf_tutorial's 06-flexible.urdf), which weighs nothing."""
+    import re
+
+    return re.sub(r"<inertial>.*?</inertial>", "", robot, flags=re.S)
+
+
+def _castor(name, parent, xyz, radius, mass, swivel_height):
+    """A castor: a continuous swivel about z (its fork, with collision geometry as MiR's)
+    ``swivel_height`` above the axle, over a free wheel on a continuous joint about y."""
+    x, y, z = xyz
+    fork_i = 0.4 * mass * radius * radius
+    return f"""
+  <joint name="{name}_swivel_joint" type="continuous">
+    <parent link="{parent}"/><child link="{name}_fork"/>
+    <origin xyz="{x:.6g} {y:.6g} {z + swivel_height:.6g}"/><axis xyz="0 0 1"/>
+  </joint>
+  <link name="{name}_fork">
+    <collision><origin xyz="0 0 {-swivel_height / 2:.6g}"/>
+      <geometry><box size="{radius:.6g} {radius:.6g} {swivel_height / 2:.6g}"/></geometry>
+    </collision>
+    <inertial><mass value="{mass:.6g}"/><inertia ixx="{fork_i:.6g}" ixy="0" ixz="0"
+      iyy="{fork_i:.6g}" iyz="0" izz="{fork_i:.6g}"/></inertial>
+  </link>""" + _wheel(name, f"{name}_fork", (-radius, 0, -swivel_height), radius,
+                      radius, mass)
+
+
+def castor_swivels(mass: float = 20.0, track: float = 0.4, radius: float = 0.06) -> str:
+    """MiR's shape: a box on two drive wheels in the middle and four castors at its
+    corners, each a continuous swivel (upright, its fork with collision geometry) over a
+    free castor wheel of half the drive wheels' radius."""
+    width, castor_r = 0.3 * radius, 0.5 * radius
+    wheel_mass, castor_mass = 0.05 * mass, 0.01 * mass
+    body_mass = mass - 2 * wheel_mass - 8 * castor_mass
+    body = (0.6, track - width - 0.04, 0.6 * radius)
+    parts = ['<?xml version="1.0"?>\n<robot name="castor_swivels">',
+             _body(body_mass, body, 0.2 * radius, axle=radius)]
+    for side, sign in (("left", 1), ("right", -1)):
+        parts.append(_wheel(f"{side}_wheel", "base_link", (0, sign * track / 2, 0), radius,
+                            width, wheel_mass))
+    for end, x in (("front", 0.25), ("back", -0.2)):
+        for side, sign in (("left", 1), ("right", -1)):
+            parts.append(_castor(f"{end}_{side}_castor", "base_link",
+                                 (x, sign * track / 3, castor_r - radius), castor_r,
+                                 castor_mass, 0.04))
+    parts.append("\n</robot>\n")
+    return "".join(parts)
+
+
+def bicycle_model(wheelbase: float = 0.5, track: float = 0.4, radius: float = 0.08,
+                  lift: float = 0.075) -> str:
+    """steer_bot's shape: an Ackermann car (:func:`ackermann`) with the virtual joints of
+    its bicycle model, the ones ackermann_steering_controller reads, on the centre line:
+    ``front_steer_joint`` (revolute about z at the front axle) and ``rear_wheel_joint``
+    (continuous, at the rear axle, its small wheel ``lift`` m off the floor)."""
+    small = radius / 4
+    knuckle_i = 0.4 * 0.05 * small * small
+    virtual = f"""
+  <joint name="front_steer_joint" type="revolute">
+    <parent link="base_link"/><child link="front_steer_link"/>
+    <origin xyz="{wheelbase / 2:.6g} 0 {radius:.6g}"/><axis xyz="0 0 1"/>
+    <limit lower="-0.6" upper="0.6" effort="20" velocity="3"/>
+  </joint>
+  <link name="front_steer_link">
+    <collision><geometry><cylinder radius="{small:.6g}" length="{small:.6g}"/></geometry>
+    </collision>
+    <inertial><mass value="0.05"/><inertia ixx="{knuckle_i:.6g}" ixy="0" ixz="0"
+      iyy="{knuckle_i:.6g}" iyz="0" izz="{knuckle_i:.6g}"/></inertial>
+  </link>""" + _wheel("rear_wheel", "base_link", (-wheelbase / 2, 0, small - radius + lift),
+                      small, small, 0.05)
+    return ackermann(wheelbase=wheelbase, track=track, radius=radius).replace(
+        "\n</robot>\n", virtual + "\n</robot>\n")
+
+
+ACKERMANN_CONTROLLER = """# as ackermann_steering_controller (ROS 1) reads it
+ackermann_steering_controller:
+  type: 'ackermann_steering_controller/AckermannSteeringController'
+  rear_wheel: 'rear_wheel_joint'
+  front_steer: 'front_steer_joint'
+  wheel_separation_h: 0.5
+  wheel_radius: 0.08
+"""
+
+
+def tricycle(mass: float = 5.0, wheelbase: float = 0.4, track: float = 0.3,
+             radius: float = 0.05) -> str:
+    """A box on two rear wheels and one front wheel on the centre line, steered by a
+    revolute joint about z: no drive kind mcar sim drives."""
+    width, wheel_mass = 0.3 * radius, 0.05 * mass
+    body_mass = mass - 3 * wheel_mass - 0.05
+    body = (wheelbase, track - width - 0.04, 0.6 * radius)
+    parts = ['<?xml version="1.0"?>\n<robot name="tricycle">',
+             _body(body_mass, body, 0.2 * radius, axle=radius)]
+    for side, sign in (("left", 1), ("right", -1)):
+        parts.append(_wheel(f"rear_{side}_wheel", "base_link",
+                            (-wheelbase / 2, sign * track / 2, 0), radius, width, wheel_mass))
+    parts.append(f"""
+  <joint name="front_steering_joint" type="revolute">
+    <parent link="base_link"/><child link="front_fork"/>
+    <origin xyz="{wheelbase / 2:.6g} 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-0.6" upper="0.6" effort="5" velocity="3"/>
+  </joint>
+  <link name="front_fork">
+    <inertial><mass value="0.05"/><inertia ixx="1e-5" ixy="0" ixz="0" iyy="1e-5" iyz="0"
+      izz="1e-5"/></inertial>
+  </link>""")
+    parts.append(_wheel("front_wheel", "front_fork", (0, 0, 0), radius, width, wheel_mass))
+    parts.append("\n</robot>\n")
+    return "".join(parts)
+
+
+def dummy_wheel(gap: float = 0.005) -> str:
+    """Hunter 2's shape: :func:`two_wheeler` and a small wheel on a continuous joint
+    beside the right drive wheel, ``gap`` m above the floor (a model of a sensor wheel,
+    never on the floor)."""
+    r = 0.01
+    return two_wheeler(extra=_wheel("dummy_wheel", "base_link", (-0.05, -0.05, r - 0.033 + gap),
+                                    r, 0.005, 0.005))
+
+
+def diff_drive_plugin(left: str, right: str) -> str:
+    """A ROS 2 gazebo_ros diff-drive plugin naming ``left`` and ``right`` joints."""
+    return f"""
+  <gazebo>
+    <plugin name="diff_drive" filename="libgazebo_ros_diff_drive.so">
+      <left_joint>{left}</left_joint>
+      <right_joint>{right}</right_joint>
+    </plugin>
+  </gazebo>"""
+
+
+PLANAR_MOVE = """
+  <gazebo>
+    <plugin name="object_controller" filename="libgazebo_ros_planar_move.so">
+      <command_topic>cmd_vel</command_topic>
+    </plugin>
+  </gazebo>"""
+
+
+def mecanum_wheels(mass: float = 10.0, wheelbase: float = 0.4, track: float = 0.4,
+                   radius: float = 0.06, wheel_mu: float | None = None,
+                   extra: str = "") -> str:
+    """A box on four plain cylinders (mecanum wheels as linorobot2 and ROSbot XL draw
+    them: no roller links); ``wheel_mu``: each wheel's <gazebo><mu1> (linorobot2: 0.01);
+    ``extra``: what declares them mecanum (PLANAR_MOVE), else nothing does."""
+    width = 0.5 * radius
+    wheel_mass = 0.05 * mass
+    body_mass = mass - 4 * wheel_mass
+    body = (wheelbase, track - width - 0.04, 0.6 * radius)
+    parts = ['<?xml version="1.0"?>\n<robot name="mecanum_wheels">',
+             _body(body_mass, body, 0.2 * radius, axle=radius)]
+    for end, x in (("front", wheelbase / 2), ("rear", -wheelbase / 2)):
+        for side, sign in (("left", 1), ("right", -1)):
+            name = f"{end}_{side}_wheel"
+            parts.append(_wheel(name, "base_link", (x, sign * track / 2, 0), radius, width,
+                                wheel_mass))
+            if wheel_mu is not None:
+                parts.append(f'\n  <gazebo reference="{name}_link"><mu1>{wheel_mu:g}</mu1>'
+                             f'<mu2>{wheel_mu:g}</mu2></gazebo>')
+    parts.append(extra + "\n</robot>\n")
+    return "".join(parts)
+
+
+def centre_wheel(mass: float = 20.0, radius: float = 0.1) -> str:
+    """A four-wheel skid-steer box with a fifth wheel on its centre line: a vehicle that
+    no drive kind fits (sim cannot drive it)."""
+    width = 0.25 * radius
+    return skid_steer(mass=mass, radius=radius, extra=_wheel(
+        "centre_wheel", "base_link", (0, 0, 0), radius, width, 0.05 * mass)).replace(
+        'name="skid_steer_4"', 'name="centre_wheel"')
+
+
+def mecanum_rings(mass: float = 10.0, wheelbase: float = 0.4, track: float = 0.4,
+                  radius: float = 0.06, rollers: int = 8, pattern: int = 1) -> str:
+    """A box on four mecanum hubs without collision geometry of their own, each carrying a
+    ring of ``rollers`` roller links (spheres) whose axes, at the bottom, lie at 45°: the
+    usual X pattern (``pattern`` 1: the front left and rear right rollers along (1, -1)),
+    or the O pattern (-1); ``pattern`` 0: rollers across the axle, omni wheels."""
+    width = 0.5 * radius
+    hub_mass, roller_mass = 0.04 * mass, 0.002 * mass
+    body_mass = mass - 4 * hub_mass - 4 * rollers * roller_mass
+    body = (wheelbase, track - width - 0.04, 0.6 * radius)
+    ball = 0.15 * radius
+    roller_i = 0.4 * roller_mass * ball * ball
+    parts = ['<?xml version="1.0"?>\n<robot name="mecanum_rings">',
+             _body(body_mass, body, 0.2 * radius, axle=radius)]
+    for end, x in (("front", wheelbase / 2), ("rear", -wheelbase / 2)):
+        for side, sign in (("left", 1), ("right", -1)):
+            name = f"{end}_{side}_wheel"
+            across = -pattern if (end == "front") == (side == "left") else pattern
+            parts.append(f"""
+  <joint name="{name}_joint" type="continuous">
+    <parent link="base_link"/><child link="{name}_link"/>
+    <origin xyz="{x:.6g} {sign * track / 2:.6g} 0"/><axis xyz="0 1 0"/>
+  </joint>
+  <link name="{name}_link">
+    <inertial><mass value="{hub_mass:.6g}"/>{_cylinder_y_inertia(hub_mass, radius, width)}
+    </inertial>
+  </link>""")
+            for number in range(rollers):
+                angle = 2 * math.pi * number / rollers
+                x_at, z_at = -(radius - ball) * math.sin(angle), -(radius - ball) * math.cos(angle)
+                parts.append(f"""
+  <joint name="{name}_roller_{number}" type="continuous">
+    <parent link="{name}_link"/><child link="{name}_roller_{number}_link"/>
+    <origin xyz="{x_at:.6g} 0 {z_at:.6g}" rpy="0 {angle:.6g} 0"/>
+    <axis xyz="{1 if pattern == 0 else 0.7071068} {0.7071068 * across:.6g} 0"/>
+  </joint>
+  <link name="{name}_roller_{number}_link">
+    <collision><geometry><sphere radius="{ball:.6g}"/></geometry></collision>
+    <inertial><mass value="{roller_mass:.6g}"/><inertia ixx="{roller_i:.6g}" ixy="0" ixz="0"
+      iyy="{roller_i:.6g}" iyz="0" izz="{roller_i:.6g}"/></inertial>
+  </link>""")
+    parts.append("\n</robot>\n")
+    return "".join(parts)
+
+
 def _ball(name, parent, xyz, radius, mass):
     x, y, z = xyz
     i = 0.4 * mass * radius * radius
@@ -292,11 +607,12 @@ def sprung(mass: float = 3.0, castor_below: float = 0.003, travel: float = 0.006
   <gazebo reference="wheel_drop_{side}_joint">
     <springStiffness>4000</springStiffness><springReference>{travel:.6g}</springReference>
   </gazebo>""")
-    # A heavy castor housing puts the centre of mass ahead of the axle, as Create 3's is.
     parts.append(_ball("front_caster", "base_link", (0.12, 0, ball - r - castor_below), ball,
-                       0.1 * mass))
+                       0.02 * mass))
     parts.append("\n</robot>\n")
-    return "".join(parts)
+    # The body's mass 20 mm ahead of the axle, as Create 3's is: it leans on its castor.
+    return "".join(parts).replace('<inertial><origin xyz="0 0 ',
+                                  '<inertial><origin xyz="0.02 0 ', 1)
 
 
 def fixed_wheels(gap: float = 0.0001) -> str:

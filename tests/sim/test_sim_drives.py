@@ -1,9 +1,9 @@
 """mcar sim's drive kinds on robots made at test time (tests/sim/robot_makers.py): a
 four- and a six-wheel skid-steer robot, an Ackermann car driven by its rear wheels and one
-driven by all four (a <transmission> on each), a mecanum base. Each is named with its
-wheel groups and proven by its own scenarios against figures the test computes from the
-geometry it chose; --drive and --left/--right pick what the tree allows, and refuse what
-it does not."""
+driven by all four (a <transmission> on each), a mecanum base with roller links (plain
+cylinders: test_sim_mecanum.py). Each is named with its wheel groups and proven by its
+own scenarios against figures the test computes from the geometry it chose; --drive and
+--left/--right pick what the tree allows, and refuse what it does not."""
 
 from __future__ import annotations
 
@@ -204,17 +204,18 @@ def test_what_the_tree_does_not_allow_is_a_usage_error(cli, robots, robot, args,
     assert message in result.stderr
 
 
-def test_a_mecanum_base_stands_and_says_what_was_not_simulated(reports):
+def test_a_mecanum_base_with_roller_links_is_driven_as_mecanum(reports):
+    # Its two rollers a wheel make the kind plain (rollers on the wheels' rims) but no
+    # rolling surface, nor an X pattern: the wheels grip at 45° in the usual X pattern.
     code, stderr, entry = reports["mecanum"]
     assert code == 0, stderr
-    assert entry["drive"] is None
-    assert entry["why_no_drive"].startswith(
-        "omni or mecanum wheels (rollers front_left_wheel_roller_1, front_left_wheel_roller_2,")
-    assert entry["why_no_drive"].endswith(
-        "turn about the wheels): not a drive kind mcar sim drives (differential, skid-steer, "
-        "ackermann)")
+    assert entry["drive"]["kind"] == "mecanum"
+    assert entry["drive"]["declared"] == "rollers on the wheels' rims"
+    assert entry["drive"]["grip_from"] == ("the usual X pattern (the roller links make no X "
+                                           "or O pattern)")
+    assert entry["drive"]["castors"] == []  # its rollers are its wheels', not castors
     assert [(s["name"], s["status"]) for s in entry["scenarios"]] == \
-        [("drop", "passed"), ("drive", "skipped"), ("spin", "skipped")]
+        [("drop", "passed"), ("drive", "passed"), ("strafe", "passed"), ("spin", "passed")]
 
 
 PACKAGE_XML = ('<?xml version="1.0"?><package format="3"><name>{}</name><version>0.0.1'

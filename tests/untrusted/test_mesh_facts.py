@@ -9,8 +9,10 @@ where a record should be, is passed over."""
 from __future__ import annotations
 
 import json
+import math
 import os
 import shutil
+import struct
 import subprocess
 import sys
 from pathlib import Path
@@ -34,6 +36,20 @@ print(json.dumps({"extents": result.extents,
 """
 
 
+def _stl(path: Path, triangles: int, corner=(0.4, 0.2, 0.1)) -> Path:
+    """A binary STL of ``triangles`` copies of one triangle spanning a box from the origin
+    to ``corner``, its header starting "solid" as an ASCII STL's does."""
+    x, y, z = corner
+    record = struct.pack("<12x9f2x", 0, 0, 0, x, y, 0, 0, 0, z)
+    path.write_bytes(b"solid but binary".ljust(80) + struct.pack("<I", triangles) +
+                     record * triangles)
+    return path
+
+
+# Above what a run reads without records (mesh_facts.DIRECT_TRIANGLES): recorded.
+LARGE = 10_001
+
+
 def _robot(folder: Path, mesh: str) -> Path:
     robot = folder / "r.urdf"
     robot.write_text(f'<robot name="r"><link name="a"><visual><geometry><mesh filename='
@@ -49,9 +65,12 @@ def _check(robot: Path, cache: Path) -> dict:
     return json.loads(done.stdout)
 
 
-@pytest.mark.parametrize("mesh", ["box_mm.dae", "solid_header.stl"])
+@pytest.mark.parametrize("mesh", ["box_mm.dae", "large.stl"])
 def test_the_second_check_reads_no_mesh(tmp_path, mesh):
-    shutil.copy(MESHES / mesh, tmp_path / mesh)
+    if mesh.endswith(".stl"):
+        _stl(tmp_path / mesh, LARGE)
+    else:
+        shutil.copy(MESHES / mesh, tmp_path / mesh)
     robot = _robot(tmp_path, mesh)
     first = _check(robot, tmp_path / "cache")
     assert first["read"] and first["extents"] == pytest.approx([0.4, 0.2, 0.1])
@@ -127,7 +146,7 @@ def test_control_the_same_record_under_the_user_s_key_is_believed(tmp_path):
 
 
 def test_a_damaged_record_or_a_fifo_in_its_place_is_passed_over(tmp_path):
-    shutil.copy(MESHES / "solid_header.stl", tmp_path / "part.stl")
+    _stl(tmp_path / "part.stl", LARGE)
     robot = _robot(tmp_path, "part.stl")
     cache = tmp_path / "cache"
     _check(robot, cache)
@@ -138,3 +157,39 @@ def test_a_damaged_record_or_a_fifo_in_its_place_is_passed_over(tmp_path):
     record.unlink()
     os.mkfifo(record)
     assert _check(robot, cache)["extents"] == pytest.approx([0.4, 0.2, 0.1])  # no wait
+
+
+def test_a_small_binary_stl_is_read_with_no_record_and_no_keeper(tmp_path):
+    """Believing a record needs the seal keeper, a new process: a small binary STL is
+    read instead (without numpy), and no key, keeper or record is made for it."""
+    shutil.copy(MESHES / "solid_header.stl", tmp_path / "part.stl")
+    robot = _robot(tmp_path, "part.stl")
+    for _run in range(2):
+        assert _check(robot, tmp_path / "cache") == {
+            "extents": pytest.approx([0.4, 0.2, 0.1]), "rules": [], "read": []}
+    assert not (tmp_path / "cache").exists()
+
+
+def test_control_a_large_binary_stl_is_recorded(tmp_path):
+    _stl(tmp_path / "part.stl", LARGE)
+    assert _check(_robot(tmp_path, "part.stl"), tmp_path / "cache")["read"] == ["numpy"]
+    assert len(list((tmp_path / "cache" / "mesh-facts").glob("*.json"))) == 1
+    assert (tmp_path / "cache" / "record-key").is_file()
+
+
+@pytest.mark.parametrize("corner", [(0.4, -0.2, 3e38), (0.4, math.nan, 0.1),
+                                    (math.inf, 0.2, 0.1)])
+def test_the_small_stl_box_is_numpy_s(tmp_path, corner):
+    """The box read in Python is the one numpy finds, a NaN or an infinity included
+    (then none: the mesh has no finite box)."""
+    np = pytest.importorskip("numpy")
+    from mobile_car.load import mesh_facts
+
+    path = _stl(tmp_path / "part.stl", 3, corner)
+    points = np.frombuffer(path.read_bytes()[84:], dtype=np.dtype(
+        {"names": ["c"], "formats": [("<f4", (9,))], "offsets": [12], "itemsize": 50}))
+    points = points["c"].reshape(-1, 3)
+    low, high = points.min(axis=0).tolist(), points.max(axis=0).tolist()
+    finite = all(map(math.isfinite, low + high))
+    expected = (tuple(low), tuple(high)) if finite else None
+    assert mesh_facts._small_stl_bounds(path, 3) == expected

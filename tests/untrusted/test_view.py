@@ -9,8 +9,10 @@ The real viser server runs on 127.0.0.1, port 0; the attacks are made with the
 
 from __future__ import annotations
 
+import html
 import http.client
 import math
+import os
 import shutil
 import socket
 import sys
@@ -303,3 +305,64 @@ def test_an_upload_against_a_control_is_dropped_unread(served, capfd):
         _until(lambda: served.joint_values()["shoulder"] == 1.0, "the joint did not move")
     assert served.server.gui._current_file_upload_states == {}
     assert _stderr_lines(capfd) == []
+
+
+def test_markup_in_an_error_message_is_shown_as_text(served):
+    """A file the viewer reloads is the attacker's: its names reach the page inside the
+    error message. The error box is HTML (so that it wraps): every character of the
+    message is text there, never an element, an attribute or a script."""
+    robot = next(path for path in served.model.files if path.name == "arm.urdf.xacro")
+    markup = "&lt;img src=x onerror=&quot;fetch('//evil.example.com')&quot;&gt;"
+    text = robot.read_text()
+    robot.write_text(text.replace('<child link="upper_arm"/>', f'<child link="{markup}"/>', 1))
+    stat = robot.stat()  # (a later stamp than the one recorded, even on a coarse clock)
+    os.utime(robot, ns=(stat.st_atime_ns, stat.st_mtime_ns + 10**9))
+    _, error = served.reload_if_changed()
+    assert error is not None
+    # The control: the message itself holds the markup, as the file wrote it.
+    quoted = "<img src=x onerror=\"fetch('//evil.example.com')\">"
+    assert any(quoted in line for line in served.errors), served.errors
+    box = served.error_box.content
+    assert "<img" not in box and "onerror=\"" not in box
+    assert html.escape(quoted, quote=True) in box
+    assert box.startswith('<div class="mcar-errors" ') and box.endswith("</div>")
+    assert box.count("<") == 2  # its own <div> and </div>, nothing of the file's
+
+
+def test_a_dimension_takes_its_plausible_range_from_the_page_and_nothing_past_it(repo,
+                                                                                 capfd):
+    """A dimension's box takes values past its slider's ends (the slider spans only the
+    neighbourhood of the value), but nothing outside the dimension's plausible range: the
+    page's values are still checked before they touch the robot."""
+    from mobile_car.load.inputs import RobotInput
+    from mobile_car.load.robot import LoadOptions
+    from mobile_car.view.dimensions import robot_dimensions
+    from mobile_car.view.model import load_model
+    from mobile_car.view.server import RobotView
+
+    inp, options = RobotInput(repo / "urdf" / "mobile_robot.xacro"), LoadOptions()
+    model = load_model(inp, options)
+    dimensions = robot_dimensions(inp, options, model)
+    view = RobotView(model, dimensions.load, host="127.0.0.1", port=0, dimensions=dimensions,
+                     warn=lambda text: print(text, file=sys.stderr))
+    try:
+        from mobile_car.view.inbound import refusal
+
+        wheel = view.dimension_sliders["wheel_radius"]
+        assert wheel.max == 0.065  # its slider; the range is 5 mm..0.5 m
+        # the check by the slider alone refuses 0.1; by the dimension's range, not 0.6
+        assert refusal(wheel, {"value": 0.1}) == "0.1 is not within 0.0162..0.065"
+        assert refusal(wheel, {"value": 0.6}, (0.005, 0.5)) == "0.6 is not within 0.005..0.5"
+        with _page(view.port) as page:
+            uuid = _slider(_scene(page), "wheel_radius (m)")["uuid"]
+            for bad in (0.6, 1e308, -0.01):
+                page.send(_update(uuid, {"value": bad}))
+            page.send(_update(uuid, {"value": 0.1}))  # past the slider, inside the range
+            # (viser applied it: a value the check refuses never reaches the slider)
+            _until(lambda: wheel.value == 0.1, "the value past the slider's end was not taken")
+        lines = _stderr_lines(capfd)
+        assert lines == ["mcar view: ignored what the page sent for the slider "
+                         "'wheel_radius (m)': 0.6 is not within 0.005..0.5 (more from it are "
+                         "ignored silently)"], lines
+    finally:
+        view.stop()

@@ -4,6 +4,7 @@ refuses keeps the last good robot, and the copied YAML is a file --config reads.
 
 from __future__ import annotations
 
+import html
 import json
 
 import pytest
@@ -37,12 +38,64 @@ def test_the_panel_has_a_slider_per_dimension_config_gives_a_range(car, run_mcar
     expected = {name: tuple(item["range"]) for name, item in table["dimensions"].items()
                 if "range" in item and name not in baked}
     sliders = car.dimension_sliders
-    assert {name: (s.min, s.max) for name, s in sliders.items()} == expected
+    assert set(sliders) == set(expected)
     assert not set(sliders) & (set(table["derived"]) | baked)
-    for name, slider in sliders.items():
-        assert slider.value == table["dimensions"][name]["value"]
-    assert sliders["wheel_radius"].step == 0.0005  # 0.5 mm
-    assert sliders["laser_samples"].step == 1
+    for item in car.dimensions.ranges:
+        slider, value = sliders[item.name], table["dimensions"][item.name]["value"]
+        low, high = expected[item.name]
+        # the box takes the plausible range, in the slider's unit
+        assert item.bounds() == (item.shown(low), item.shown(high))
+        assert slider.value == item.shown(value)
+        # the slider spans a neighbourhood of the value: half to twice it, within the range
+        assert item.shown(low) <= slider.min <= slider.value <= slider.max <= item.shown(high)
+        if low > 0:
+            assert slider.min <= item.shown(value) / 2 + slider.step
+            assert slider.max >= min(item.shown(value) * 2, item.shown(high)) - slider.step
+            assert slider.max / slider.min <= 4.2  # never the hundredfold of the range
+        assert (slider.max - slider.min) / slider.step >= 100  # a drag lands on round values
+    assert sliders["wheel_radius"].step == 0.0002  # 0.2 mm in 16.2..65 mm
+    assert sliders["laser_samples"].step == 2
+
+
+def test_a_slider_is_in_the_unit_config_xacro_writes_its_range_in(car):
+    items = {item.name: item for item in car.dimensions.ranges}
+    # motor_no_load_speed: rad/s in SI, written "10rpm..20000rpm": its slider is in rpm
+    speed = car.dimension_sliders["motor_no_load_speed"]
+    assert speed.label == "motor_no_load_speed (rpm)"
+    assert round(speed.value, 3) == 279.794  # 29.3 rad/s
+    assert (speed.min, speed.max, speed.step) == (138, 560, 2)
+    assert items["motor_no_load_speed"].bounds() == (10, 20000)
+    # plate_thickness "0.5mm..50mm": mm; wheel_radius "5mm..0.5m" (mixed): its SI unit
+    assert car.dimension_sliders["plate_thickness"].label == "plate_thickness (mm)"
+    assert car.dimension_sliders["plate_thickness"].value == 3.0
+    assert car.dimension_sliders["wheel_radius"].label == "wheel_radius (m)"
+    # 300 rpm on the slider is exactly --set motor_no_load_speed=300rpm
+    from mobile_car.config.spec import parse_set_options
+
+    speed.value = 300
+    assert car.errors == []
+    assert car.dimensions.values == parse_set_options(car.dimensions.spec,
+                                                      ["motor_no_load_speed=300rpm"])
+    # and the slider back at the default's rpm is no override (not 29.300000000000004)
+    speed.value = items["motor_no_load_speed"].shown(29.3)
+    assert car.dimensions.values == {}
+
+
+def test_a_value_typed_past_the_slider_s_end_is_taken_and_the_slider_follows(car):
+    wheel = car.dimension_sliders["wheel_radius"]
+    assert wheel.max == 0.065
+    # the page may send any value of the plausible range (the box), not only the slider's
+    from viser._messages import GuiUpdateMessage
+
+    inbound = car._inbound
+    assert inbound.admits(GuiUpdateMessage(wheel._impl.uuid, {"value": 0.1}))
+    assert not inbound.admits(GuiUpdateMessage(wheel._impl.uuid, {"value": 0.6}))
+    wheel.value = 0.1  # (as viser applies what the page sent)
+    assert car.errors == [] and _wheel_radius(car) == 0.1
+    assert (wheel.min, wheel.max, wheel.value) == (0.05, 0.2, 0.1)  # around the new value
+    # a drag within the slider leaves its span as it is
+    wheel.value = 0.15
+    assert (wheel.min, wheel.max) == (0.05, 0.2) and _wheel_radius(car) == 0.15
 
 
 def test_a_dimension_slider_rebuilds_the_robot_with_that_override(car):
@@ -65,7 +118,8 @@ def test_a_value_config_xacro_refuses_keeps_the_last_good_robot(car):
                "wheel_hub_length, wheel_hub_clearance) must be within plate_width / 2 "
                "(0.065 m)")
     assert car.errors == [message]
-    assert message in car.status.content and "showing the last good model" in car.status.content
+    assert html.escape(message) in car.error_box.content
+    assert "showing the last good model" in car.status.content
     assert car.model is shown and car.reloads == 1
     assert car.dimensions.values == {"wheel_radius": 0.04}
     assert car.dimension_sliders["track_width"].value == 0.165  # put back

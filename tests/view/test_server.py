@@ -3,6 +3,7 @@ an edit that does not build keeps the last good robot on the page with its error
 
 from __future__ import annotations
 
+import html
 import math
 import os
 
@@ -52,6 +53,29 @@ def test_a_slider_turns_its_link_and_the_mimic_joint_follows(served):
     assert np.allclose(frames["forearm"].position, expected, atol=1e-6)
 
 
+def test_every_moving_joint_has_a_marker_that_turns_with_it(served):
+    from mobile_car.view.markers import AXIS_RGB, SPOKE_RGB
+
+    markers = served.markers
+    assert list(markers) == ["shoulder", "elbow", "wrist"]  # the mimic joint moves too
+    assert all(marker.visible for marker in markers.values())  # on from the start
+    shoulder = markers["shoulder"]
+    segments = np.asarray(shoulder.points)
+    # along the shoulder's axis (y) through the joint, then a spoke square to it at each end
+    axis = segments[0]
+    assert np.allclose(axis[:, [0, 2]], 0) and axis[1, 1] == -axis[0, 1] > 0
+    for start, end in segments[1:]:
+        assert np.allclose(start[[0, 2]], 0) and np.allclose((end - start)[:2], 0)
+    assert [tuple(c[0]) for c in np.asarray(shoulder.colors)] == [AXIS_RGB] + [SPOKE_RGB] * 2
+    # In the child's frame: it turns with the upper arm (and the elbow's with the forearm).
+    served.sliders["shoulder"].value = 0.5
+    assert np.allclose(_rotation(shoulder), _about_y(0.5), atol=1e-6)
+    assert np.allclose(_rotation(markers["elbow"]), _about_y(0.5 - 1.0), atol=1e-6)
+    assert np.allclose(markers["elbow"].position, served.frames["forearm"].position)
+    served.show_markers.value = False
+    assert not any(marker.visible for marker in markers.values())
+
+
 def test_reset_puts_every_joint_back_to_zero(served):
     served.sliders["shoulder"].value = -1.0
     served.sliders["wrist"].value = 2.0
@@ -92,12 +116,14 @@ def test_an_edit_that_does_not_build_keeps_the_last_good_robot(served, arm_copy)
     assert len(served.errors) == 1
     assert served.errors[0].startswith(f"{macro}:") and served.errors[0].endswith("[E140]")
     assert "mismatched tag" in served.errors[0]
-    assert served.errors[0] in served.status.content
+    assert html.escape(served.errors[0]) in served.error_box.content  # (as text: escaped)
+    assert served.error_box.visible
     assert "showing the last good model" in served.status.content
     # Mended, it reloads and the error goes.
     _edit(macro, "</robt>", "</robot>")
     assert served.reload_if_changed() == ([macro], None)
     assert served.errors == [] and "last good" not in served.status.content
+    assert not served.error_box.visible and served.error_box.content == ""
 
 
 def test_an_edit_that_check_rejects_shows_check_s_diagnostic(served, arm_copy):

@@ -1,0 +1,222 @@
+"""The `floor` section of bench/run.py: issue 41's three speed ratios, each mcar command
+run in turn with its yardstick (A B A B ...), the ratio taken pair by pair, so that a
+change in the load of a shared machine falls on both sides of every ratio alike.
+
+* `mcar check` of the car's URDF, cold, over `python -c "import click, lxml.etree"` (the
+  same interpreter): the floor under any Python command that uses click and lxml;
+* `mcar check` of the 20,000-link trees (bench/generate.py) over check_urdf;
+* `mcar build` of TurtleBot3, Husky and PR2, sandbox on, over the plain `xacro` command
+  (packages found through an ament prefix, as in the build section); both write to
+  /dev/null, which no run can call up to date, so every run expands.
+
+Each row shows CPU time (user + system of the command and every process it waited for,
+from wait4) and wall time; the target is judged on CPU, which the load of other processes
+on a shared machine moves far less than wall time.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import statistics
+import subprocess
+import sys
+import threading
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import generate  # noqa: E402
+from measure import (  # noqa: E402
+    MCAR,
+    REPO,
+    RUN_TIMEOUT_S,
+    XACRO,
+    exit_text,
+    fmt_time,
+    notes_for,
+    progress,
+)
+from sim_robots_bench import real_robots  # noqa: E402
+
+CHECK_TARGET, TREE_TARGET, BUILD_TARGET = 1.25, 1.2, 1.3
+PR2_FOLDER = "PR2+pr2_common"  # a checkout of PR2/pr2_common (pr2_description inside)
+
+
+@dataclass
+class Pairs:
+    """Runs of a command (A) and its yardstick (B), in turn."""
+
+    a_cpu: list[float] = field(default_factory=list)
+    a_wall: list[float] = field(default_factory=list)
+    b_cpu: list[float] = field(default_factory=list)
+    b_wall: list[float] = field(default_factory=list)
+    codes: list[tuple] = field(default_factory=list)
+
+    @property
+    def ok(self) -> bool:
+        return bool(self.codes) and all(code == (0, 0) for code in self.codes)
+
+    def ratio(self, kind: str) -> float:
+        """The median of the pairs' A/B ratios of ``kind`` (cpu or wall)."""
+        a, b = getattr(self, f"a_{kind}"), getattr(self, f"b_{kind}")
+        return statistics.median(x / y for x, y in zip(a, b, strict=True) if y > 0)
+
+
+def run_cpu(cmd: list[str], env=None) -> tuple[float, float, int | None]:
+    """Wall and CPU seconds of one run of ``cmd`` (output to /dev/null), and its exit code
+    (None: killed at the time bound). The CPU time is wait4's: the command's own and that
+    of every process it waited for (mcar's xacro child)."""
+    start = time.perf_counter()
+    process = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                               stdin=subprocess.DEVNULL, env=env)
+    timer = threading.Timer(RUN_TIMEOUT_S, process.kill)
+    timer.start()
+    _pid, status, usage = os.wait4(process.pid, 0)
+    wall = time.perf_counter() - start
+    timed_out = not timer.is_alive()
+    timer.cancel()
+    process.returncode = code = os.waitstatus_to_exitcode(status)
+    return wall, usage.ru_utime + usage.ru_stime, None if timed_out else code
+
+
+def measure_pairs(a_cmd: list[str], b_cmd: list[str], runs: int, b_env=None,
+                  budget_s: float = 120) -> Pairs:
+    """One untimed run of each, then up to ``runs`` pairs (fewer past ``budget_s``)."""
+    run_cpu(a_cmd)
+    run_cpu(b_cmd, env=b_env)
+    pairs = Pairs()
+    started = time.perf_counter()
+    for _ in range(runs):
+        a_wall, a_cpu, a_code = run_cpu(a_cmd)
+        b_wall, b_cpu, b_code = run_cpu(b_cmd, env=b_env)
+        pairs.a_wall.append(a_wall)
+        pairs.a_cpu.append(a_cpu)
+        pairs.b_wall.append(b_wall)
+        pairs.b_cpu.append(b_cpu)
+        pairs.codes.append((a_code, b_code))
+        if time.perf_counter() - started > budget_s or None in (a_code, b_code):
+            break
+    return pairs
+
+
+def _row(label: str, peer: str, pairs: Pairs, target: float) -> str:
+    if not pairs.ok:
+        codes = exit_text([a for a, _ in pairs.codes]), exit_text([b for _, b in pairs.codes])
+        return f"| {label} | {peer} | - | - | - | - | exit {codes[0]} / {codes[1]} | - |"
+    cpu, wall = pairs.ratio("cpu"), pairs.ratio("wall")
+    median = statistics.median
+    return (f"| {label} | {peer} | {fmt_time(median(pairs.a_cpu))} / "
+            f"{fmt_time(median(pairs.b_cpu))} | **{cpu:.2f}x** | "
+            f"{fmt_time(median(pairs.a_wall))} / {fmt_time(median(pairs.b_wall))} | "
+            f"{wall:.2f}x | {len(pairs.codes)} | "
+            f"{'met' if cpu <= target else '**missed**'} (<= {target:g}x) |")
+
+
+def _package_prefix(root: Path, folders: list[Path]) -> dict:
+    """An environment in which the plain xacro command finds every package under
+    ``folders`` the ROS 2 way (``$(find)`` asks ament_index_python): a shim of that module
+    and a prefix whose share/NAME links each package folder, NAME from its package.xml."""
+    shim = root / "shim" / "ament_index_python"
+    shim.mkdir(parents=True)
+    (shim / "__init__.py").write_text("")
+    (shim / "packages.py").write_text(
+        "import os\n"
+        "def get_package_share_directory(name):\n"
+        "    for prefix in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep):\n"
+        "        share = os.path.join(prefix, 'share', name)\n"
+        "        if os.path.isfile(os.path.join(share, 'package.xml')):\n"
+        "            return share\n"
+        "    raise LookupError(name)\n")
+    share = root / "prefix" / "share"
+    share.mkdir(parents=True)
+    for folder in folders:
+        for manifest in sorted(folder.rglob("package.xml")):
+            name = re.search(r"<name>\s*([^<\s]+)\s*</name>", manifest.read_text())
+            if name and not (share / name.group(1)).exists():
+                (share / name.group(1)).symlink_to(manifest.parent)
+    return {**os.environ, "PYTHONPATH": str(root / "shim"),
+            "AMENT_PREFIX_PATH": str(root / "prefix")}
+
+
+def _beside_checkouts(name: str, env_name: str) -> Path | None:
+    """$``env_name``, else the folder ``name`` beside this checkout's parent folder (or the
+    main checkout's, for a git worktree), as sim_robots_bench finds the real robots."""
+    if os.environ.get(env_name):
+        return Path(os.environ[env_name])
+    shared = real_robots(REPO)
+    candidates = [REPO.parent / name]
+    if shared is not None:
+        candidates.append(shared.parent.parent / name)
+    return next((c for c in candidates if c.is_dir()), None)
+
+
+def _robots() -> tuple[list[tuple[str, Path, Path]], list[str]]:
+    """(label, --package-path folder, robot file) of the robots found, and what is not."""
+    found, missing = [], []
+    shared = real_robots(REPO)
+    if shared is None:
+        missing.append("TurtleBot3 and Husky (no real-robots folder; set MCAR_REAL_ROBOTS)")
+    else:
+        found += [("TurtleBot3 burger (turtlebot3_burger.urdf)", shared,
+                   shared / "turtlebot3_description" / "urdf" / "turtlebot3_burger.urdf"),
+                  ("Husky (husky.urdf.xacro)", shared,
+                   shared / "husky_description" / "urdf" / "husky.urdf.xacro")]
+    pr2 = _beside_checkouts(f"vehicles/{PR2_FOLDER}", "MCAR_BENCH_PR2")
+    if pr2 is None:
+        missing.append(f"PR2 (no vehicles/{PR2_FOLDER} folder; set MCAR_BENCH_PR2 to a "
+                       "checkout of PR2/pr2_common)")
+    else:
+        found.append(("PR2 (pr2.urdf.xacro)", pr2,
+                      pr2 / "pr2_description" / "robots" / "pr2.urdf.xacro"))
+    return found, missing
+
+
+def section_floor(rows: list[str], work: Path, quick: bool) -> None:
+    runs = 1 if quick else 15  # --quick: a smoke test, small trees, one pair each
+    rows += ["## At the floor: mcar beside its yardsticks", "",
+             "Issue 41's speed targets. Each mcar command runs in turn with its yardstick, "
+             f"A B A B ... ({runs} pairs after one untimed run of each; fewer where a "
+             "budget of two minutes runs out), and each ratio is the median of the pairs' "
+             "ratios. *CPU*: user + system time of the command and every process it waited "
+             "for (wait4), the figure the target is judged on: the load of other processes "
+             "on a shared machine moves it far less than wall time. *mcar / peer*: the "
+             "medians of each. `mcar check` of the car is over `python -c \"import click, "
+             "lxml.etree\"` (the same interpreter); the trees over check_urdf; `mcar "
+             "build` (sandbox on) over the plain `xacro` command, both to /dev/null (no "
+             "run is a no-op), xacro finding the packages through an ament prefix.", "",
+             "| mcar command | yardstick | CPU, mcar / peer | CPU ratio | wall, mcar / peer "
+             "| wall ratio | pairs | target (CPU) |",
+             "|---|---|---:|---:|---:|---:|---:|---|"]
+    python = sys.executable
+    car = work / "mobile_robot.urdf"
+    subprocess.run([MCAR, "build", str(REPO / "urdf" / "mobile_robot.xacro"), "-o", str(car)],
+                   check=True, capture_output=True)
+    pairs = measure_pairs([MCAR, "check", str(car)],
+                          [python, "-c", "import click, lxml.etree"], runs * 2)
+    rows.append(_row("`mcar check` the car (mobile_robot.urdf)",
+                     "`python -c \"import click, lxml.etree\"`", pairs, CHECK_TARGET))
+    progress(f"floor: check the car {pairs.ratio('cpu') if pairs.ok else '-'}")
+    size = 500 if quick else 20000
+    for parts in generate.PARTS:
+        tree = work / f"tree_{parts}_{size}.urdf"
+        tree.write_text(generate.robot(size, "tree", parts))
+        pairs = measure_pairs([MCAR, "check", str(tree)], ["check_urdf", str(tree)],
+                              1 if quick else 7)
+        rows.append(_row(f"`mcar check` {size:,}-link tree, {parts}", "`check_urdf`",
+                         pairs, TREE_TARGET))
+        progress(f"floor: tree {parts} {pairs.ratio('cpu') if pairs.ok else '-'}")
+        tree.unlink()
+    robots, missing = _robots()
+    env = _package_prefix(work / "ament", [folder for _l, folder, _p in robots])
+    for label, folder, path in robots:
+        pairs = measure_pairs([MCAR, "build", "--package-path", str(folder), str(path),
+                               "-o", os.devnull],
+                              [XACRO, str(path), "-o", os.devnull], runs, b_env=env)
+        rows.append(_row(f"`mcar build` {label}", "`xacro`", pairs, BUILD_TARGET))
+        progress(f"floor: build {label} {pairs.ratio('cpu') if pairs.ok else '-'}")
+    rows.append("")
+    if missing:
+        rows += ["Not measured: " + "; ".join(missing) + ".", ""]
+    rows += notes_for("floor")

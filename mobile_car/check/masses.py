@@ -1,0 +1,112 @@
+"""E119 **mass-implausible**: masses no built robot has, which a simulator still drives.
+
+A URDF parser reads any mass; a typo of units or a digit (1000 kg for a 28 g TurtleBot3
+wheel) makes a robot that drives in simulation and nowhere else. Two tests, each wide
+enough that no released robot comes near it (the figures of the 24 robots tried are in
+docs/rules.md):
+
+* a part a continuous joint turns (a wheel) weighing over WHEEL_OVER_REST times the rest
+  of the robot (all of it but such parts): the heaviest wheels built weigh about as much
+  as the robot they carry (a hub motor's), not five times as much (the heaviest of 24
+  released robots tried: 0.36 times, Hunter 2's);
+* a density no material has: mass over the volume of its geometry above DENSEST kg/m³
+  (osmium, the densest element, is 22 590) or below LIGHTEST kg/m³ (air is 1.2; a foam is
+  30). The volume is its collision shapes' (its visual shapes' when it has none):
+  boxes, cylinders and spheres exactly, a mesh by the box around it, which can only be
+  larger, so "too dense" is said only when even the largest volume the shapes could
+  have is too small. "Too light" needs the smallest volume they could have, which only
+  a box, cylinder or sphere gives (a mesh may be a thin shell); it is said of a link
+  over TOKEN_MASS only, as a link of a gram or less is a token mass on a frame or a
+  sensor (Gazebo needs one), not a part someone weighed. Shapes that all fit in a
+  PLACEHOLDER cube are not judged either: released robots give their IMUs and sensor
+  mounts a 1 mm or 1 cm box and a real mass (PR2's accelerometers, Summit XL's laser
+  base, LIMO's IMU), a stand-in, not a claim about the part's size.
+
+Masses in kg, lengths in m.
+"""
+
+from __future__ import annotations
+
+from math import pi
+
+from .context import Reporter
+from .rest_pose import firsts, own_box, own_elements
+from .structure import moving_links
+
+WHEEL_OVER_REST = 5.0
+DENSEST = 25_000.0
+LIGHTEST = 1.0
+TOKEN_MASS = 0.001
+PLACEHOLDER = 0.02  # m: shapes that all fit in a cube of this side are a placeholder
+
+
+def check_masses(robot, tree, held: dict, mesh_bounds: dict, report: Reporter) -> None:
+    """E119 on every link ``held`` (link -> LinkShapes) with a mass."""
+    masses = {name: shapes.inertial[1] for name, shapes in held.items()
+              if shapes.inertial is not None and shapes.inertial[1] > 0}
+    total = sum(masses.values())
+    turned = {joint.child for joint in robot.joints if joint.type == "continuous"}
+    moving = moving_links(tree)
+    wheels = {name for name in masses if name in turned and name in moving}
+    # The robot the wheels carry: all of it but its wheels (two 1000 kg wheels must not
+    # each count the other as the robot).
+    rest = total - sum(masses[name] for name in wheels)
+    for name, mass in masses.items():
+        shapes = own_elements(held[name])
+        element = firsts(shapes.inertial[0]).get("mass", shapes.inertial[0])
+        if name in wheels and 0 < rest < mass / WHEEL_OVER_REST:
+            report.add("E119", element, f"link '{name}' turns on a continuous joint (a "
+                       f"wheel) and weighs {mass:g} kg, {mass / rest:.0f} times the "
+                       f"{rest:.3g} kg of the robot without its wheels: no wheel built is "
+                       f"over {WHEEL_OVER_REST:g} times its robot (a unit or a digit wrong?)")
+            continue
+        _density(name, mass, shapes, mesh_bounds, element, report)
+
+
+def _density(name: str, mass: float, shapes, mesh_bounds: dict, element,
+             report: Reporter) -> None:
+    bodies = [b for b in shapes.bodies if b[0] == "collision"] or shapes.bodies
+    kind = bodies[0][0] if bodies else None
+    largest, smallest = 0.0, 0.0  # the volume the shapes could have at most, at least
+    across = 0.0
+    for _kind, shape, _xyz, _rpy, dims in bodies:
+        tag = shape.tag
+        box = own_box(tag, dims, shape, mesh_bounds)
+        if box is None:
+            return  # a mesh of unknown size, a size not positive: no volume to judge by
+        low, high = box[1]
+        across = max(across, *(h - lo for lo, h in zip(low, high, strict=True)))
+        if tag == "mesh":
+            x, y, z = box[0]
+            largest += x * y * z
+            continue
+        volume = _volume(tag, dims)
+        largest += volume
+        smallest = max(smallest, volume)  # shapes may overlap: the largest one at least
+    if largest <= 0 or across < PLACEHOLDER:
+        return
+    if mass / largest > DENSEST:
+        report.add("E119", element, f"link '{name}': {mass:g} kg in its {kind} shapes of "
+                   f"{_litres(largest)} is {mass / largest:.3g} kg/m³ at least, denser than "
+                   f"any material (osmium: 22 590 kg/m³; the bound is {DENSEST:g}): a "
+                   "unit or a digit wrong?")
+    elif smallest > 0 and mass > TOKEN_MASS and mass / smallest < LIGHTEST:
+        report.add("E119", element, f"link '{name}': {mass:g} kg in its {kind} shapes of "
+                   f"{_litres(smallest)} or more is {mass / smallest:.3g} kg/m³ at most, "
+                   f"lighter than any solid (air: 1.2 kg/m³; the bound is {LIGHTEST:g}): "
+                   "a unit or a digit wrong?")
+
+
+def _volume(tag: str, dims: tuple) -> float:
+    """The volume of a box, cylinder or sphere of positive size (own_box said so)."""
+    if tag == "box":
+        x, y, z = dims
+        return x * y * z
+    if tag == "cylinder":
+        radius, length = dims
+        return pi * radius * radius * length
+    return 4 / 3 * pi * dims[0] ** 3
+
+
+def _litres(volume: float) -> str:
+    return f"{volume:.3g} m³" if volume >= 1e-3 else f"{volume * 1e6:.3g} cm³"

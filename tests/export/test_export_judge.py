@@ -1,0 +1,127 @@
+"""mcar export --to mjcf --verify judges the exported model as mcar sim judges the
+description: the same scenarios and bounds, so the same verdict and the same words. A
+car resting on a skid plate 4 mm below its wheels (pitched 2.3°, which the old
+"settles within 5°" check let through) and a car whose motors are too weak to reach its
+speed (14% short, which the old "half of r·ω·t" check let through) fail, each with one
+line, exit 1, and no folder written or replaced; the same car with its plate clear of
+the floor passes every scenario."""
+
+from __future__ import annotations
+
+import json
+import re
+
+import pytest
+from sim.robot_makers import skid_plate, weak_motors
+
+
+def _export(run_mcar, tmp_path, robot: str, out: str = "out"):
+    (tmp_path / "robot.urdf").write_text(robot)
+    return run_mcar("export", "robot.urdf", "--to", "mjcf", "-o", out, "--verify",
+                    cwd=tmp_path)
+
+
+def _sim_says(run_mcar, tmp_path, scenario: str) -> str:
+    """What mcar sim says of ``scenario`` on robot.urdf: its "failed:" line's reason."""
+    result = run_mcar("sim", "robot.urdf", cwd=tmp_path)
+    assert result.returncode == 1, result.stderr
+    prefix = f"robot.urdf: error: {scenario} failed: "
+    (line,) = [x for x in result.stderr.splitlines() if x.startswith(prefix)]
+    return line.removeprefix(prefix)
+
+
+def test_a_car_on_its_belly_fails_verify_with_sims_reason_and_writes_nothing(run_mcar,
+                                                                             tmp_path):
+    result = _export(run_mcar, tmp_path, skid_plate(sag=0.004))
+    assert result.returncode == 1
+    (line,) = result.stderr.splitlines()
+    prefix = "out: error: drop failed as mcar sim judges it: "
+    # Resting is what touches: the plate does, the wheels do not.
+    assert line.startswith(prefix + "not touching the floor: wheel_left_link, "
+                                    "wheel_right_link (drive wheels); resting on plate_link: "
+                                    "not a wheel or castor; ")
+    assert line.endswith(" (drive and spin failed too)")
+    reason = line.removeprefix(prefix).removesuffix(" (drive and spin failed too)")
+    assert reason == _sim_says(run_mcar, tmp_path, "drop")  # one judge, one verdict
+    # the tilt is small: the old check (settled within 5°) passed this car
+    pitch = float(re.search(r"pitch (\d+\.\d+) deg", reason).group(1))
+    assert 1.0 < pitch < 5.0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["robot.urdf"]
+
+
+def test_the_same_car_with_its_plate_off_the_floor_passes_every_scenario(run_mcar, tmp_path):
+    result = _export(run_mcar, tmp_path, skid_plate(sag=-0.005))
+    assert result.returncode == 0, result.stderr
+    for scenario in ("drop", "drive", "spin"):
+        assert f"mcar export: verified: {scenario} passed as mcar sim judges it: " \
+            in result.stderr
+    manifest = json.loads((tmp_path / "out/mcar-export.json").read_text())
+    assert any(line.startswith("drive passed as mcar sim judges it: distance error ")
+               for line in manifest["verified"])
+
+
+def test_a_car_that_drives_short_fails_verify_and_keeps_the_earlier_export(run_mcar,
+                                                                          tmp_path):
+    good = _export(run_mcar, tmp_path, skid_plate(sag=-0.005))
+    assert good.returncode == 0, good.stderr
+    before = {p.name: p.read_bytes() for p in (tmp_path / "out").iterdir()}
+    result = _export(run_mcar, tmp_path, weak_motors(effort=0.004))
+    assert result.returncode == 1
+    (line,) = result.stderr.splitlines()
+    prefix = "out: error: drive failed as mcar sim judges it: "
+    assert line.startswith(prefix + "drove short; likely cause: the motors' effort limit "
+                                    "(wheel_left_joint 0.004 N·m, wheel_right_joint 0.004 "
+                                    "N·m): at it for ")
+    assert line.removeprefix(prefix) == _sim_says(run_mcar, tmp_path, "drive")
+    # 85% of r·ω·t: the old check (between 50% and 110% of it) passed this car
+    error = float(re.search(r"distance error (\d+\.\d+) %", line).group(1))
+    assert 2.0 < error < 50.0
+    assert {p.name: p.read_bytes() for p in (tmp_path / "out").iterdir()} == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out", "robot.urdf"]
+
+
+def test_an_export_whose_motors_were_taken_out_fails_verify(tmp_path):
+    from export.test_export_verify import _invoke
+
+    from mobile_car.errors import McarError
+    from mobile_car.export.mjcf import Exported
+    from mobile_car.export.verify import verify_mjcf
+
+    (tmp_path / "robot.urdf").write_text(skid_plate(sag=-0.005))
+    assert _invoke("export", tmp_path / "robot.urdf", "--to", "mjcf", "-o",
+                   tmp_path / "out").exit_code == 0
+    document = json.loads((tmp_path / "out/mcar-export.json").read_text())
+    exported = Exported(**{k: document[k] for k in Exported.__dataclass_fields__})
+    assert verify_mjcf(tmp_path / "out", exported)[-1].startswith("spin passed as mcar sim")
+    xml = tmp_path / "out/two_wheeler.xml"
+    xml.write_text(re.sub(r"<actuator>.*</actuator>", "", xml.read_text(), flags=re.S))
+    with pytest.raises(McarError, match="drive joint wheel_left_joint has no actuator "
+                                        "mcar_motor_wheel_left_joint"):
+        verify_mjcf(tmp_path / "out", exported)
+    exported.drive["left"] = ["nope_joint"]
+    with pytest.raises(McarError, match="the manifest's drive does not fit the model: "
+                                        "--left/--right nope_joint: the robot has no joint "
+                                        "of that name"):
+        verify_mjcf(tmp_path / "out", exported)
+
+
+def test_a_steering_joint_with_equal_limits_is_judged_as_the_revolute_joint_it_is(run_mcar,
+                                                                                  tmp_path):
+    """Hunter 2 steers on revolute joints limited 0 to 0, which MuJoCo reads as hinges
+    without a range: the manifest's joint types keep them steering joints, not wheels."""
+    from sim.robot_makers import ackermann
+
+    from mobile_car.errors import McarError
+    from mobile_car.export.mjcf import Exported
+    from mobile_car.export.verify import verify_mjcf
+
+    result = _export(run_mcar, tmp_path, ackermann(steer_limit=0.0))
+    assert result.returncode == 0, result.stderr
+    assert "mcar export: verified: turn passed as mcar sim judges it: " in result.stderr
+    document = json.loads((tmp_path / "out/mcar-export.json").read_text())
+    assert document["joint_types"]["front_left_steering_joint"] == "revolute"
+    exported = Exported(**{k: document[k] for k in Exported.__dataclass_fields__})
+    exported.joint_types = {}  # read from MuJoCo's hinges alone: no steering joint found
+    with pytest.raises(McarError, match="the manifest's drive does not fit the model: "
+                                        "--drive ackermann: no steering joints"):
+        verify_mjcf(tmp_path / "out", exported)

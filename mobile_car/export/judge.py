@@ -25,6 +25,7 @@ def sim_model_of(mj, path, exported, label: str):
     manifest's drive (``exported.drive``), on a floor."""
     from ..sim.drives import choose_drive, find_tree
     from ..sim.model import SimModel, add_floor, lowest_points, resting_parts
+    from ..sim.resting import rest_pose
     from .mjcf import FREE_JOINT
 
     spec = mj.MjSpec.from_file(str(path))
@@ -65,10 +66,20 @@ def sim_model_of(mj, path, exported, label: str):
                                              drive.wheels)
     root = int(model.jnt_bodyid[model.joint(JUDGE_FREE_JOINT).id])
     height = float(model.qpos0[model.jnt_qposadr[model.joint(JUDGE_FREE_JOINT).id] + 2])
+    # The pose its geometry rests in, as sim finds it (leaning on a low castor); level,
+    # the height the export placed it at, to the last bit sim's (a run at a motor's limit
+    # amplifies 3e-10 m into millimetres).
+    wheels = [g for w in drive.wheels for g in w.geom_ids]
+    castors = set(parts.values())
+    supports = wheels + [g for g in range(model.ngeom) if model.geom_bodyid[g] in castors]
+    rest = rest_pose(mj, model, mj.MjData(model), root, supports, lowest_points)
+    if rest.roll == rest.pitch == 0.0:
+        rest.height = height - ground
     return SimModel(model=model, spec=spec, root=model.body(root).name, root_body=root,
-                    drive=drive, why_no_drive=None, rest_height=height - ground,
+                    drive=drive, why_no_drive=None, rest_height=rest.height,
                     ground_parts=parts, clearance=clearance,
-                    floor_geom=model.geom("mcar_floor").id, mass=float(model.body_mass.sum()))
+                    floor_geom=model.geom("mcar_floor").id, mass=float(model.body_mass.sum()),
+                    ground_geoms=wheels, support_geoms=supports, rest=rest)
 
 
 def judge(mj, path, exported, label: str) -> list[str]:

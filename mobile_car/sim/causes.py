@@ -28,6 +28,7 @@ GRAVITY = 9.81
 CASTOR_DRAG_SHARE = 0.02   # of the robot's weight
 EFFORT_TIME_SHARE = 0.1    # of the time watched
 SHORT_SHARE = 0.01         # of the distance: lag or slip below this is no cause
+JOINT_LOSS_SHARE = 0.5     # of a motor's effort: its joint's declared losses are named
 # The forces on the floor's parts are sampled every this many steps (10 ms): their means
 # over seconds need no more, and reading contacts costs as much as a step.
 CONTACT_EVERY = 10
@@ -121,7 +122,7 @@ def why_short(watch: Watch, moved: float, moved_what: str = "moved",
     if watch.clamped >= EFFORT_TIME_SHARE * watch.seconds and lag >= SHORT_SHARE:
         return (f"the motors' effort limit ({_efforts(watch.driven)}): at it for "
                 f"{watch.clamped:.2f} s of {watch.seconds:.2f} s; {rolling} "
-                f"({100 * lag:.1f}% short of the command)")
+                f"({100 * lag:.1f}% short of the command){_joint_losses(watch)}")
     if slip >= SHORT_SHARE and slip_counts:
         return (f"wheel slip: {rolling} ({100 * slip:.1f}% less than its wheels rolled), "
                 f"the motors below their effort limit; the tyres' friction "
@@ -132,6 +133,25 @@ def why_short(watch: Watch, moved: float, moved_what: str = "moved",
                 f"({100 * lag:.1f}% short); something holds them back (a contact, a "
                 f"joint limit, a load too heavy for the servo gain {gains} N·m·s/rad)")
     return None
+
+
+def _joint_losses(watch: Watch) -> str:
+    """Where the wheel joints' own declared ``<dynamics>`` (damping × the commanded
+    speed + friction) take JOINT_LOSS_SHARE of a motor's effort or more, the clause that
+    says so (PMB2: damping 1 N·m·s/rad and friction 2 N·m take 7.08 N·m at 5.08 rad/s,
+    over its 6 N·m), else ''."""
+    model = watch.run.model
+    found = []
+    for wheel in watch.driven:
+        dof = int(model.jnt_dofadr[wheel.joint_id])
+        damping, friction = float(model.dof_damping[dof]), float(model.dof_frictionloss[dof])
+        loss = damping * watch.omega + friction
+        if wheel.effort and loss >= JOINT_LOSS_SHARE * wheel.effort and loss > 0:
+            found.append(f"{wheel.joint}'s declared damping {damping:g} N·m·s/rad and "
+                         f"friction {friction:g} N·m take {loss:.3g} N·m at "
+                         f"{watch.omega:.3g} rad/s, {100 * loss / wheel.effort:.0f}% of its "
+                         f"{wheel.effort:g} N·m")
+    return "; " + "; ".join(dict.fromkeys(found)) if found else ""
 
 
 def _efforts(driven) -> str:

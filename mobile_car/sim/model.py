@@ -29,12 +29,22 @@ The simulation-only choices (docs/sim.md) are made here and nowhere else:
   and rolls freely across it (:mod:`.rollers`);
 * an Ackermann car's steering joints get a position servo stiff enough that a tyre's
   whole friction moves them by 0.3° at most (:func:`.servos.steering_gain`), within the joint's
-  effort limit; other revolute and prismatic joints (an arm, steering held straight
-  when the car is driven as another kind) are welded at 0: with no motor they would fold.
+  effort limit;
+* a revolute or prismatic joint between the body and a drive wheel (wheel drop,
+  suspension, a rocker) is a spring (:mod:`.springs`), started at its rest under the
+  robot's weight; other revolute and prismatic joints (an arm, steering held straight
+  when the car is driven as another kind) are welded at 0: with no motor they would
+  fold; a ``<mimic>`` of a welded joint is welded with it;
+* the castors are the parts other than the wheels within GROUND_TOLERANCE of the floor
+  named so (CASTOR_WORDS), else the lowest of them; the robot is released in the pose
+  its geometry rests in on its wheels and castors (:mod:`.resting`): leaning on a castor
+  lower than its wheels, not level with the castor in the floor (Kobuki, balanced on its
+  two wheels with both castors in the air, rocked and spun 254% too fast).
 """
 
 from __future__ import annotations
 
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -46,12 +56,30 @@ from ..errors import EXIT_PROBLEMS, InputError, McarError
 from .drives import Drive, actuated_joints
 from .engine import mujoco
 from .mecanum import urdf_declarations
+from .resting import RestPose, rest_pose
 from .rollers import Rollers, add_rollers, roller_bodies
 from .servos import DriveSources, add_motors, fit_drive
+from .springs import apply_springs, gazebo_joint_blocks, make_springs, sprung_joints
 
 TIMESTEP = 0.001
 # Above the floor by this much, a part does not rest on it (contacts, ground parts).
 GROUND_TOLERANCE = 0.003
+# Within this of the lowest part that is no wheel, parts are the robot's castors where none
+# is named one (a body that drags, TurtleBot3's box): what the geometry rests on.
+CASTOR_TIE = 0.001
+# A part named so is a castor (a ball, a skid) wherever it is: a few mm up, it is a
+# clearance, not a part that should touch.
+CASTOR_WORDS = ("castor", "caster", "ball")
+# The wheels' contact while dropped (time constant s, damping ratio): see resting_tyres.
+RESTING_SOLREF = [0.005, 1.0]
+# A part of <mu1> 0 touches through a frictionless contact (condim 1): MuJoCo's pyramid of
+# friction directions collapses at mu 0 onto the normal, four copies of one row, and the
+# solver went astray: a two-wheeler on frictionless wheels ended upside down in drop, and
+# Kobuki, whose castors say mu1 0, spun 254% faster than its wheels allow and drifted
+# 889 mm (thrown 12 m up at 0.95 s), or passed, as a 1e-17 rad tilt of its start decided.
+FRICTIONLESS = 0.0
+# rad: a revolute joint limited to ± this or more turns without end (swerve bases: 1e16)
+UNLIMITED = 1e6
 # mu of a castor whose description gives none: a ball that rolls freely, modelled as
 # sliding (the bundled car's caster_friction).
 CASTOR_FRICTION = 0.01
@@ -79,6 +107,11 @@ class SimModel:
     notes: list[str] = field(default_factory=list)
     mass: float = 0.0   # kg, the whole robot
     held: list[str] = field(default_factory=list)  # joints held still: not the drive's
+    springs: list = field(default_factory=list)  # Spring: suspension and wheel drop
+    start: dict[str, float] = field(default_factory=dict)  # joint -> its position at rest
+    ground_geoms: list[int] = field(default_factory=list)  # the geoms the rest height is of
+    support_geoms: list[int] = field(default_factory=list)  # ... and the castors': its pose
+    rest: RestPose | None = None  # how the geometry rests (leaning on a low castor)
     control: object = None  # skid-steer: its control package's ControlConfig, if found
     rollers: object = None  # mecanum: .rollers.Rollers, to align before every step
 
@@ -107,6 +140,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     robot's control package (:func:`.mecanum.yaml_declarations`)."""
     mj = mujoco()
     root = etree.fromstring(urdf, etree.XMLParser(resolve_entities=False, no_network=True))
+    read_as = as_urdfdom_reads(root)
     # The robot's own joints only: a <transmission> or <ros2_control> names joints too.
     joints = {j.get("name"): j for j in root if j.tag == "joint"}
     friction = gazebo_friction(root)
@@ -114,8 +148,9 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     # The motor figures' other sources, kept before _prepare takes them out of the tree.
     root_figures = [e for e in root if e.tag in ("gazebo", "ros2_control")]
     actuated = actuated_joints(root)
+    joint_blocks = gazebo_joint_blocks(root)
     mecanum = urdf_declarations(root) + list(mecanum)
-    notes = _prepare(root, base, search)
+    notes = read_as + _prepare(root, base, search)
     try:
         spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
     except ValueError as error:
@@ -138,6 +173,8 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
             if mu is not None:
                 geom.friction = [mu, geom.friction[1], geom.friction[2]]
                 geom.priority = 1
+                if mu <= 0:  # see FRICTIONLESS
+                    geom.condim = 1
     shape = _compile(spec, label)  # once with the description's own shapes, to look at
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)
@@ -147,15 +184,31 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
                            speed)
     wheels = drive.wheels if drive else []
     mass = float(shape.body_mass.sum())
-    if not _colliding(shape):
+    robot_geoms = _colliding(shape)
+    if not robot_geoms:
         raise SimModelError("no link has <collision> geometry: nothing can rest on the "
                             "floor, the robot would fall through it", file=label)
-    ground, parts, clearance = resting_parts(shape, lowest, wheels, data)
+    wheel_bodies = {w.body_id for w in wheels}
+    ground_geoms = [g for w in wheels for g in w.geom_ids] or robot_geoms
+    springs = _springs(mj, shape, data, joints, drive, joint_blocks, mass,
+                       _supports(shape, lowest, ground_geoms, robot_geoms, wheel_bodies))
+    start = {spring.joint: spring.rest for spring in springs}
+    if start:  # the geometry at rest: every spring at its rest under its share of weight
+        for name, position in start.items():
+            data.qpos[shape.jnt_qposadr[shape.joint(name).id]] = position
+        mj.mj_kinematics(shape, data)
+        lowest = lowest_points(mj, shape, data)
+    _ground, parts, clearance = resting_parts(shape, lowest, wheels, data)
+    castor_bodies = set(parts.values())
+    supports = ground_geoms + [g for g in robot_geoms if shape.geom_bodyid[g] in castor_bodies
+                               and g not in ground_geoms]
+    rest = rest_pose(mj, shape, data, root_body_id(shape), supports, lowest_points)
     rolling_contacts(mj, spec, drive, parts, friction)
     add_rollers(mj, spec, shape, drive, sources)
     add_motors(mj, spec, drive, mass)
     steering = drive.steering if drive else []
-    held = _hold_the_rest(spec, joints, drive)
+    apply_springs(mj, spec, springs)
+    held = _hold_the_rest(spec, joints, drive, {s.joint for s in springs})
     model = _compile(spec, label)
     for wheel in wheels:  # (ids of the final model: held joints are gone from it)
         wheel.joint_id = model.joint(wheel.joint).id
@@ -167,25 +220,107 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     aligned = Rollers(mj, model, drive) if drive and drive.kind == "mecanum" else None
     return SimModel(model=model, spec=spec, root=root_body.name,
                     root_body=model.body(root_body.name).id, drive=drive,
-                    why_no_drive=why, rest_height=-ground, ground_parts=parts, clearance=clearance,
+                    why_no_drive=why, rest_height=rest.height, ground_parts=parts,
+                    clearance=clearance,
                     floor_geom=model.geom("mcar_floor").id, notes=notes, mass=mass, held=held,
-                    rollers=aligned)
+                    springs=springs, start=start, ground_geoms=ground_geoms,
+                    support_geoms=supports, rest=rest, rollers=aligned)
 
 
-def _hold_the_rest(spec, joints: dict, drive) -> list[str]:
+def root_body_id(model) -> int:
+    """The robot's root: the world's first child."""
+    return next(b for b in range(1, model.nbody) if model.body_parentid[b] == 0)
+
+
+def _springs(mj, shape, data, joints, drive, blocks, mass, supports) -> list:
+    """The drive wheels' suspension and wheel-drop joints as springs (:mod:`.springs`)."""
+    if drive is None:
+        return []
+    ours = {s.joint for s in drive.steering} | {w.joint for w in drive.wheels}
+    names = sprung_joints(shape, data, joints, [w.body_id for w in drive.wheels], ours)
+    if not names:
+        return []
+    springs = make_springs(mj, shape, data, joints, names, drive.wheels, supports, mass,
+                           blocks, TIMESTEP)
+    mj.mj_kinematics(shape, data)  # (make_springs ran mj_forward: the same positions)
+    return springs
+
+
+def _supports(shape, lowest, ground_geoms, robot_geoms, wheel_bodies) -> int:
+    """How many parts share the robot's weight, every joint at 0: the wheels and the
+    bodies within GROUND_TOLERANCE of their floor."""
+    ground = min(lowest[g] for g in ground_geoms)
+    others = {int(shape.geom_bodyid[g]) for g in robot_geoms
+              if lowest[g] <= ground + GROUND_TOLERANCE} - wheel_bodies
+    return len(wheel_bodies) + len(others)
+
+
+def rest_after(sim: SimModel, data) -> RestPose:
+    """How the geometry rests with the joints where ``data`` has them (the springs'
+    travel after a drop)."""
+    mj = mujoco()
+    scratch = mj.MjData(sim.model)
+    scratch.qpos[:] = data.qpos
+    return rest_pose(mj, sim.model, scratch, sim.root_body, sim.support_geoms, lowest_points)
+
+
+def _hold_the_rest(spec, joints: dict, drive, springs: set[str]) -> list[str]:
     """Revolute and prismatic joints that are not the drive's (an arm, a lift, steering
-    held straight) are welded at 0, the pose check and render show: with no motor they
-    would fold under gravity. Continuous joints stay free (castor swivels, rollers, a
-    spinning sensor)."""
+    held straight) nor its ``springs`` are welded at 0, the pose check and render show:
+    with no motor they would fold under gravity. Continuous joints stay free (castor
+    swivels, rollers, a spinning sensor)."""
     ours = {s.joint for s in drive.steering} | {w.joint for w in drive.wheels} if drive \
         else set()
     held = [name for name, element in joints.items()
-            if element.get("type") in ("revolute", "prismatic") and name not in ours]
+            if element.get("type") in ("revolute", "prismatic") and name not in ours
+            and name not in springs]
+    # A <mimic> of a held joint is held with it: MuJoCo's importer made the mimic an
+    # equality naming both joints, and refuses a model whose equality names a joint gone.
+    for name, element in joints.items():
+        mimic = next((c for c in element if c.tag == "mimic"), None)
+        if mimic is not None and mimic.get("joint") in held and name not in held \
+                and name not in ours:
+            held.append(name)
+    for equality in list(spec.equalities):
+        if equality.name1 in held or equality.name2 in held:
+            spec.delete(equality)
     for name in held:
         joint = spec.joint(name)
         if joint is not None:
             spec.delete(joint)
     return held
+
+
+def as_urdfdom_reads(root) -> list[str]:
+    """Rewrite, in place, what urdfdom reads with a warning into the form it reads it in,
+    so that MuJoCo simulates the robot RViz and Gazebo show; the notes say what changed.
+
+    * a revolute joint limited to ±UNLIMITED or more (swerve bases write ±1e16) turns
+      without end, as urdfdom and KDL read it: a ``continuous`` joint, so that a wheel
+      on it is a wheel (:mod:`.drives` finds wheels on continuous joints);
+    * an ``<axis>`` without ``xyz`` (``xzy="0 1 0"``): urdfdom keeps the axis it cleared,
+      0 0 0, a joint that cannot move; MuJoCo refuses the element. It is fixed."""
+    notes = []
+    for joint in root.iterchildren("joint"):
+        kind, name = joint.get("type"), joint.get("name")
+        limit = next((c for c in joint if c.tag == "limit"), None)
+        if kind == "revolute" and limit is not None:
+            lower = parse_number(limit.get("lower") or "0")
+            upper = parse_number(limit.get("upper") or "0")
+            if None not in (lower, upper) and lower <= -UNLIMITED and upper >= UNLIMITED:
+                joint.set("type", "continuous")
+                for key in ("lower", "upper"):
+                    limit.attrib.pop(key, None)
+                notes.append(f"joint {name}: revolute limited to {lower:g}..{upper:g} rad "
+                             "turns without end, as urdfdom and KDL read it: simulated "
+                             "continuous")
+        axis = next((c for c in joint if c.tag == "axis"), None)
+        if kind not in ("fixed", "floating") and axis is not None and axis.get("xyz") is None:
+            joint.set("type", "fixed")
+            joint.remove(axis)
+            notes.append(f"joint {name}: <axis> has no xyz, urdfdom reads 0 0 0, a joint "
+                         "that cannot move: simulated fixed")
+    return notes
 
 
 def gazebo_friction(root) -> dict[str, float]:
@@ -309,8 +444,9 @@ def lowest_points(mj, model, data) -> dict[int, float]:
 def resting_parts(shape, lowest: dict[int, float], wheels,
                   data=None) -> tuple[float, dict, dict]:
     """(the floor's z under the robot: the drive wheels' lowest point, else the lowest
-    colliding geom's; the other links resting on it, link -> body id; link -> its lowest
-    point above that floor, for the wheels and the resting links), every joint at 0.
+    colliding geom's; its castors, link -> body id (:func:`_castors`); link -> its lowest
+    point above that floor, for the wheels and the links within GROUND_TOLERANCE of it),
+    the joints where ``lowest`` was measured (every one at 0, or sim's springs at rest).
     Shared by ``mcar sim`` and ``mcar export --verify``, which judge alike; a geom that
     touches nothing (an export's visual) rests on nothing. A mecanum wheel's roller links
     are its own (its capsule touches for them, :mod:`.rollers`); a mecanum hub without
@@ -323,7 +459,7 @@ def resting_parts(shape, lowest: dict[int, float], wheels,
     ground = min(wheels_lowest) if wheels_lowest else min(lowest[g] for g in robot_geoms)
     wheel_bodies = {w.body_id for w in wheels}
     rollers = roller_bodies(shape, wheels)
-    parts, clearance = {}, {}
+    near, clearance = {}, {}
     for g in robot_geoms:
         body = int(shape.geom_bodyid[g])
         if body in rollers:
@@ -332,8 +468,21 @@ def resting_parts(shape, lowest: dict[int, float], wheels,
         if body in wheel_bodies or lowest[g] <= ground + GROUND_TOLERANCE:
             clearance[name] = min(clearance.get(name, np.inf), lowest[g] - ground)
         if body not in wheel_bodies and lowest[g] <= ground + GROUND_TOLERANCE:
-            parts[name] = body
-    return ground, parts, clearance
+            near[name] = body
+    return ground, _castors(near, clearance), clearance
+
+
+def _castors(near: dict, clearance: dict) -> dict:
+    """Of the parts other than the wheels within GROUND_TOLERANCE of the floor (``near``,
+    link -> body), the castors: those named so (CASTOR_WORDS); where none is, the lowest
+    ones (within CASTOR_TIE): what the robot rests on besides its wheels. A bracket or
+    motor housing a few mm up is then neither a castor nor a part that must touch the
+    floor (the car on 15 mm wheels)."""
+    named = {n: b for n, b in near.items() if any(w in n.lower() for w in CASTOR_WORDS)}
+    if named or not near:
+        return named
+    least = min(clearance[n] for n in near)
+    return {n: b for n, b in near.items() if clearance[n] <= least + CASTOR_TIE}
 
 
 def rolling_contacts(mj, spec, drive, parts: dict, friction: dict) -> None:
@@ -368,4 +517,25 @@ def _round_tyre(spec, wheel, mj) -> None:
                 and _touches(geom):
             geom.type = mj.mjtGeom.mjGEOM_SPHERE
             geom.size = [geom.size[0], 0, 0]
+
+
+@contextmanager
+def resting_tyres(sim: SimModel):
+    """The wheels' contacts at RESTING_SOLREF while the robot is dropped, as they were
+    after. MuJoCo's default 0.02 s lets a wheel under a heavy robot sink ~0.8 mm into the
+    floor: TurtleBot 4, whose centre of mass is 2 mm ahead of its axle when it leans on
+    its castor, then tipped back onto its body. Only for the drop: the tyres' grip while
+    driving and spinning is what the drive figures were measured with."""
+    wheels = {w.body_id for w in sim.drive.wheels} if sim.drive else set()
+    model = sim.model
+    geoms = [g for g in range(model.ngeom) if model.geom_bodyid[g] in wheels]
+    kept = model.geom_solref[geoms].copy(), model.geom_priority[geoms].copy()
+    model.geom_solref[geoms] = RESTING_SOLREF
+    # Over the floor's priority: MuJoCo takes the contact settings of the geom of higher
+    # priority, and mixes the pair's where they are equal (a tyre without <mu1>).
+    model.geom_priority[geoms] = 2
+    try:
+        yield
+    finally:
+        model.geom_solref[geoms], model.geom_priority[geoms] = kept
 

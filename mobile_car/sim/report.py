@@ -207,6 +207,7 @@ def drive_summary(sim) -> dict:
         summary["wheelbase"] = round(drive.wheelbase, 6)
     if drive.kind == "mecanum":
         summary.update(mecanum_summary(sim))
+    summary["sprung"] = [s.as_json() for s in sim.springs]  # suspension, wheel drop
     return summary
 
 
@@ -276,7 +277,18 @@ def _drive_lines(d: dict) -> list[str]:
     lines += [f"  motor {', '.join(joints)}: {text}" for text, joints in alike.items()]
     if "rollers" in d:
         lines += mecanum_lines(d)
+    lines += [f"  sprung {_spring_text(s)}" for s in d.get("sprung", [])]
     return lines
+
+
+def _spring_text(spring: dict) -> str:
+    """``JOINT 0..30 mm, 400 N/m (source)``: a sprung joint's travel and stiffness."""
+    prismatic = spring["unit"] == "m"
+    per, unit = (1000, "mm") if prismatic else (180 / math.pi, "deg")
+    lower, upper = (per * v for v in spring["travel"])
+    return (f"{spring['joint']}: travel {lower:.4g}..{upper:.4g} {unit}, "
+            f"{spring['stiffness']:.4g} {'N/m' if prismatic else 'N·m/rad'} "
+            f"({spring['source']})")
 
 
 def failure_lines(report: SimReport) -> list[str]:

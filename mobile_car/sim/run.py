@@ -35,6 +35,10 @@ class Run:
         self.free = adr
         self.free_dof = self.model.jnt_dofadr[free]  # vx vy vz (world), wx wy wz (root)
         self.data.qpos[adr + 2] = sim.rest_height + lift
+        if sim.rest is not None:  # released in the pose it rests in (leaning on a castor)
+            self.data.qpos[adr + 3:adr + 7] = sim.rest.quat
+        for joint, position in sim.start.items():  # the springs at rest under the weight
+            self.data.qpos[self.model.jnt_qposadr[self.model.joint(joint).id]] = position
         self.rollers = getattr(sim, "rollers", None)  # mecanum: kept level every step
         if self.rollers is not None:
             self.rollers.align(self.model, self.data)

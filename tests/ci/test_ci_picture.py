@@ -15,7 +15,8 @@ def test_a_robot_that_fails_sim_keeps_its_picture(run_mcar, tmp_path):
     result = run_mcar("ci", package, "--build-dir", tmp_path / "build", "--render-dir",
                       tmp_path / "renders", "--no-gazebo", cwd=tmp_path, timeout=300)
     assert result.returncode == 1
-    assert "drop failed: plate_link reaches 4.00 mm below the drive wheels" in result.stderr
+    assert "drop failed: not touching the floor: wheel_left_link, wheel_right_link (drive " \
+           "wheels); resting on plate_link: not a wheel or castor" in result.stderr
     picture = tmp_path / "renders" / "belly.png"
     assert picture.is_file(), sorted(p.name for p in (tmp_path / "renders").rglob("*"))
     with Image.open(picture) as image:

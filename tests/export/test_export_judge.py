@@ -36,8 +36,10 @@ def test_a_car_on_its_belly_fails_verify_with_sims_reason_and_writes_nothing(run
     assert result.returncode == 1
     (line,) = result.stderr.splitlines()
     prefix = "out: error: drop failed as mcar sim judges it: "
-    assert line.startswith(prefix + "plate_link reaches 4.00 mm below the drive wheels "
-                                    "(geometry): the wheels cannot all touch; ")
+    # Resting is what touches: the plate does, the wheels do not.
+    assert line.startswith(prefix + "not touching the floor: wheel_left_link, "
+                                    "wheel_right_link (drive wheels); resting on plate_link: "
+                                    "not a wheel or castor; ")
     assert line.endswith(" (drive and spin failed too)")
     reason = line.removeprefix(prefix).removesuffix(" (drive and spin failed too)")
     assert reason == _sim_says(run_mcar, tmp_path, "drop")  # one judge, one verdict

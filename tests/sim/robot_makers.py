@@ -547,3 +547,122 @@ def mecanum_rings(mass: float = 10.0, wheelbase: float = 0.4, track: float = 0.4
   </link>""")
     parts.append("\n</robot>\n")
     return "".join(parts)
+
+
+def _ball(name, parent, xyz, radius, mass):
+    x, y, z = xyz
+    i = 0.4 * mass * radius * radius
+    return f"""
+  <joint name="{name}_joint" type="fixed">
+    <parent link="{parent}"/><child link="{name}_link"/><origin xyz="{x:.6g} {y:.6g} {z:.6g}"/>
+  </joint>
+  <link name="{name}_link">
+    <collision><geometry><sphere radius="{radius:.6g}"/></geometry></collision>
+    <inertial><mass value="{mass:.6g}"/><inertia ixx="{i:.6g}" ixy="0" ixz="0" iyy="{i:.6g}"
+      iyz="0" izz="{i:.6g}"/></inertial>
+  </link>"""
+
+
+def castors_fore_and_aft(mass: float = 2.0, back_lift: float = 0.002) -> str:
+    """Kobuki's shape: a box on two drive wheels (radius 35 mm, axle at the middle) and a
+    ball castor in front and behind; the back one ``back_lift`` above the floor the
+    wheels and the front one stand on."""
+    r, ball = 0.035, 0.015
+    parts = ['<?xml version="1.0"?>\n<robot name="fore_and_aft">',
+             _body(0.8 * mass, (0.3, 0.2, 0.05), 0.0, axle=r)]
+    for side, y in (("left", 0.115), ("right", -0.115)):
+        parts.append(_wheel(f"wheel_{side}", "base_link", (0, y, 0), r, 0.02, 0.08 * mass))
+    # The front castor heavier: the robot leans on it, as Kobuki does.
+    parts.append(_ball("caster_front", "base_link", (0.12, 0, ball - r), ball, 0.1 * mass))
+    parts.append(_ball("caster_back", "base_link", (-0.12, 0, ball - r + back_lift), ball,
+                       0.02 * mass))
+    parts.append("\n</robot>\n")
+    return "".join(parts)
+
+
+def sprung(mass: float = 3.0, castor_below: float = 0.003, travel: float = 0.006,
+           gazebo: bool = False) -> str:
+    """Create 3's shape: a box on two drive wheels, each on a prismatic wheel-drop joint
+    (axis down, 0..``travel``), and a front castor that reaches ``castor_below`` below
+    the wheels with the joints at 0; ``gazebo``: the springs' stiffness and reference in
+    the joints' <gazebo> blocks (4000 N/m, extended at ``travel``, as Create 3's)."""
+    r, ball = 0.035, 0.012
+    parts = ['<?xml version="1.0"?>\n<robot name="sprung">',
+             _body(0.8 * mass, (0.3, 0.2, 0.05), 0.0, axle=r)]
+    for side, y in (("left", 0.115), ("right", -0.115)):
+        parts.append(f"""
+  <joint name="wheel_drop_{side}_joint" type="prismatic">
+    <parent link="base_link"/><child link="wheel_drop_{side}"/><origin xyz="0 {y:.6g} 0"/>
+    <axis xyz="0 0 -1"/><limit lower="0" upper="{travel:.6g}" effort="0" velocity="0"/>
+    <dynamics damping="50"/>
+  </joint>
+  <link name="wheel_drop_{side}">
+    <inertial><mass value="0.02"/><inertia ixx="1e-5" ixy="0" ixz="0" iyy="1e-5" iyz="0"
+      izz="1e-5"/></inertial>
+  </link>""")
+        parts.append(_wheel(f"wheel_{side}", f"wheel_drop_{side}", (0, 0, 0), r, 0.02,
+                            0.06 * mass))
+        if gazebo:
+            parts.append(f"""
+  <gazebo reference="wheel_drop_{side}_joint">
+    <springStiffness>4000</springStiffness><springReference>{travel:.6g}</springReference>
+  </gazebo>""")
+    parts.append(_ball("front_caster", "base_link", (0.12, 0, ball - r - castor_below), ball,
+                       0.02 * mass))
+    parts.append("\n</robot>\n")
+    # The body's mass 20 mm ahead of the axle, as Create 3's is: it leans on its castor.
+    return "".join(parts).replace('<inertial><origin xyz="0 0 ',
+                                  '<inertial><origin xyz="0.02 0 ', 1)
+
+
+def fixed_wheels(gap: float = 0.0001) -> str:
+    """A base on four wheels on fixed joints (no drive), one ``gap`` above the floor."""
+    r = 0.05
+    parts = ['<?xml version="1.0"?>\n<robot name="fixed_wheels">',
+             _body(5.0, (0.4, 0.3, 0.06), 0.02, axle=r)]
+    for name, x, y in (("fl", 0.15, 0.18), ("fr", 0.15, -0.18), ("rl", -0.15, 0.18),
+                       ("rr", -0.15, -0.18)):
+        z = gap if name == "rr" else 0.0
+        parts.append(_wheel(name, "base_link", (x, y, z), r, 0.03, 0.3, joint_type="fixed"))
+    parts.append("\n</robot>\n")
+    return "".join(parts)
+
+
+def kobuki_like(back_lift: float = 0.002, castor_mu: float | None = 0.0) -> str:
+    """Kobuki's base as its description has it: two drive wheels of 10 g with 0.001 kg m²
+    about every axis, a castor in front and one behind (``back_lift`` above the floor),
+    each a cylinder lying across the robot (rolling forward) of ``castor_mu`` friction
+    (<gazebo><mu1>; None: none given)."""
+    r, cr = 0.035, 0.017
+    parts = ['<?xml version="1.0"?>\n<robot name="kobuki_like">',
+             _body(2.3, (0.3, 0.3, 0.08), 0.0, axle=r)]
+    for side, y in (("left", 0.115), ("right", -0.115)):
+        parts.append(f"""
+  <joint name="wheel_{side}_joint" type="continuous">
+    <parent link="base_link"/><child link="wheel_{side}_link"/>
+    <origin xyz="0 {y:.6g} 0" rpy="-1.5707963 0 0"/><axis xyz="0 0 1"/>
+  </joint>
+  <link name="wheel_{side}_link">
+    <collision><geometry><cylinder length="0.0206" radius="{r:.6g}"/></geometry></collision>
+    <inertial><mass value="0.01"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0"
+      izz="0.001"/></inertial>
+  </link>""")
+    # (The front castor's 0.1 kg puts the centre of mass ahead of the axle: the robot
+    # leans on it, as Kobuki rests on its front castor.)
+    for name, x, lift, mass in (("front", 0.115, 0.0, 0.1), ("back", -0.135, back_lift, 0.01)):
+        parts.append(f"""
+  <joint name="caster_{name}_joint" type="fixed">
+    <parent link="base_link"/><child link="caster_{name}_link"/>
+    <origin xyz="{x:.6g} 0 {cr - r + lift:.6g}" rpy="-1.5707963 0 0"/>
+  </joint>
+  <link name="caster_{name}_link">
+    <collision><geometry><cylinder length="0.0176" radius="{cr:.6g}"/></geometry></collision>
+    <inertial><mass value="{mass:g}"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001"
+      iyz="0" izz="0.001"/></inertial>
+  </link>""")
+        if castor_mu is not None:
+            parts.append(f"""
+  <gazebo reference="caster_{name}_link"><mu1>{castor_mu:g}</mu1><mu2>{castor_mu:g}</mu2>
+  </gazebo>""")
+    parts.append("\n</robot>\n")
+    return "".join(parts)

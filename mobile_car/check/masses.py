@@ -13,7 +13,8 @@ docs/rules.md):
   (osmium, the densest element, is 22 590) or below LIGHTEST kg/m³ (air is 1.2; a foam is
   30). The volume is its collision shapes', the volume simulators give it; a link with
   none is not judged by density, as its visuals may be a marker or a stand-in (sdformat's
-  own test robots draw a 1000 kg link as a 0.1 x 0.1 x 1 m bar and load it): boxes, cylinders and spheres exactly, a mesh by the box around it, which can only be
+  own test robots draw a 1000 kg link as a 0.1 x 0.1 x 1 m bar and load it): boxes,
+  cylinders and spheres exactly, a mesh by the box around it, which can only be
   larger, so "too dense" is said only when even the largest volume the shapes could
   have is too small. "Too light" needs the smallest volume they could have, which only
   a box, cylinder or sphere gives (a mesh may be a thin shell); it is said of a link

@@ -137,7 +137,8 @@ def discover(root: Path) -> Discovery:
     taken: list[Path] = []
     for path in files:
         reason = links_out.get(path) or _why_not_a_robot(path, shapes.get(path), included,
-                                                         root)
+                                                         root) \
+            or _macro_library(path, shapes, own)
         if reason is None:
             taken.append(path)
         else:
@@ -205,6 +206,34 @@ def _why_not_a_robot(path: Path, shape: FileShape | None, included: dict[Path, P
             return "defines macros only: no <link> outside <xacro:macro>"
         return "no <link>, and nothing that makes one: a fragment"
     return None
+
+
+def _macro_library(path: Path, shapes: dict, own) -> str | None:
+    """Why a named ``<robot>`` that defines macros and includes only files that make no
+    link either is a macro library (MiR's ``mir_100_v1.urdf.xacro``, kept "for backward
+    compatibility", wraps ``mir_v1.urdf.xacro``'s macro in another), or None: its
+    includes are what could make a link, so they are followed within the package."""
+    shape = shapes.get(path)
+    if shape is None or not shape.read_whole or shape.links or shape.calls or \
+            not shape.macros or not shape.includes:
+        return None
+    by_real = {p.resolve(): found for p, found in shapes.items()}
+    seen, todo = {path.resolve()}, [(path, shape)]
+    while todo:
+        including, current = todo.pop()
+        for spec in current.includes:
+            target = include_target(spec, including, current, own)
+            if target is None:
+                return None  # another package's, or an expression: it may make links
+            target = target.resolve()
+            if target in seen:
+                continue
+            found = by_real.get(target)
+            if found is None or not found.read_whole or found.links or found.calls:
+                return None
+            seen.add(target)
+            todo.append((target, found))
+    return "defines macros only, and includes only files that make no <link>"
 
 
 def _one_per_output(taken: list[Path], skipped: list[Skipped], root: Path) -> list[Path]:

@@ -39,6 +39,7 @@ class FileShape:
     name: str | None = None  # the root's name attribute
     links: bool = False  # a <link> outside every <xacro:macro>
     makers: bool = False  # a macro call, include or xacro:element outside them
+    calls: bool = False  # the same but includes: what makes links in this file itself
     macros: int = 0  # <xacro:macro> definitions
     uses_xacro: bool = False  # as mobile_car.load.xacro_use decides
     includes: list[str] = field(default_factory=list)  # filename="..." of each include
@@ -87,6 +88,7 @@ def shape_of(data: bytes) -> FileShape:
             shape.links = True
         elif xacro is not None and (xacro in _MAKERS or xacro not in DIRECTIVES):
             shape.makers = True
+            shape.calls = shape.calls or xacro != "include"
 
     def end(tag):
         nonlocal depth_in_macro

@@ -30,6 +30,10 @@ REAL = {
         {"urdf/husky.urdf.xacro"},
         {"urdf/empty.urdf": "included by urdf/husky.urdf.xacro",
          "urdf/wheel.urdf.xacro": "included by urdf/husky.urdf.xacro"}),
+    "mir_description": (
+        {"urdf/mir.urdf.xacro"},
+        {"urdf/include/mir_100_v1.urdf.xacro": "defines macros only, and includes only files "
+                                               "that make no <link>"}),
     "jackal_description": (
         {"urdf/jackal.urdf.xacro"},
         {"urdf/empty.urdf": "included by urdf/jackal.urdf.xacro",

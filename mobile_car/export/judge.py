@@ -45,6 +45,8 @@ def sim_model_of(mj, path, exported, label: str):
     mj.mj_kinematics(model, data)
     joints = _joint_elements(mj, model, getattr(exported, "joint_types", None) or {})
     summary = exported.drive
+    if summary is None:  # a vehicle sim drives no kind of: it must still stand, as in sim
+        return _standing(mj, model, spec, data)
     tree = find_tree(mj, model, data, joints, lowest_points(mj, model, data))
     try:
         drive, _ = choose_drive(tree, set(), summary["left"],
@@ -82,6 +84,29 @@ def sim_model_of(mj, path, exported, label: str):
                     ground_geoms=wheels, support_geoms=supports, rest=rest)
 
 
+def _standing(mj, model, spec, data):
+    """The SimModel of an export without a drive: it rests on whatever touches, judged by
+    drop alone."""
+    from ..sim.model import SimModel, colliding_geoms, lowest_points, resting_parts
+    from ..sim.resting import rest_pose
+
+    lowest = lowest_points(mj, model, data)
+    ground, parts, clearance = resting_parts(model, lowest, [], data)
+    root = int(model.jnt_bodyid[model.joint(JUDGE_FREE_JOINT).id])
+    height = float(model.qpos0[model.jnt_qposadr[model.joint(JUDGE_FREE_JOINT).id] + 2])
+    robot = colliding_geoms(model)
+    castors = set(parts.values())
+    supports = [g for g in robot if model.geom_bodyid[g] in castors] or robot
+    rest = rest_pose(mj, model, mj.MjData(model), root, supports, lowest_points)
+    if rest.roll == rest.pitch == 0.0:
+        rest.height = height - ground
+    return SimModel(model=model, spec=spec, root=model.body(root).name, root_body=root,
+                    drive=None, why_no_drive="the export has no drive", rest_height=rest.height,
+                    ground_parts=parts, clearance=clearance,
+                    floor_geom=model.geom("mcar_floor").id, mass=float(model.body_mass.sum()),
+                    ground_geoms=robot, support_geoms=supports, rest=rest)
+
+
 def judge(mj, path, exported, label: str) -> list[str]:
     """Run sim's scenarios for the drive kind on the exported model: a line per scenario
     passed, or ExportError with why the first failed scenario failed, as sim says it,
@@ -91,7 +116,8 @@ def judge(mj, path, exported, label: str) -> list[str]:
     sim = sim_model_of(mj, path, exported, label)
     # A file holds no mecanum rollers (sim re-aligns their contact every step: a file
     # cannot): a mecanum export's wheels grip as tyres, judged on drop and drive only.
-    results = run_scenarios(sim, ("drop", "drive") if sim.kind == "mecanum" else None)
+    results = run_scenarios(sim, ("drop",) if sim.drive is None else
+                            ("drop", "drive") if sim.kind == "mecanum" else None)
     failed = [r for r in results if r.status == "failed"]
     if failed:  # one line: the first failure in full, the others by name
         others = f" ({' and '.join(r.name for r in failed[1:])} failed too)" \

@@ -73,6 +73,9 @@ class Exported:
     # revolute joint that --verify's drive finder must not take for a wheel (Hunter 2's
     # steering, limits 0 to 0, is a hinge without a range)
     joint_types: dict[str, str] = field(default_factory=dict)
+    # a vehicle (:func:`mobile_car.sim.vehicle.not_a_vehicle`'s test): --verify drops one
+    # that has no drive sim drives too (PR2's powered castors), as sim does
+    vehicle: bool = False
 
 
 @dataclass
@@ -226,6 +229,7 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
         warnings=warnings, notes=([f"no drive actuators: {why}"] if drive is None and why
                                   else []) + mecanum,
         drive=drive_summary(drive), base=options.base, floor=floor, added_mass=added + tokens,
+        vehicle=is_vehicle(root),
         joint_types={j.get("name"): j.get("type") for j in root.iterchildren("joint")
                      if j.get("type") != "fixed"})
 
@@ -248,6 +252,18 @@ def _mecanum_tyres(spec, drive, sources) -> list[str]:
             "each wheel grips as a tyre of mu " + ", ".join(sorted({f"{g:g}" for g in
                                                                   grips.values()}))
             + ": the robot drives and turns, but does not strafe"]
+
+
+def is_vehicle(root) -> bool:
+    """Whether the URDF ``root`` is a vehicle as sim decides it before any engine runs: two
+    or more continuous joints moving collision geometry, and another link with some to
+    stand on."""
+    colliding = {link.get("name") for link in root.iterchildren("link")
+                 if link.find("collision") is not None}
+    wheels = {child.get("link") for joint in root.iterchildren("joint")
+              if joint.get("type") == "continuous"
+              for child in joint.iterchildren("child") if child.get("link") in colliding}
+    return len(wheels) >= 2 and bool(colliding - wheels)
 
 
 def parse_robot(urdf: bytes, label: str):

@@ -90,7 +90,7 @@ def verify_mjcf(folder: Path, exported, shown: str | None = None) -> list[str]:
     names = [model.joint(j).name for j in range(model.njnt)
              if model.joint(j).name != FREE_JOINT]
     proven.append(joints_match(names, exported.moving_joints, label))
-    if exported.base == "floating" and exported.drive:
+    if exported.base == "floating" and (exported.drive or exported.vehicle):
         from .judge import judge
 
         proven += judge(mj, path, exported, str(label))

@@ -184,7 +184,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
                            speed)
     wheels = drive.wheels if drive else []
     mass = float(shape.body_mass.sum())
-    robot_geoms = _colliding(shape)
+    robot_geoms = colliding_geoms(shape)
     if not robot_geoms:
         raise SimModelError("no link has <collision> geometry: nothing can rest on the "
                             "floor, the robot would fall through it", file=label)
@@ -451,7 +451,7 @@ def resting_parts(shape, lowest: dict[int, float], wheels,
     touches nothing (an export's visual) rests on nothing. A mecanum wheel's roller links
     are its own (its capsule touches for them, :mod:`.rollers`); a mecanum hub without
     geometry of its own reaches its radius below its centre (``data``: the kinematics)."""
-    robot_geoms = _colliding(shape)
+    robot_geoms = colliding_geoms(shape)
     wheels_lowest = [lowest[g] for w in wheels for g in w.geom_ids]
     if data is not None:
         wheels_lowest += [float(data.xpos[w.body_id][2]) - w.radius for w in wheels
@@ -499,7 +499,7 @@ def rolling_contacts(mj, spec, drive, parts: dict, friction: dict) -> None:
         _round_tyre(spec, wheel, mj)
 
 
-def _colliding(shape) -> list[int]:
+def colliding_geoms(shape) -> list[int]:
     """The robot's geoms that collide (every one in sim; not an export's visuals)."""
     return [g for g in range(shape.ngeom) if shape.geom_bodyid[g] != 0
             and (shape.geom_contype[g] or shape.geom_conaffinity[g])]

@@ -125,3 +125,18 @@ def test_a_steering_joint_with_equal_limits_is_judged_as_the_revolute_joint_it_i
     with pytest.raises(McarError, match="the manifest's drive does not fit the model: "
                                         "--drive ackermann: no steering joints"):
         verify_mjcf(tmp_path / "out", exported)
+
+
+def test_a_vehicle_with_no_drive_sim_drives_is_still_dropped(run_mcar, tmp_path):
+    # PR2's powered castors, a tricycle's centre-line wheel: no drive kind sim drives, but
+    # the export must stand on its wheels as sim's drop judges it (it used to be judged on
+    # its mass and joints alone).
+    from sim.robot_makers import tricycle
+
+    result = _export(run_mcar, tmp_path, tricycle())
+    assert result.returncode == 0, result.stderr
+    assert "mcar export: no drive actuators: a wheel on the centre line" in result.stderr
+    assert "mcar export: verified: drop passed as mcar sim judges it: height error " \
+        in result.stderr
+    manifest = json.loads((tmp_path / "out/mcar-export.json").read_text())
+    assert manifest["vehicle"] is True and manifest["drive"] is None

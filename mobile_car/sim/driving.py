@@ -27,6 +27,7 @@ from .run import (
     command_speed,
     forward_sign,
     ramp,
+    wheel_command,
     wrap,
 )
 
@@ -60,7 +61,7 @@ def wheel_control(run: Run, sim: SimModel, omega: float, spin: bool):
     def control(t: float) -> None:
         speed = omega * ramp(t)
         for actuator, sign in commands:
-            run.data.ctrl[actuator] = sign * speed
+            run.data.ctrl[actuator] = wheel_command(run.model, actuator, sign * speed)
     return control
 
 

@@ -142,6 +142,24 @@ def _usable(wheel) -> float | None:
     return motor.usable_velocity if motor is not None else wheel.velocity
 
 
+def wheel_command(model, actuator: int, velocity: float) -> float:
+    """What to ask of a wheel's velocity servo so that it turns at ``velocity`` against the
+    losses its joint declares (``<dynamics damping friction>``, in the model as the dof's
+    damping and frictionloss): a servo without integral action settles where its torque
+    kv·(command − ω) equals the loss, short of the command with torque to spare; asking
+    for the loss's worth more, known beforehand, settles it at ``velocity``. Its force
+    range still bounds it: losses past the motor's effort still drive short, and the cause
+    says so (:mod:`.causes`). An integral term did the same and wound up at the effort
+    limit, making the run chaotic (1e-10 m at the start turned the car 1.5°)."""
+    kv = float(model.actuator_gainprm[actuator][0])
+    if kv <= 0 or velocity == 0:
+        return velocity
+    dof = int(model.jnt_dofadr[model.actuator_trnid[actuator][0]])
+    loss = float(model.dof_damping[dof]) * velocity + \
+        float(model.dof_frictionloss[dof]) * math.copysign(1.0, velocity)
+    return velocity + loss / kv
+
+
 def forward_sign(run: Run, wheel) -> float:
     """+1 if turning the joint positively rolls the robot forward (+x), else -1."""
     axis = run.data.xaxis[wheel.joint_id]

@@ -14,7 +14,17 @@ from .driving import HEADING_BOUND
 from .figures import Figure, ScenarioResult
 from .mecanum import mecanum_speeds
 from .model import SimModel
-from .run import RAMP_TIME, SETTLE_TIME, OffFloor, Run, command_speed, forward_sign, ramp, wrap
+from .run import (
+    RAMP_TIME,
+    SETTLE_TIME,
+    OffFloor,
+    Run,
+    command_speed,
+    forward_sign,
+    ramp,
+    wheel_command,
+    wrap,
+)
 
 STRAFE_TIME = 3.0         # s
 # Bounds (docs/sim.md): rollers roll less cleanly than tyres, so sideways is held to a
@@ -35,7 +45,7 @@ def mecanum_control(run: Run, sim: SimModel, omega: float, vx: float, vy: float,
     def control(t: float) -> None:
         share = ramp(t)
         for actuator, speed in commands:
-            run.data.ctrl[actuator] = share * speed
+            run.data.ctrl[actuator] = wheel_command(run.model, actuator, share * speed)
     return control
 
 

@@ -15,7 +15,16 @@ import numpy as np
 from ..errors import UsageError
 from .figures import Figure, ScenarioResult
 from .model import SimModel
-from .run import RAMP_TIME, SETTLE_TIME, Run, Yaw, command_speed, forward_sign, ramp
+from .run import (
+    RAMP_TIME,
+    SETTLE_TIME,
+    Run,
+    Yaw,
+    command_speed,
+    forward_sign,
+    ramp,
+    wheel_command,
+)
 
 TURN_TIME = 3.0            # s after settling
 STEADY_AFTER = RAMP_TIME + 0.5  # s into the turn when the measurement starts
@@ -86,7 +95,7 @@ def run_turn(sim: SimModel, frame=None, delta: float | None = None) -> ScenarioR
             run.data.ctrl[s.actuator_id] = steer * target
         speed = omega * ramp(t)
         for actuator, share in wheels:
-            run.data.ctrl[actuator] = share * speed
+            run.data.ctrl[actuator] = wheel_command(run.model, actuator, share * speed)
     run.step(SETTLE_TIME + STEADY_AFTER, control)
     yaw = Yaw(run, lambda: run.centre_of(drive.rear))
     path, errors = [], []

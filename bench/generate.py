@@ -20,6 +20,7 @@ must accept it and print the same tree.
 
 from __future__ import annotations
 
+import math
 import random
 
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed")
@@ -35,25 +36,27 @@ def _vector(rng: random.Random, scale: float) -> str:
     return " ".join(_g(rng.uniform(-scale, scale)) for _ in range(3))
 
 
-def _shape(rng: random.Random, kind: int) -> tuple[str, tuple[float, float, float]]:
-    """A geometry element and its box-equivalent inertia factors (Ixx, Iyy, Izz per kg)."""
+def _shape(rng: random.Random, kind: int) -> tuple[str, tuple[float, float, float], float]:
+    """A geometry element, its inertia factors (Ixx, Iyy, Izz per kg) and its volume."""
     if kind == 0:
         x, y, z = (rng.uniform(0.02, 0.3) for _ in range(3))
         return (f'<box size="{_g(x)} {_g(y)} {_g(z)}"/>',
-                ((y * y + z * z) / 12, (x * x + z * z) / 12, (x * x + y * y) / 12))
+                ((y * y + z * z) / 12, (x * x + z * z) / 12, (x * x + y * y) / 12), x * y * z)
     if kind == 1:
         r, h = rng.uniform(0.01, 0.1), rng.uniform(0.01, 0.3)
         side = (3 * r * r + h * h) / 12
-        return f'<cylinder radius="{_g(r)}" length="{_g(h)}"/>', (side, side, r * r / 2)
+        return (f'<cylinder radius="{_g(r)}" length="{_g(h)}"/>', (side, side, r * r / 2),
+                math.pi * r * r * h)
     r = rng.uniform(0.01, 0.1)
-    return f'<sphere radius="{_g(r)}"/>', (2 * r * r / 5,) * 3
+    return f'<sphere radius="{_g(r)}"/>', (2 * r * r / 5,) * 3, 4 * math.pi * r ** 3 / 3
 
 
 def _link_body(rng: random.Random, kind: int, shapes: int = 3) -> str:
     """The content of a link: inertial, visual and collision, all numbers drawn from rng;
     ``shapes`` 3: boxes, cylinders and spheres, 2: boxes and cylinders only."""
-    geometry, factors = _shape(rng, kind % shapes)
-    mass = rng.uniform(0.05, 5.0)
+    geometry, factors, volume = _shape(rng, kind % shapes)
+    # A density some material has (foam to steel): mcar check fails a mass no part has (E119)
+    mass = rng.uniform(50.0, 8000.0) * volume
     ixx, iyy, izz = (mass * f for f in factors)
     return (f'    <inertial>\n'
             f'      <origin xyz="{_vector(rng, 0.05)}" rpy="0 0 0"/>\n'

@@ -6,8 +6,9 @@ folder, so that an export passes only what sim would pass.
 What is judged is what the file holds: its bodies, joints, contacts and the actuators
 the export wrote (``mcar_motor_JOINT``, ``mcar_steer_JOINT``: their gain and force
 limit); the manifest says which joints drive (sim's drive, found on the description) and
-the speed to command. A joint the export left free stays free (an arm folds, a wheel on
-a prismatic joint slides up): the export is judged as a MuJoCo user will run it.
+the speed to command, and which joints are sim's springs (their rest: the robot is
+released there, as sim releases it). A joint the export left free stays free (an arm
+folds): the export is judged as a MuJoCo user will run it.
 """
 
 from __future__ import annotations
@@ -64,8 +65,10 @@ def sim_model_of(mj, path, exported, label: str):
     for steer in drive.steering:
         steer.actuator_id = _actuator(model, f"mcar_steer_{steer.joint}", steer.joint,
                                       label).id
+    springs, start = _springs(mj, model, data, getattr(exported, "springs", None) or [],
+                              label)
     ground, parts, clearance = resting_parts(model, lowest_points(mj, model, data),
-                                             drive.wheels)
+                                             drive.wheels, data)
     root = int(model.jnt_bodyid[model.joint(JUDGE_FREE_JOINT).id])
     height = float(model.qpos0[model.jnt_qposadr[model.joint(JUDGE_FREE_JOINT).id] + 2])
     # The pose its geometry rests in, as sim finds it (leaning on a low castor); level,
@@ -74,14 +77,49 @@ def sim_model_of(mj, path, exported, label: str):
     wheels = [g for w in drive.wheels for g in w.geom_ids]
     castors = set(parts.values())
     supports = wheels + [g for g in range(model.ngeom) if model.geom_bodyid[g] in castors]
-    rest = rest_pose(mj, model, mj.MjData(model), root, supports, lowest_points)
+    rest = rest_pose(mj, model, _posed(mj, model, start), root, supports, lowest_points)
     if rest.roll == rest.pitch == 0.0:
         rest.height = height - ground
     return SimModel(model=model, spec=spec, root=model.body(root).name, root_body=root,
                     drive=drive, why_no_drive=None, rest_height=rest.height,
                     ground_parts=parts, clearance=clearance,
                     floor_geom=model.geom("mcar_floor").id, mass=float(model.body_mass.sum()),
-                    ground_geoms=wheels, support_geoms=supports, rest=rest)
+                    ground_geoms=wheels, support_geoms=supports, rest=rest,
+                    springs=springs, start=start)
+
+
+def _springs(mj, model, data, records: list[dict], label: str):
+    """(sim's Spring of each of the manifest's ``records``, joint -> its rest), with
+    ``data``'s kinematics redone at that rest: sim measures the resting geometry and
+    releases the robot there. The stiffness, damping and travel are the file's own."""
+    from ..sim.springs import Spring
+
+    springs = []
+    for record in records:
+        try:
+            joint = model.joint(record["joint"]).id
+        except KeyError:
+            raise ExportError(f"the manifest's spring {record['joint']} is no joint of the "
+                              "export", file=label) from None
+        lower, upper = (float(x) for x in model.jnt_range[joint])
+        springs.append(Spring(record["joint"], lower, upper, float(model.jnt_stiffness[joint]),
+                              float(model.qpos_spring[model.jnt_qposadr[joint]]),
+                              float(model.dof_damping[model.jnt_dofadr[joint]]),
+                              record["source"], float(record["rest"]),
+                              model.jnt_type[joint] == mj.mjtJoint.mjJNT_SLIDE))
+    start = {s.joint: s.rest for s in springs}
+    for name, position in start.items():
+        data.qpos[model.jnt_qposadr[model.joint(name).id]] = position
+    mj.mj_kinematics(model, data)
+    return springs, start
+
+
+def _posed(mj, model, start: dict):
+    """Fresh data with the joints of ``start`` there (the rest pose's search starts it)."""
+    data = mj.MjData(model)
+    for name, position in start.items():
+        data.qpos[model.jnt_qposadr[model.joint(name).id]] = position
+    return data
 
 
 def _standing(mj, model, spec, data):

@@ -11,9 +11,14 @@ description only (``inertiafromgeom`` off). Then, the choices of an export for p
   (URDF's and Gazebo's default); a converted mesh without a URDF material keeps its
   own colour;
 * friction from the description's ``<gazebo reference><mu1>``, with a contact priority
-  so that the part's own value wins; on a vehicle, sim's castor friction where none is
-  given and each wheel's collision cylinder a sphere of its radius (a round tyre), as
-  ``mcar sim`` has them, so that ``--verify`` judges the model sim judged;
+  so that the part's own value wins, and a part of ``<mu1>0`` touching through a
+  frictionless contact (``condim 1``), as sim has it; on a vehicle, sim's castor
+  friction where none is given and each wheel's collision cylinder a sphere of its
+  radius (a round tyre), as ``mcar sim`` has them, so that ``--verify`` judges the model sim judged;
+* on a vehicle, sim's springs (:mod:`mobile_car.sim.springs`): a wheel-drop or suspension
+  joint gets sim's stiffness, reference, damping, travel and end stops, and the manifest
+  lists them (``springs``: the travel, the rest it settles at under the weight) so that
+  ``--verify`` releases the robot with its springs at rest, as sim does;
 * ``--base floating`` (a free joint ``floating_base`` on the root link) or ``fixed``
   (welded to the world, as the importer leaves it);
 * ``--floor``: sim's floor and light, the robot standing on it (its lowest collision
@@ -76,6 +81,8 @@ class Exported:
     # a vehicle (:func:`mobile_car.sim.vehicle.not_a_vehicle`'s test): --verify drops one
     # that has no drive sim drives too (PR2's powered castors), as sim does
     vehicle: bool = False
+    # sim's springs (Spring.as_json; its rest at full precision, where --verify starts it)
+    springs: list[dict] = field(default_factory=list)
 
 
 @dataclass
@@ -88,6 +95,7 @@ class Prepared:
     sources: object       # sim's DriveSources, read before the extras went
     assets: Assets
     warnings: list[str]
+    joint_blocks: dict = field(default_factory=dict)  # joint -> its <gazebo> spring numbers
 
 
 def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = False,
@@ -102,12 +110,14 @@ def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = Fal
     from ..sim.mecanum import urdf_declarations
     from ..sim.model import gazebo_friction
     from ..sim.servos import DriveSources
+    from ..sim.springs import gazebo_joint_blocks
 
     root = parse_robot(loaded.urdf, loaded.label)
     joints = {j.get("name"): j for j in root if j.tag == "joint"}
     sources = DriveSources([e for e in root if e.tag in ("gazebo", "ros2_control")],
                            actuated_joints(root), gazebo_friction(root),
                            mecanum=urdf_declarations(root))
+    blocks = gazebo_joint_blocks(root)  # (read before the <gazebo> blocks go)
     if not keep_extras:
         for element in list(root.iter("gazebo", "transmission", "ros2_control")):
             element.getparent().remove(element)
@@ -116,7 +126,7 @@ def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = Fal
     warnings = drop_unusable_colours(root)
     warnings += place_meshes(root, assets, loaded)
     warnings += place_textures(root, assets, loaded, copy_textures)
-    return Prepared(root, joints, sources, assets, warnings)
+    return Prepared(root, joints, sources, assets, warnings, blocks)
 
 
 def mujoco_spec(mj, prepared: Prepared, label: str):
@@ -163,6 +173,7 @@ def before_mujoco(root) -> list:
 
 def _complete(mj, spec, prepared, loaded, options, mended_first):
     from ..sim.model import (
+        FRICTIONLESS,
         TIMESTEP,
         add_floor,
         lowest_points,
@@ -190,6 +201,8 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
         if mu is not None:
             geom.friction = [mu, geom.friction[1], geom.friction[2]]
             geom.priority = 1
+            if mu <= FRICTIONLESS:  # sim's frictionless contact: see FRICTIONLESS
+                geom.condim = 1
     root_body = spec.worldbody.first_body()
     if root_body is None:
         raise ExportError("the robot has no link MuJoCo can place", file=loaded.label)
@@ -204,9 +217,12 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
     mass = float(shape.body_mass.sum())
     add_motors(mj, spec, drive, mass)
     points = lowest_points(mj, shape, data)
+    springs = _springs(mj, spec, shape, data, prepared, drive, mass, points)
     if drive is not None:  # sim's castor friction and round tyres: what --verify judges
-        rolling_contacts(mj, spec, drive, resting_parts(shape, points, drive.wheels)[1],
-                         sources.friction)
+        rest = {s.joint: s.rest for s in springs}  # (the castors sim finds at that rest)
+        rolling_contacts(mj, spec, drive, resting_parts(
+            shape, _lowest_at(mj, shape, data, rest) if rest else points, drive.wheels,
+            data)[1], sources.friction)
     mecanum = _mecanum_tyres(spec, drive, sources)
     floor = options.floor if options.floor is not None else options.base == "floating"
     if floor:
@@ -229,9 +245,44 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
         warnings=warnings, notes=([f"no drive actuators: {why}"] if drive is None and why
                                   else []) + mecanum,
         drive=drive_summary(drive), base=options.base, floor=floor, added_mass=added + tokens,
-        vehicle=is_vehicle(root),
+        vehicle=is_vehicle(root), springs=[_spring_json(s) for s in springs],
         joint_types={j.get("name"): j.get("type") for j in root.iterchildren("joint")
                      if j.get("type") != "fixed"})
+
+
+def _springs(mj, spec, shape, data, prepared, drive, mass: float, points: dict) -> list:
+    """Sim's springs of the drive's wheel-drop and suspension joints (sim's own
+    functions, on the same compiled shape, every joint at 0), applied to ``spec``."""
+    from ..sim.model import _springs as sim_springs
+    from ..sim.model import _supports, colliding_geoms
+    from ..sim.springs import apply_springs
+
+    if drive is None:
+        return []
+    robot_geoms = colliding_geoms(shape)
+    ground_geoms = [g for w in drive.wheels for g in w.geom_ids] or robot_geoms
+    springs = sim_springs(mj, shape, data, prepared.joints, drive, prepared.joint_blocks,
+                          mass, _supports(shape, points, ground_geoms, robot_geoms,
+                                          {w.body_id for w in drive.wheels}))
+    apply_springs(mj, spec, springs)
+    return springs
+
+
+def _lowest_at(mj, shape, data, positions: dict) -> dict:
+    """The geoms' lowest points with the joints of ``positions`` there (``data`` is
+    left with them)."""
+    from ..sim.model import lowest_points
+
+    for name, position in positions.items():
+        data.qpos[shape.jnt_qposadr[shape.joint(name).id]] = position
+    mj.mj_kinematics(shape, data)
+    return lowest_points(mj, shape, data)
+
+
+def _spring_json(spring) -> dict:
+    """The manifest's record of a spring: sim's, its rest unrounded (--verify releases
+    the robot there, as sim does: a run at a motor's limit amplifies a rounding)."""
+    return {**spring.as_json(), "rest": spring.rest}
 
 
 def _mecanum_tyres(spec, drive, sources) -> list[str]:

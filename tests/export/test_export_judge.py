@@ -140,3 +140,74 @@ def test_a_vehicle_with_no_drive_sim_drives_is_still_dropped(run_mcar, tmp_path)
         in result.stderr
     manifest = json.loads((tmp_path / "out/mcar-export.json").read_text())
     assert manifest["vehicle"] is True and manifest["drive"] is None
+
+
+def _verify_again(folder, exported):
+    """verify_mjcf on ``folder`` as it now is: the verdict's last line, or the error."""
+    from mobile_car.errors import McarError
+    from mobile_car.export.verify import verify_mjcf
+
+    try:
+        return verify_mjcf(folder, exported)[-1]
+    except McarError as error:
+        return str(error)
+
+
+def _exported(folder):
+    from mobile_car.export.mjcf import Exported
+
+    document = json.loads((folder / "mcar-export.json").read_text())
+    return Exported(**{k: document[k] for k in Exported.__dataclass_fields__}), document
+
+
+def test_a_sprung_robot_exports_sims_springs_and_passes_verify_as_sim_does(run_mcar,
+                                                                           tmp_path):
+    # Create 3's shape: wheel drops with <gazebo> springs. sim makes them springs and
+    # releases the robot in their rest; the export writes them and --verify does the same.
+    from sim.robot_makers import sprung
+
+    result = _export(run_mcar, tmp_path, sprung(mass=8.0, gazebo=True))
+    assert result.returncode == 0, result.stderr
+    for scenario in ("drop", "drive", "spin"):
+        assert f"mcar export: verified: {scenario} passed as mcar sim judges it: " \
+            in result.stderr
+    assert run_mcar("sim", "robot.urdf", cwd=tmp_path).returncode == 0  # one verdict
+    xml = tmp_path / "out/sprung.xml"
+    (joint,) = [line.strip() for line in xml.read_text().splitlines()
+                if 'name="wheel_drop_left_joint"' in line]
+    for attribute in ('stiffness="4000"', 'springref="0.006"', 'damping="50"',
+                      'range="0 0.006"', 'limited="true"', 'solreflimit="0.004"'):
+        assert attribute in joint
+    exported, document = _exported(tmp_path / "out")
+    (left,) = [s for s in document["springs"] if s["joint"] == "wheel_drop_left_joint"]
+    assert left["travel"] == [0.0, 0.006] and left["stiffness"] == 4000.0
+    assert left["reference"] == 0.006 and left["source"] == "<gazebo> springStiffness"
+    # sim's rest under its share of 8 kg: pushed onto its stop (as TurtleBot 4's are)
+    assert left["rest"] == 0.0 and left["unit"] == "m"
+    # Control: the file as the export wrote it before it carried sim's springs (wheel
+    # drops left free, MuJoCo's soft stops) fails the drop, as Create 3's did (1.24 mm).
+    xml.write_text(re.sub(r' (stiffness|springref|damping|solreflimit)="[^"]*"', "",
+                          xml.read_text()))
+    exported.springs = []
+    assert re.match(r".*out: drop failed as mcar sim judges it: height error 1\.\d+ mm "
+                    r"\(bound <= 1\.00 mm\)", _verify_again(tmp_path / "out", exported))
+
+
+def test_a_castor_of_mu1_0_touches_frictionless_in_the_export_as_in_sim(run_mcar, tmp_path):
+    # Kobuki's castors say <mu1>0: sim gives them a frictionless contact (condim 1), and
+    # so does the file; MuJoCo's friction pyramid at mu 0 throws the robot about.
+    from sim.robot_makers import kobuki_like
+
+    result = _export(run_mcar, tmp_path, kobuki_like(castor_mu=0.0))
+    assert result.returncode == 0, result.stderr
+    assert "mcar export: verified: spin passed as mcar sim judges it: " in result.stderr
+    assert run_mcar("sim", "robot.urdf", cwd=tmp_path).returncode == 0  # one verdict
+    xml = tmp_path / "out/kobuki_like.xml"
+    castors = [line for line in xml.read_text().splitlines() if 'friction="0"' in line]
+    assert len(castors) == 2 and all('condim="1"' in line for line in castors)
+    exported, document = _exported(tmp_path / "out")
+    assert document["springs"] == []
+    # Control: the same file with the pyramid of friction (no condim 1) fails.
+    xml.write_text(xml.read_text().replace(' condim="1"', ""))
+    assert re.match(r".*out: spin failed as mcar sim judges it: yaw rate error \d+\.\d+ % ",
+                    _verify_again(tmp_path / "out", exported))

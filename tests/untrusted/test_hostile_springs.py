@@ -74,3 +74,33 @@ def test_control_the_figure_as_written_makes_nan(name):
             model.qpos_spring[model.jnt_qposadr[joint]] = 1e300
     (drop,) = run_scenarios(sim, ["drop"])
     assert not math.isfinite(drop.measured["rest_height_m"])
+
+
+@pytest.mark.parametrize("name", sorted(HOSTILE))
+def test_an_export_writes_sims_spring_not_the_hostile_figure(cli, tmp_path, name):
+    """``mcar export --to mjcf`` writes sim's springs into the file a MuJoCo user runs:
+    the hostile figure is not in it, the default spring is, and --verify passes. Control:
+    the figure put into the written file makes its drop fail."""
+    import re
+
+    from mobile_car.errors import McarError
+    from mobile_car.export.mjcf import Exported
+    from mobile_car.export.verify import verify_mjcf
+
+    path = tmp_path / f"{name}.urdf"
+    path.write_text(_hostile(name))
+    result = cli("export", path, "--to", "mjcf", "-o", tmp_path / "out", "--verify")
+    assert result.exit_code == 0, result.stderr
+    assert "WARNING" not in result.stdout + result.stderr
+    xml = tmp_path / "out/sprung.xml"
+    text = xml.read_text()
+    assert "e+300" not in text and "inf" not in text.lower()
+    document = json.loads((tmp_path / "out/mcar-export.json").read_text())
+    (left, _) = document["springs"]
+    assert left["source"].startswith("default: carries its share of the weight at mid-travel")
+    assert f'stiffness="{left["stiffness"]:g}"' in text
+    attribute = "stiffness" if name == "stiffness" else "springref"
+    xml.write_text(re.sub(rf' {attribute}="[^"]*"', f' {attribute}="1e300"', text))
+    exported = Exported(**{k: document[k] for k in Exported.__dataclass_fields__})
+    with pytest.raises(McarError, match="drop failed as mcar sim judges it: "):
+        verify_mjcf(tmp_path / "out", exported)

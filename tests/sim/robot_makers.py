@@ -617,6 +617,30 @@ def castors_fore_and_aft(mass: float = 2.0, back_lift: float = 0.002) -> str:
     return "".join(parts)
 
 
+def tips_back(mass: float = 3.0, ahead: float = 0.002, height: float = 0.1) -> str:
+    """TurtleBot 4's balance: a box on two drive wheels (radius 35 mm) and one ball castor
+    in front, none behind; its centre of mass ``ahead`` m ahead of the axle, ``height`` m
+    above the floor. The box reaches 0.15 m behind the axle, 10 mm above the floor: the
+    speed ramp's acceleration, over g·ahead/height, tips it back onto it."""
+    r, ball, length = 0.035, 0.012, 0.3
+    wheel_mass = 0.08 * mass
+    body_mass = mass - 2 * wheel_mass - 0.01
+    tall = 2 * (height - 0.01)
+    parts = [f"""<?xml version="1.0"?>
+<robot name="tips_back">
+  <link name="base_link">
+    <collision><origin xyz="{ahead - length / 2 + 0.15:.6g} 0 {height - r:.6g}"/>
+      <geometry><box size="{length:.6g} 0.2 {tall:.6g}"/></geometry></collision>
+    <inertial><origin xyz="{ahead:.6g} 0 {height - r:.6g}"/><mass value="{body_mass:.6g}"/>
+      {box_inertia(body_mass, length, 0.2, tall)}</inertial>
+  </link>"""]
+    for side, y in (("left", 0.13), ("right", -0.13)):
+        parts.append(_wheel(f"wheel_{side}", "base_link", (0, y, 0), r, 0.02, wheel_mass))
+    parts.append(_ball("castor_front", "base_link", (0.12, 0, ball - r), ball, 0.01))
+    parts.append("\n</robot>\n")
+    return "".join(parts)
+
+
 def sprung(mass: float = 3.0, castor_below: float = 0.003, travel: float = 0.006,
            gazebo: bool = False) -> str:
     """Create 3's shape: a box on two drive wheels, each on a prismatic wheel-drop joint

@@ -175,7 +175,8 @@ def _print(report, label: str, quiet: bool) -> None:
     others = [m for m in exported.meshes if m != exported.robot_file]
     drive = exported.drive
     motors = (f"; {drive['kind']} drive, actuators on "
-              f"{', '.join(drive['left'] + drive['right'])}" if drive else "")
+              f"{', '.join(drive['left'] + drive['right'] + drive.get('centre', []))}"
+              if drive else "")
     click.echo(f"mcar export: wrote {display_path(report.folder)}/ ({report.format}): "
                f"{shown(exported.robot_file)} and {len(others)} other "
                f"file{'s' * (len(others) != 1)}; "

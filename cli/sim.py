@@ -25,7 +25,7 @@ from .common import (
 )
 
 SCENARIO_NAMES = ("drop", "drive", "spin", "turn", "strafe")
-DRIVE_KINDS = ("differential", "skid-steer", "ackermann", "mecanum")
+DRIVE_KINDS = ("differential", "skid-steer", "ackermann", "mecanum", "bicycle")
 
 HELP = f"""Simulate the robot in MuJoCo, headless, and check that it stands, drives
 straight and turns as its geometry says.
@@ -53,8 +53,9 @@ Scenarios (bounds in docs/sim.md):
          clockwise about a point within its wheels, and the report gives its
          effective track and multiplier against its X_control package's; a
          mecanum one at r·ω/(half wheelbase + half track) (5%)
-  turn   an Ackermann car, front wheels at their Ackermann angles: its turning
-         radius within 10% of wheelbase / tan(steering angle)
+  turn   an Ackermann car, front wheels at their Ackermann angles (a bicycle,
+         its front wheel at the angle): its turning radius within 10% of
+         wheelbase / tan(steering angle)
 
 \b
 Drive kinds: from --left/--right or --drive, else what the package declares (its
@@ -72,8 +73,10 @@ wheel came from:
                 control package's YAML, a <gazebo> planar_move plugin, fdir1
                 with mu2 0) or carrying rollers on their rims; rollers grip at
                 45° (fdir1, the roller links, else the usual X pattern)
-A vehicle of any other kind (omni rollers, wheels on one side) runs drop, and its
-drive scenarios fail saying why (exit 1), unless only drop was asked for.
+  bicycle       a single track: one wheel on a revolute steering joint (upright
+                axis) in front of unsteered driven ones, all on the centre line
+A vehicle of any other kind (omni rollers, wheels on one side, a tricycle) runs
+drop, and its drive scenarios fail saying why (exit 1), unless only drop was asked for.
 --left/--right name the driven joints of each side (A,B for a group); the other
 wheels roll free. --drive picks another kind the wheels allow.
 

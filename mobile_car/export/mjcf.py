@@ -442,4 +442,5 @@ def drive_summary(drive) -> dict | None:
             "right": [w.joint for w in drive.right], "radius": drive.radius,
             "speed": command_speed(SimpleNamespace(drive=drive)),  # it reads .drive only
             "steering": [s.joint for s in drive.steering],
-            "motors": {w.joint: {"kv": w.gain, "effort": w.effort} for w in drive.driven}}
+            "motors": {w.joint: {"kv": w.gain, "effort": w.effort} for w in drive.driven},
+            **({"centre": [w.joint for w in drive.centre]} if drive.centre else {})}

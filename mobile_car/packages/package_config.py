@@ -53,7 +53,8 @@ _SCHEMA = {"robots": {"include": list, "exclude": list},
            "export": {"formats": list, "robots": list}, "ci": {"strict": bool},
            "assets": {"paths": list}}
 EXPORT_FORMATS = ("mjcf", "usd", "urdf", "sdf")  # as mobile_car.export.FORMATS
-DRIVE_KINDS = ("differential", "skid-steer", "ackermann")  # as mobile_car.sim.drives.KINDS
+# as mobile_car.sim.drives.KINDS
+DRIVE_KINDS = ("differential", "skid-steer", "ackermann", "mecanum", "bicycle")
 DRIVE_KEYS = ("kind", "left", "right")
 
 

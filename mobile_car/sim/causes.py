@@ -2,9 +2,13 @@
 outcome: a watch, called every step from the start of the ramp, keeps how far the
 commands would roll the wheels, how far the driven wheels rolled, how long a motor
 pushed at its effort limit, and the friction force the floor put on the parts other
-than the wheels (a castor) against the weight they carry. :func:`why_short` names, in
-this order:
+than the wheels (a castor) against the weight they carry, and whether the robot tipped:
+a part that is neither a wheel nor a castor (its body) on the floor, or its pitch or roll
+TIP_BOUND or more off the pose it rests in. :func:`why_short` names, in this order:
 
+* tipping: the robot tipped back (or forward, or over) onto its body, or past TIP_BOUND
+  (TurtleBot 4, its centre of mass 2 mm ahead of its axle at 0.13 m, tips back onto
+  base_link: slip or a castor is then no cause, the body drags);
 * a dragging castor: the floor holds a non-wheel part back with more than
   CASTOR_DRAG_SHARE of the robot's weight (a free-rolling ball, mu 0.01, holds back at
   most 1% even under the whole robot), whatever the wheels and motors then did;
@@ -32,6 +36,7 @@ JOINT_LOSS_SHARE = 0.5     # of a motor's effort: its joint's declared losses ar
 # The forces on the floor's parts are sampled every this many steps (10 ms): their means
 # over seconds need no more, and reading contacts costs as much as a step.
 CONTACT_EVERY = 10
+TIP_BOUND = 3.0            # degrees of pitch or roll off the rest pose: tipped
 
 
 class Watch:
@@ -58,6 +63,15 @@ class Watch:
                         for w in self.driven]
         self._count = 0
         self._roll = omega * sim.drive.radius * self.step  # per step at the full command
+        # Tipping: the parts that may touch the floor (wheels, what hangs below them:
+        # rollers, and castors), the body parts that did, and the largest tilt seen.
+        self._carriers = _below_wheels(model, {w.body_id for w in sim.drive.wheels}) \
+            | set(sim.ground_parts.values())
+        self.touched: dict[str, float] = {}  # link -> when it first touched (s of the run)
+        self.started = run.data.time  # the wheels start (the watch's first step)
+        rest = sim.rest
+        self._rest = (rest.roll, rest.pitch) if rest is not None else (0.0, 0.0)
+        self.tilt = (0.0, 0.0, 0.0)  # (degrees off the rest pose, roll, pitch) at the most
 
     def __call__(self) -> None:
         run, data, step = self.run, self.run.data, self.step
@@ -68,14 +82,20 @@ class Watch:
         if any(abs(force[actuator]) >= limit for actuator, limit in self._limits):
             self.clamp_steps += 1
         self._count += 1
-        if not self.parts or self._count % CONTACT_EVERY:
+        if self._count % CONTACT_EVERY:
             return
+        roll, pitch, _ = run.euler()
+        off = math.degrees(max(abs(roll - self._rest[0]), abs(pitch - self._rest[1])))
+        if off > self.tilt[0]:
+            self.tilt = (off, math.degrees(roll), math.degrees(pitch))
         floor, bodies, weight = self.sim.floor_geom, run.model.geom_bodyid, CONTACT_EVERY * step
         for i in range(data.ncon):
             contact = data.contact[i]
             other = contact.geom2 if contact.geom1 == floor else \
                 contact.geom1 if contact.geom2 == floor else None
             body = int(bodies[other]) if other is not None else None
+            if body is not None and body not in self._carriers and contact.dist <= 0:
+                self.touched.setdefault(run.model.body(body).name, data.time)
             if body in self.parts:
                 run.mj.mj_contactForce(run.model, data, i, self._force)
                 self.normal[body] += float(self._force[0]) * weight
@@ -110,6 +130,9 @@ def why_short(watch: Watch, moved: float, moved_what: str = "moved",
                f"the robot {moved_what} {moved:.4f} m")
     clamped = (f"; the motors were at their effort limit ({_efforts(watch.driven)}) for "
                f"{watch.clamped:.2f} s of {watch.seconds:.2f} s" if watch.clamp_steps else "")
+    tipped = _tipped(watch)
+    if tipped is not None:
+        return f"{tipped}; {rolling}{clamped}"
     draggers = [(link, force, normal) for link, force, normal in watch.drag()
                 if force > CASTOR_DRAG_SHARE * weight]
     if draggers:
@@ -133,6 +156,56 @@ def why_short(watch: Watch, moved: float, moved_what: str = "moved",
                 f"({100 * lag:.1f}% short); something holds them back (a contact, a "
                 f"joint limit, a load too heavy for the servo gain {gains} N·m·s/rad)")
     return None
+
+
+def _tipped(watch: Watch) -> str | None:
+    """``tipped back onto base_link: pitch -4.88 deg (3.81 deg off its rest) ...`` where
+    a body part touched the floor or the tilt passed TIP_BOUND, else None."""
+    off, roll, pitch = watch.tilt
+    if not watch.touched and off < TIP_BOUND:
+        return None
+    rest_roll, rest_pitch = (math.degrees(a) for a in watch._rest)
+    if abs(pitch - rest_pitch) >= abs(roll - rest_roll):  # x forward: nose up is negative
+        way, angle = ("back" if pitch < rest_pitch else "forward"), f"pitch {pitch:.2f} deg"
+    else:
+        way, angle = "over sideways", f"roll {roll:.2f} deg"
+    parts = sorted(watch.touched, key=watch.touched.get)
+    onto = f" onto {', '.join(parts)}" if parts else ""
+    after = watch.touched[parts[0]] - watch.started if parts else 0.0
+    when = ("" if not parts else ", on the floor as the wheels started"
+            if after <= CONTACT_EVERY * watch.step + 1e-9 else
+            f", on the floor {after:.2f} s after the wheels started")
+    return (f"tipped {way}{onto}: {angle} ({off:.2f} deg off the pose it rests in, bound "
+            f"{TIP_BOUND:g} deg){when}; {_balance(watch)}")
+
+
+def _balance(watch: Watch) -> str:
+    """Where the centre of mass stands over the driven wheels' axle in the pose it rests
+    in: ``its centre of mass 2.1 mm ahead of its axle, 0.131 m above the floor``."""
+    from .run import Run
+
+    rest = Run(watch.sim)
+    model, data = rest.model, rest.data
+    root = int(model.jnt_bodyid[model.joint("mcar_free").id])
+    com = data.subtree_com[root]
+    wheels = watch.driven
+    axle = np.mean([data.xpos[w.body_id] for w in wheels], axis=0)
+    floor = float(np.mean([data.xpos[w.body_id][2] - w.radius for w in wheels]))
+    ahead = 1000 * float(com[0] - axle[0])  # the robot rests facing +x
+    return (f"its centre of mass {abs(ahead):.1f} mm {'ahead of' if ahead >= 0 else 'behind'} "
+            f"its axle, {com[2] - floor:.3f} m above the floor")
+
+
+def _below_wheels(model, wheels: set[int]) -> set[int]:
+    """The wheel bodies and every body below one (a mecanum wheel's rollers)."""
+    found = set(wheels)
+    for body in range(1, model.nbody):
+        parent = body
+        while parent > 0 and parent not in wheels:
+            parent = int(model.body_parentid[parent])
+        if parent > 0:
+            found.add(body)
+    return found
 
 
 def _joint_losses(watch: Watch) -> str:

@@ -58,10 +58,11 @@ class Drive:
     declared: str = ""   # mecanum: the declaration that made it so, or the rollers
     grip_from: str = ""  # mecanum: where the rollers' grip axes came from
     grip_mu: dict = field(default_factory=dict)  # mecanum: joint -> (mu, mu across, source)
+    centre: list[Wheel] = field(default_factory=list)  # bicycle: the driven centre-line wheels
 
     @property
     def driven(self) -> list[Wheel]:
-        return self.left + self.right
+        return self.left + self.right + self.centre
 
     @property
     def wheels(self) -> list[Wheel]:
@@ -70,7 +71,10 @@ class Drive:
 
     @property
     def track(self) -> float:
-        """The distance between the left and right driven wheels' centre lines (m)."""
+        """The distance between the left and right driven wheels' centre lines (m); 0 for
+        a bicycle, whose wheels are all on the centre line."""
+        if not (self.left and self.right):
+            return 0.0
         return float(np.mean([w.y for w in self.left]) - np.mean([w.y for w in self.right]))
 
     @property
@@ -79,12 +83,12 @@ class Drive:
 
     @property
     def rear(self) -> list[Wheel]:
-        """Ackermann: the unsteered wheels (their axle is the turn's reference)."""
+        """Ackermann and bicycle: the unsteered wheels (their axle is the turn's reference)."""
         return [w for w in self.wheels if w.steering is None]
 
     @property
     def wheelbase(self) -> float:
-        """Ackermann: from the rear axle to the steering pivots (m)."""
+        """Ackermann and bicycle: from the rear axle (wheel) to the steering pivots (m)."""
         return float(np.mean([s.x for s in self.steering]) - np.mean([w.x for w in self.rear]))
 
 

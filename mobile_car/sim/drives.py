@@ -22,13 +22,18 @@ mecanum hub (:mod:`.mecanum`). The kinds:
   too where a ``<transmission>`` or ``<ros2_control>`` block gives their joint an actuator;
 * ``mecanum``: two wheels a side, none steered, that the package declares mecanum or that
   carry rollers on their rims (:mod:`.mecanum`), each gripping at 45°;
-* anything else (rollers that are not on four hubs, wheels on one side or on the centre
-  line, steering that is not one Ackermann pair, legs): no drive, with a sentence saying
-  what was found.
+* ``bicycle``: a single track: one steered wheel on the centre line, on its own steering
+  joint, and one or more unsteered wheels on the centre line behind it, which are driven
+  (the steered one too where it has an actuator, as for ``ackermann``);
+* anything else (rollers that are not on four hubs, wheels on one side, a tricycle's
+  steered wheel on the centre line before a pair, steering that is neither one Ackermann
+  pair nor one bicycle wheel, legs): no drive, with a sentence saying what was found.
 
 A declaration names joints; each maps onto the tree's wheels: a wheel is itself, a joint
 that is no wheel of the tree (a bicycle model's ``rear_wheel_joint`` on the centre line,
 ``front_steer_joint``) stands for the real wheels (steering joints) at its x, both sides.
+An Ackermann (or bicycle) controller whose steering joint IS a steering joint of the tree,
+above a wheel on the centre line, declares a bicycle (steer_bot's bicycle_bot).
 A declaration naming a ``fixed`` or missing joint is skipped here (lint reports it, E306).
 
 ``--drive KIND`` overrides the declared or found kind with one the tree's wheels allow
@@ -54,7 +59,7 @@ from .mecanum import (
     mecanum_drive,
 )
 
-KINDS = ("differential", "skid-steer", "ackermann", "mecanum")
+KINDS = ("differential", "skid-steer", "ackermann", "mecanum", "bicycle")
 UPRIGHT = 0.9       # |z| of an axis in the root frame above which a hinge steers (or swivels)
 SIDE_EPSILON = 1e-6  # m: a wheel closer than this to the centre line is on neither side
 ACKERMANN_X_TOLERANCE = 0.05  # of the wheelbase: the steering pivots stand side by side
@@ -206,6 +211,11 @@ def choose_drive(tree: Tree, actuated: set[str], left=None, right=None,
         return Drive("ackermann", _side(driven, 1), _side(driven, -1), free,
                      _sorted_steering(tree.steering), chosen=chosen,
                      sources=_each(driven, source)), None
+    if kind == "bicycle":
+        if found != "bicycle":
+            raise UsageError(f"--drive bicycle: {_no_bicycle(tree)}")
+        driven = [w for w in tree.wheels if w.steering is None or w.joint in actuated]
+        return _bicycle(tree, tree.steering, driven, chosen, _each(driven, source)), None
     if kind == "mecanum":
         drive = mecanum_drive(tree, list(mecanum))
         if drive is None:
@@ -267,6 +277,11 @@ def _from_declaration(tree: Tree, declaration) -> tuple[Drive | None, str | None
         steering = _steering_for(tree, declaration.steering)
         if not driven or steering is None:
             return None
+        if _single_track(steering, declaration.steering):
+            why = _no_bicycle(tree)
+            if why is not None:
+                return None, f"{why} ({declaration.source})"
+            return _bicycle(tree, steering, driven, "declared", sources), None
         tree_steering = tree.steering
         tree.steering = steering
         try:
@@ -312,6 +327,20 @@ def _nearest_axle(items, x: float, x_of, radius: float) -> list:
         return []
     nearest = min(abs(x_of(i) - x) for i in items)
     return [i for i in items if abs(x_of(i) - x) <= nearest + VIRTUAL_X_TOLERANCE * radius]
+
+
+def _single_track(steering: list[Steering], names: list[str]) -> bool:
+    """Whether a declaration's steering is a bicycle's: one real steering joint (named,
+    not stood for) above a wheel on the centre line."""
+    return (len(steering) == 1 and steering[0].joint in names
+            and abs(steering[0].wheel.y) <= SIDE_EPSILON)
+
+
+def _bicycle(tree: Tree, steering: list[Steering], driven: list[Wheel], chosen: str,
+             sources: dict) -> Drive:
+    free = [w for w in tree.wheels if w not in driven]
+    return Drive("bicycle", [], [], free, list(steering), chosen=chosen, sources=sources,
+                 centre=driven)
 
 
 def _steering_for(tree: Tree, names: list[str]) -> list[Steering] | None:
@@ -428,7 +457,7 @@ def _why_not(tree: Tree) -> str | None:
                     + "; ".join(f"{j}: {why}" for j, why in tree.not_wheels.items()) + ")")
         return "no drive wheels: no continuous joint moves a link with collision geometry"
     centre = [w.joint for w in tree.wheels if abs(w.y) <= SIDE_EPSILON]
-    if centre:
+    if centre and _no_bicycle(tree) is not None:
         return (f"a wheel on the centre line ({', '.join(centre)}): not a drive kind mcar sim "
                 f"drives ({', '.join(KINDS)})")
     return None
@@ -437,7 +466,9 @@ def _why_not(tree: Tree) -> str | None:
 def _kind_of(tree: Tree, lefts, rights, declared=()) -> str | None:
     steered = [w for w in tree.wheels if w.steering is not None]
     if steered or tree.odd_steering:
-        return "ackermann" if _no_ackermann(tree, lefts, rights) is None else None
+        if _no_ackermann(tree, lefts, rights) is None:
+            return "ackermann"
+        return "bicycle" if _no_bicycle(tree) is None else None
     if len(lefts) == len(rights) == 2 and (has_rollers(tree)
                                            or declared_mecanum(tree, declared)):
         return "mecanum"
@@ -468,6 +499,29 @@ def _no_ackermann(tree: Tree, lefts, rights) -> str | None:
         return "the steered wheels are not in front of the others"
     if abs(steering[0].x - steering[1].x) > ACKERMANN_X_TOLERANCE * base:
         return "the two steering pivots are not side by side"
+    return None
+
+
+def _no_bicycle(tree: Tree) -> str | None:
+    """Why the wheels are not a bicycle's (one steered wheel before unsteered ones, all on
+    the centre line), or None when they are."""
+    if tree.odd_steering:
+        return (f"steering joint {', '.join(tree.odd_steering)} turns several wheels at once, "
+                "not one bicycle wheel")
+    if len(tree.steering) != 1:
+        return (f"{len(tree.steering)} steering joint(s) "
+                f"({', '.join(s.joint for s in tree.steering) or 'none'}), not one bicycle "
+                "wheel")
+    steering = tree.steering[0]
+    rear = [w for w in tree.wheels if w.steering is None]
+    off = [w.joint for w in tree.wheels if abs(w.y) > SIDE_EPSILON]
+    if off:
+        return (f"the wheels are not all on the centre line ({', '.join(off)} beside it), "
+                "not a bicycle")
+    if not rear:
+        return "a steered wheel but no unsteered wheel to drive and turn about"
+    if steering.x - np.mean([w.x for w in rear]) <= 0:
+        return "the steered wheel is not in front of the others"
     return None
 
 

@@ -8,6 +8,7 @@ The simulation-only choices (docs/sim.md) are made here and nowhere else:
 * robot geoms collide with the floor only (Gazebo's default: no self-collision);
 * a wheel (driven or rolling free) touches the floor through a sphere of the tyre's
   radius: a cylinder touches at both tyre edges and scrubs when the car turns in place;
+  but a bicycle's keep their cylinders: their width is all that holds a single track up;
 * friction comes from the description's ``<gazebo reference><mu1>``, with a contact
   priority so the part's own value wins (MuJoCo otherwise takes the larger of the pair's);
   a castor (a part other than the drive wheels that rests on the floor) without one gets
@@ -495,6 +496,11 @@ def rolling_contacts(mj, spec, drive, parts: dict, friction: dict) -> None:
         if geom.parent.name in parts and geom.parent.name not in friction and _touches(geom):
             geom.friction = [CASTOR_FRICTION, geom.friction[1], geom.friction[2]]
             geom.priority = 1
+    if drive.kind == "bicycle":
+        # A single track stands on its tyres' width: on spheres' points it would balance
+        # on a knife edge and fall outward in the first turn. It never turns in place,
+        # where a cylinder scrubs.
+        return
     for wheel in drive.wheels:
         _round_tyre(spec, wheel, mj)
 

@@ -140,7 +140,7 @@ def simulate(checked, names=None, left=None, right=None,
             report.notes = list(dict.fromkeys(report.notes + unread))
             if sim.control is not None and sim.control.file not in report.reads:
                 report.reads.append(sim.control.file)
-        if sim.kind == "ackermann" and "turn" in scenarios_for(sim, names):
+        if sim.kind in ("ackermann", "bicycle") and "turn" in scenarios_for(sim, names):
             from .turning import steering_angle
 
             delta = steering_angle(sim, steering)
@@ -203,8 +203,10 @@ def drive_summary(sim) -> dict:
                "sources": {w.joint: drive.sources.get(w.joint, drive.chosen)
                            for w in drive.driven},
                "not_wheels": dict(drive.not_wheels)}
-    if drive.kind == "ackermann":
+    if drive.kind in ("ackermann", "bicycle"):
         summary["wheelbase"] = round(drive.wheelbase, 6)
+    if drive.centre:
+        summary["centre"] = [w.joint for w in drive.centre]
     if drive.kind == "mecanum":
         summary.update(mecanum_summary(sim))
     summary["sprung"] = [s.as_json() for s in sim.springs]  # suspension, wheel drop
@@ -244,12 +246,14 @@ def text_table(report: SimReport) -> list[str]:
 
 def _drive_lines(d: dict) -> list[str]:
     kind = d["kind"] + ("" if d["chosen"] == "found from the tree" else f" ({d['chosen']})")
-    wheels = f"{', '.join(d['left'])} (left), {', '.join(d['right'])} (right)"
+    wheels = (f"{', '.join(d['centre'])} (centre line)" if "centre" in d else
+              f"{', '.join(d['left'])} (left), {', '.join(d['right'])} (right)")
     if d["free"]:
         wheels += f", rolling free {', '.join(d['free'])}"
     if d["steering"]:
         wheels += f"; steering {', '.join(d['steering'])}"
-    sizes = f"radius {d['wheel_radius']:g} m, track {d['track']:g} m"
+    sizes = f"radius {d['wheel_radius']:g} m" + ("" if "centre" in d else
+                                                  f", track {d['track']:g} m")
     if "wheelbase" in d:
         sizes += f", wheelbase {d['wheelbase']:g} m"
     if "steering_angle_deg" in d:

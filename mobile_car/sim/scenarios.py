@@ -1,8 +1,8 @@
 """The runs that prove a robot, chosen by its drive kind: drop (it stands) for every robot;
 drive (it rolls straight as far as its wheels say) for every vehicle; spin (it turns in
 place) for differential, skid-steer and mecanum ones (:mod:`.driving`), strafe (it moves
-sideways) for mecanum ones (:mod:`.strafe`), turn (it steers round the
-circle its geometry says) for Ackermann ones (:mod:`.turning`). Each returns its measured
+sideways) for mecanum ones (:mod:`.strafe`), turn (it steers round the circle its geometry
+says) for Ackermann and bicycle ones (:mod:`.turning`). Each returns its measured
 figures against their bounds; a figure out of bounds fails the scenario."""
 
 from __future__ import annotations
@@ -25,7 +25,8 @@ SCENARIOS = ("drop", "drive", "strafe", "spin", "turn")
 KIND_SCENARIOS = {"differential": ("drop", "drive", "spin"),
                   "skid-steer": ("drop", "drive", "spin"),
                   "ackermann": ("drop", "drive", "turn"),
-                  "mecanum": ("drop", "drive", "strafe", "spin")}
+                  "mecanum": ("drop", "drive", "strafe", "spin"),
+                  "bicycle": ("drop", "drive", "turn")}
 DROP_HEIGHT = 0.005      # m above the rest height it is released from
 DROP_TIME = 2.0          # s
 # Bounds (docs/sim.md).
@@ -161,6 +162,8 @@ def _not_for(sim: SimModel, name: str) -> str | None:
     """Why scenario ``name`` does not fit the robot's drive kind, or None."""
     if name == "spin" and sim.kind == "ackermann":
         return "an Ackermann car does not turn in place: turn proves its steering"
+    if name == "spin" and sim.kind == "bicycle":
+        return "a bicycle does not turn in place: turn proves its steering"
     if name == "turn" and sim.kind in ("differential", "skid-steer", "mecanum"):
         return f"turn steers an Ackermann car: spin proves a {sim.kind} robot's turning"
     if name == "strafe" and sim.kind != "mecanum":

@@ -1,6 +1,7 @@
 """turn: an Ackermann car at a commanded steering angle δ (the angle of a virtual wheel
-midway between the front ones), turning left. Each front wheel is steered to its own
-Ackermann angle, atan(L / (R - y)) for its pivot at y, with R = L / tan δ the radius of
+midway between the front ones), turning left; a bicycle the same, its one front wheel
+steered to δ and its rear wheel the centre measured. Each front wheel is steered to its
+own Ackermann angle, atan(L / (R - y)) for its pivot at y, with R = L / tan δ the radius of
 the rear axle's centre and L the wheelbase; each driven wheel turns at the speed of its
 own circle about the turn's centre (an ideal differential), the rear axle's centre at
 r·ω. The car must drive on a circle whose radius, measured at the rear axle's centre, is
@@ -30,6 +31,7 @@ TURN_TIME = 3.0            # s after settling
 STEADY_AFTER = RAMP_TIME + 0.5  # s into the turn when the measurement starts
 DEFAULT_STEERING = math.radians(15.0)
 MIN_STEERING = math.radians(1.0)
+MAX_STEERING = math.radians(80.0)  # as --steering-angle allows
 # The inner wheel is steered to at most this share of its joint's limit.
 LIMIT_SHARE = 0.9
 RADIUS_BOUND = 0.10        # of L / tan δ
@@ -43,7 +45,7 @@ def steering_angle(sim: SimModel, requested: float | None = None) -> float:
     drive = sim.drive
     base, width = drive.wheelbase, _pivot_width(sim)
     if requested is not None:
-        if not 0 < requested < math.radians(80):
+        if not 0 < requested < MAX_STEERING:
             raise UsageError(f"--steering-angle {math.degrees(requested):g}: give an angle "
                              "between 0 and 80 degrees")
         for steer, angle in wheel_angles(sim, requested):
@@ -58,7 +60,9 @@ def steering_angle(sim: SimModel, requested: float | None = None) -> float:
     inner = max(drive.steering, key=lambda s: s.y)
     upper = _reach(inner, 1.0)
     if upper is not None:
-        most = LIMIT_SHARE * upper  # the inner wheel's angle -> δ
+        # the inner wheel's angle -> δ; a joint that turns past a right angle (steer_bot's
+        # bicycle_bot: ±180°) limits nothing the turn asks (and tan would change sign)
+        most = min(LIMIT_SHARE * upper, MAX_STEERING)
         if most <= MIN_STEERING:
             return MIN_STEERING  # a joint that barely steers: the turn shows it
         delta = min(delta, math.atan(base / (base / math.tan(most) + width / 2)))
@@ -115,7 +119,8 @@ def run_turn(sim: SimModel, frame=None, delta: float | None = None) -> ScenarioR
                detail=f"{measured:.4f} m of wheelbase / tan δ = {drive.wheelbase:.4f} m / "
                       f"tan {math.degrees(delta):.2f}° = {geometric:.4f} m"),
         Figure("steering error", steering_error, STEERING_BOUND, "deg",
-               detail=f"Ackermann angles {angles}"),
+               detail=f"{'steering' if drive.kind == 'bicycle' else 'Ackermann'} angles "
+                      f"{angles}"),
     ]
     if yaw.turned <= 0:
         result.problems.append("did not turn left with its wheels steered left")

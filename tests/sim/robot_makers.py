@@ -443,6 +443,43 @@ def tricycle(mass: float = 5.0, wheelbase: float = 0.4, track: float = 0.3,
     return "".join(parts)
 
 
+def bicycle(mass: float = 4.0, wheelbase: float = 0.4, radius: float = 0.05,
+            width: float = 0.03, steer_limit: float = 0.6) -> str:
+    """A single track: a box on a rear wheel and a front wheel, both on the centre line,
+    the front one under a revolute fork about z (``front_steering_joint``, ±``steer_limit``
+    rad); it stands on its tyres' ``width`` alone, its centre of mass 1.5 radii up."""
+    wheel_mass, fork_mass = 0.05 * mass, 0.05
+    body_mass = mass - 2 * wheel_mass - fork_mass
+    body = (wheelbase, 2 * width, 0.6 * radius)
+    parts = ['<?xml version="1.0"?>\n<robot name="bicycle">',
+             _body(body_mass, body, 0.2 * radius, axle=radius),
+             _wheel("rear_wheel", "base_link", (-wheelbase / 2, 0, 0), radius, width,
+                    wheel_mass)]
+    parts.append(f"""
+  <joint name="front_steering_joint" type="revolute">
+    <parent link="base_link"/><child link="front_fork"/>
+    <origin xyz="{wheelbase / 2:.6g} 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="{-steer_limit:.6g}" upper="{steer_limit:.6g}" effort="5" velocity="3"/>
+  </joint>
+  <link name="front_fork">
+    <inertial><mass value="{fork_mass:.6g}"/><inertia ixx="1e-5" ixy="0" ixz="0" iyy="1e-5"
+      iyz="0" izz="1e-5"/></inertial>
+  </link>""")
+    parts.append(_wheel("front_wheel", "front_fork", (0, 0, 0), radius, width, wheel_mass))
+    parts.append("\n</robot>\n")
+    return "".join(parts)
+
+
+BICYCLE_CONTROLLER = """# ackermann_steering_controller (ROS 1) naming a single track's joints
+ackermann_steering_controller:
+  type: 'ackermann_steering_controller/AckermannSteeringController'
+  rear_wheel: 'rear_wheel_joint'
+  front_steer: 'front_steering_joint'
+  wheel_separation_h: 0.4
+  wheel_radius: 0.05
+"""
+
+
 def dummy_wheel(gap: float = 0.005) -> str:
     """Hunter 2's shape: :func:`two_wheeler` and a small wheel on a continuous joint
     beside the right drive wheel, ``gap`` m above the floor (a model of a sensor wheel,
@@ -576,6 +613,30 @@ def castors_fore_and_aft(mass: float = 2.0, back_lift: float = 0.002) -> str:
     parts.append(_ball("caster_front", "base_link", (0.12, 0, ball - r), ball, 0.1 * mass))
     parts.append(_ball("caster_back", "base_link", (-0.12, 0, ball - r + back_lift), ball,
                        0.02 * mass))
+    parts.append("\n</robot>\n")
+    return "".join(parts)
+
+
+def tips_back(mass: float = 3.0, ahead: float = 0.002, height: float = 0.1) -> str:
+    """TurtleBot 4's balance: a box on two drive wheels (radius 35 mm) and one ball castor
+    in front, none behind; its centre of mass ``ahead`` m ahead of the axle, ``height`` m
+    above the floor. The box reaches 0.15 m behind the axle, 10 mm above the floor: the
+    speed ramp's acceleration, over g·ahead/height, tips it back onto it."""
+    r, ball, length = 0.035, 0.012, 0.3
+    wheel_mass = 0.08 * mass
+    body_mass = mass - 2 * wheel_mass - 0.01
+    tall = 2 * (height - 0.01)
+    parts = [f"""<?xml version="1.0"?>
+<robot name="tips_back">
+  <link name="base_link">
+    <collision><origin xyz="{ahead - length / 2 + 0.15:.6g} 0 {height - r:.6g}"/>
+      <geometry><box size="{length:.6g} 0.2 {tall:.6g}"/></geometry></collision>
+    <inertial><origin xyz="{ahead:.6g} 0 {height - r:.6g}"/><mass value="{body_mass:.6g}"/>
+      {box_inertia(body_mass, length, 0.2, tall)}</inertial>
+  </link>"""]
+    for side, y in (("left", 0.13), ("right", -0.13)):
+        parts.append(_wheel(f"wheel_{side}", "base_link", (0, y, 0), r, 0.02, wheel_mass))
+    parts.append(_ball("castor_front", "base_link", (0.12, 0, ball - r), ball, 0.01))
     parts.append("\n</robot>\n")
     return "".join(parts)
 

@@ -1,8 +1,9 @@
 """A drive or spin that falls short names its likely cause from what was measured while
 the robot drove (mobile_car/sim/causes.py): a castor the floor drags, motors at their
-effort limit, tyres that slip. Each fault is put into a package `mcar init` wrote, through
-config.xacro's own dimensions (--set), and the message checked against the numbers it
-reports."""
+effort limit, tyres that slip, a robot that tipped onto its body. Each fault is put into
+a package `mcar init` wrote, through config.xacro's own dimensions (--set), and the
+message checked against the numbers it reports; the tipping robot is made at test time
+(tests/sim/robot_makers.py)."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import re
 
 import pytest
 from conftest import mcar_process
+from sim.robot_makers import tips_back
 
 ROBOT = "urdf/bot_description.urdf.xacro"
 NUMBER = r"([\d.]+)"
@@ -121,3 +123,40 @@ def test_an_ackermann_cars_effort_limit_names_its_driven_rear_wheels(run_mcar, t
         "at it for "), line
     rolled, commanded, moved = _rolled_and_moved(line)
     assert rolled < 0.9 * commanded and moved == pytest.approx(rolled, rel=0.01)
+
+
+@pytest.fixture(scope="module")
+def balance(tmp_path_factory):
+    """(exit code, drive's message) of TurtleBot 4's balance (:func:`tips_back`): its
+    centre of mass 2 mm ahead of its axle, no castor behind; and the same 30 mm ahead."""
+    from click.testing import CliRunner
+    from mobile_car.cli.main import main
+    folder, runs = tmp_path_factory.mktemp("balance"), {}
+    for name, ahead in (("tips", 0.002), ("stands", 0.03)):
+        path = folder / f"{name}.urdf"
+        path.write_text(tips_back(ahead=ahead))
+        result = CliRunner().invoke(main, ["sim", str(path), "--scenario", "drive",
+                                           "--format", "json"], catch_exceptions=False)
+        (robot,) = json.loads(result.stdout)["files"]
+        runs[name] = result.exit_code, robot["scenarios"][0]["message"]
+    return runs
+
+
+def test_a_robot_that_tips_back_onto_its_body_says_so_not_wheel_slip(balance):
+    code, message = balance["tips"]
+    assert code == 1
+    head = "drove short; likely cause: tipped back onto base_link: pitch -"
+    assert message.startswith(head), message
+    pitch = float(message[len(head):].split(" deg")[0])
+    assert 3 <= pitch <= 6  # the box's back edge, 10 mm up 0.15 m behind the axle: 3.8 deg
+    assert (f"({pitch:.2f} deg off the pose it rests in, bound 3 deg), on the floor "
+            in message)
+    # 2.51 kg of body 2 mm ahead and a 10 g castor 0.12 m ahead, of 3 kg: 2.07 mm.
+    assert " s after the wheels started; its centre of mass 2.1 mm ahead of its axle, " \
+        in message, message
+    assert "wheel slip" not in message
+
+
+def test_the_same_robot_with_its_weight_further_forward_drives(balance):
+    """The control: 30 mm ahead of its axle, the ramp does not tip it."""
+    assert balance["stands"] == (0, "ok")

@@ -173,3 +173,24 @@ def test_spin_compares_the_measured_multiplier_with_the_control_package(skid_ste
     assert side == ("over it" if off >= 0 else "under it")
     # (The percentage is of the unrounded multiplier, the finding prints 3 decimals.)
     assert float(said) == pytest.approx(abs(off), abs=0.1)
+
+
+@needs_folder
+def test_steer_bots_bicycle_bot_is_a_bicycle_its_controller_declares():
+    """A released single track (steer_bot_description's bicycle_bot: rear_wheel_joint, and
+    front_wheel_joint under front_steer_joint, on the centre line; its control package's
+    ackermann_steering_controller names the two) drives and turns as a bicycle."""
+    main = FOLDER / "steer_bot_description" / "urdf" / "bicycle_bot.urdf.xacro"
+    result = _invoke("sim", "--package-path", FOLDER, main, "--format", "json")
+    assert result.exit_code == 0, result.stderr
+    entry = json.loads(result.stdout)["files"][0]
+    drive = entry["drive"]
+    assert (drive["kind"], drive["chosen"], drive["centre"], drive["steering"]) == (
+        "bicycle", "declared", ["rear_wheel_joint"], ["front_steer_joint"])
+    config = FOLDER / "steer_bot_control" / "config" / "ctrl_ackermann_steering_controller.yaml"
+    assert drive["sources"] == {"rear_wheel_joint": f"controller YAML {display_path(config)}:10"}
+    assert drive["wheelbase"] == pytest.approx(0.4)
+    assert [(s["name"], s["status"]) for s in entry["scenarios"]] == \
+        [("drop", "passed"), ("drive", "passed"), ("turn", "passed")]
+    turn = next(s for s in entry["scenarios"] if s["name"] == "turn")
+    assert {f["name"]: f["value"] for f in turn["figures"]}["radius error"] < 10

@@ -194,7 +194,7 @@ def test_a_vehicle_sim_cannot_drive_fails_unless_only_drop_was_asked(cli, made):
     code, stderr, entry = sim(cli, made["tricycle"])
     assert code == 1
     why = ("a wheel on the centre line (front_wheel_joint): not a drive kind mcar sim drives "
-           "(differential, skid-steer, ackermann, mecanum)")
+           "(differential, skid-steer, ackermann, mecanum, bicycle)")
     assert entry["why_no_drive"] == why
     assert [(s["name"], s["status"], s["message"]) for s in entry["scenarios"]] == [
         ("drop", "passed", "ok"), ("drive", "failed", f"cannot drive this vehicle: {why}"),

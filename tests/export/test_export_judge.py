@@ -209,5 +209,5 @@ def test_a_castor_of_mu1_0_touches_frictionless_in_the_export_as_in_sim(run_mcar
     assert document["springs"] == []
     # Control: the same file with the pyramid of friction (no condim 1) fails.
     xml.write_text(xml.read_text().replace(' condim="1"', ""))
-    assert re.match(r".*out: spin failed as mcar sim judges it: yaw rate error \d+\.\d+ % ",
+    assert re.match(r".*out: spin failed as mcar sim judges it: .*yaw rate error \d+\.\d+ % ",
                     _verify_again(tmp_path / "out", exported))

@@ -165,6 +165,6 @@ def test_the_cli_offers_the_drive_kinds_the_scaffold_makes_and_sim_detects():
     from mobile_car.sim.drives import KINDS
 
     assert tuple(OFFERED) == tuple(DRIVES)
-    # every kind the scaffold makes, sim detects; sim also detects mecanum, which mcar init
-    # does not make
-    assert KINDS == (*DRIVES, "mecanum")
+    # every kind the scaffold makes, sim detects; sim also detects mecanum and bicycle,
+    # which mcar init does not make
+    assert KINDS == (*DRIVES, "mecanum", "bicycle")

@@ -33,6 +33,7 @@ from measure import (  # noqa: E402
     REPO,
     RUN_TIMEOUT_S,
     XACRO,
+    ament_prefix,
     exit_text,
     fmt_time,
     notes_for,
@@ -116,28 +117,14 @@ def _row(label: str, peer: str, pairs: Pairs, target: float) -> str:
 
 def _package_prefix(root: Path, folders: list[Path]) -> dict:
     """An environment in which the plain xacro command finds every package under
-    ``folders`` the ROS 2 way (``$(find)`` asks ament_index_python): a shim of that module
-    and a prefix whose share/NAME links each package folder, NAME from its package.xml."""
-    shim = root / "shim" / "ament_index_python"
-    shim.mkdir(parents=True)
-    (shim / "__init__.py").write_text("")
-    (shim / "packages.py").write_text(
-        "import os\n"
-        "def get_package_share_directory(name):\n"
-        "    for prefix in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep):\n"
-        "        share = os.path.join(prefix, 'share', name)\n"
-        "        if os.path.isfile(os.path.join(share, 'package.xml')):\n"
-        "            return share\n"
-        "    raise LookupError(name)\n")
-    share = root / "prefix" / "share"
-    share.mkdir(parents=True)
+    ``folders`` the ROS 2 way, NAME from each package.xml (:func:`measure.ament_prefix`)."""
+    packages: dict[str, Path] = {}
     for folder in folders:
         for manifest in sorted(folder.rglob("package.xml")):
             name = re.search(r"<name>\s*([^<\s]+)\s*</name>", manifest.read_text())
-            if name and not (share / name.group(1)).exists():
-                (share / name.group(1)).symlink_to(manifest.parent)
-    return {**os.environ, "PYTHONPATH": str(root / "shim"),
-            "AMENT_PREFIX_PATH": str(root / "prefix")}
+            if name:
+                packages.setdefault(name.group(1), manifest.parent)
+    return ament_prefix(root, packages)
 
 
 def _beside_checkouts(name: str, env_name: str) -> Path | None:

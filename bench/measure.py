@@ -253,3 +253,26 @@ def versions() -> str:
     return ", ".join(parts)
 
 
+
+
+def ament_prefix(root: Path, packages: dict) -> dict:
+    """An environment in which the plain xacro command finds ``packages`` (name -> folder)
+    the ROS 2 way: ``$(find)`` asks ament_index_python, here a shim of that module, and a
+    prefix whose share/NAME links each package's folder."""
+    shim = root / "shim" / "ament_index_python"
+    shim.mkdir(parents=True)
+    (shim / "__init__.py").write_text("")
+    (shim / "packages.py").write_text(
+        "import os\n"
+        "def get_package_share_directory(name):\n"
+        "    for prefix in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep):\n"
+        "        share = os.path.join(prefix, 'share', name)\n"
+        "        if os.path.isfile(os.path.join(share, 'package.xml')):\n"
+        "            return share\n"
+        "    raise LookupError(name)\n")
+    share = root / "prefix" / "share"
+    share.mkdir(parents=True)
+    for name, folder in packages.items():
+        (share / name).symlink_to(folder)
+    return {**os.environ, "PYTHONPATH": str(root / "shim"),
+            "AMENT_PREFIX_PATH": str(root / "prefix")}

@@ -72,7 +72,7 @@ def find_controllers(loaded) -> tuple[list, list[str], list[Path]]:
         for path in files:
             shown = display_path(path)
             declared = [in_yaml_mapping(keys, shown, _names_in_order)
-                        for keys in _mappings(path, problems)]
+                        for keys in yaml_mappings(path, problems)]
             found += sorted((d for d in declared if d is not None), key=lambda d: d.line or 0)
     return found, problems, read
 
@@ -115,15 +115,20 @@ def _description_packages(loaded) -> list[str]:
     return list(dict.fromkeys(names))
 
 
-def _mappings(path: Path, problems: list[str]) -> list[dict]:
-    """key -> (key node, value node) of every mapping in the YAML file."""
+def yaml_mappings(path: Path, problems: list[str], contains: str | None = None) -> list[dict]:
+    """key -> (key node, value node) of every mapping in the YAML file (bounded read, the
+    bounded loader); ``contains``: a word the file must hold to be parsed at all (most
+    files of a control package name no controller a reader looks for)."""
     import yaml
 
     from ..config.bounded_yaml import compose_and_load
     from ..load.bounded import read_input
 
     try:
-        node, _ = compose_and_load(read_input(path, str(path)).decode("utf-8"))
+        text = read_input(path, str(path)).decode("utf-8")
+        if contains is not None and contains not in text:
+            return []
+        node, _ = compose_and_load(text)
     except (OSError, McarError, UnicodeDecodeError, yaml.YAMLError) as error:
         problems.append(f"{display_path(path)}: not read ({_reason(error)})")
         return []
@@ -145,7 +150,7 @@ def _multipliers(path: Path, problems: list[str]) -> list[tuple[ControlConfig, s
     """(config, the wheel joints its controller names) of every mapping in the file that
     sets the multiplier to a number."""
     found = []
-    for keys in _mappings(path, problems):
+    for keys in yaml_mappings(path, problems):
         if KEY in keys:
             key, value = keys[KEY]
             number = _number(value)

@@ -155,37 +155,19 @@ def yaml_declarations(loaded) -> tuple[list[Declaration], list[str]]:
 def _from_yaml(path: Path, problems: list[str]) -> list[Declaration]:
     import yaml
 
-    from ..config.bounded_yaml import compose_and_load
-    from ..load.bounded import read_input
     from ..load.inputs import display_path
-    from .control_config import _reason
+    from .control_config import yaml_mappings
 
-    try:
-        text = read_input(path, str(path)).decode("utf-8")
-        if CONTROLLER not in text:  # most files: no need to parse them
-            return []
-        node, _ = compose_and_load(text)
-    except (OSError, McarError, UnicodeDecodeError, yaml.YAMLError) as error:
-        problems.append(f"{display_path(path)}: not read ({_reason(error)})")
-        return []
-    found, todo = [], [node] if node is not None else []
-    while todo:
-        current = todo.pop()
-        if isinstance(current, yaml.SequenceNode):
-            todo += current.value
-        if not isinstance(current, yaml.MappingNode):
-            continue
+    found = []
+    for keys in yaml_mappings(path, problems, CONTROLLER):
         wheels, radius, line = {}, None, None
-        for key, value in current.value:
-            if not isinstance(key, yaml.ScalarNode):
-                continue
-            match = _WHEEL_KEY.match(key.value)
+        for name, (key, value) in keys.items():
+            match = _WHEEL_KEY.match(name)
             if match and isinstance(value, yaml.ScalarNode) and value.value:
                 wheels[f"{match[1]}_{match[2]}"] = value.value
                 line = line or key.start_mark.line + 1
-            elif key.value in _RADIUS_KEYS and isinstance(value, yaml.ScalarNode):
+            elif name in _RADIUS_KEYS and isinstance(value, yaml.ScalarNode):
                 radius = parse_number(value.value)
-            todo.append(value)
         if len(wheels) == 4:
             found.append(Declaration(f"{display_path(path)}:{line} ({CONTROLLER})", wheels,
                                      radius))

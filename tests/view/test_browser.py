@@ -196,7 +196,10 @@ def test_a_turned_wheel_is_seen_turning(car, page):
     _until(lambda _: box.input_value() == "0", "the page has the wheels at 0")
     _picture(page)  # (a frame drawn after the update)
     back = _picture(page)
-    assert _changed(hidden, back) < 20 < _changed(rest, turned)
+    # (a plain cylinder's facets shade a few dozen rim pixels differently as it turns: 44
+    # on a loaded machine; the markers move hundreds)
+    unmarked, marked = _changed(hidden, back), _changed(rest, turned)
+    assert unmarked < 80 and 3 * unmarked < marked, (unmarked, marked)
 
 
 @pytest.mark.slow

@@ -26,8 +26,7 @@ from .run import (
     Yaw,
     command_speed,
     forward_sign,
-    ramp,
-    wheel_command,
+    ramped,
     wrap,
 )
 
@@ -55,14 +54,8 @@ def wheel_control(run: Run, sim: SimModel, omega: float, spin: bool):
     """The control callback: every driven wheel forward at ``omega`` (the right ones back
     when ``spin``), after settling, along the ramp."""
     drive = sim.drive
-    commands = [(w.actuator_id, forward_sign(run, w) * (-1.0 if spin and w in drive.right
-                                                        else 1.0)) for w in drive.driven]
-
-    def control(t: float) -> None:
-        speed = omega * ramp(t)
-        for actuator, sign in commands:
-            run.data.ctrl[actuator] = wheel_command(run.model, actuator, sign * speed)
-    return control
+    return ramped(run, [(w.actuator_id, omega * forward_sign(run, w) * (
+        -1.0 if spin and w in drive.right else 1.0)) for w in drive.driven])
 
 
 def run_drive(sim: SimModel, frame=None) -> ScenarioResult:

@@ -160,6 +160,16 @@ def wheel_command(model, actuator: int, velocity: float) -> float:
     return velocity + loss / kv
 
 
+def ramped(run: Run, commands):
+    """The control callback driving each (actuator, speed) of ``commands`` along the ramp,
+    each servo told its wheel's declared losses (:func:`wheel_command`)."""
+    def control(t: float) -> None:
+        share = ramp(t)
+        for actuator, speed in commands:
+            run.data.ctrl[actuator] = wheel_command(run.model, actuator, share * speed)
+    return control
+
+
 def forward_sign(run: Run, wheel) -> float:
     """+1 if turning the joint positively rolls the robot forward (+x), else -1."""
     axis = run.data.xaxis[wheel.joint_id]

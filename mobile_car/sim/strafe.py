@@ -21,8 +21,7 @@ from .run import (
     Run,
     command_speed,
     forward_sign,
-    ramp,
-    wheel_command,
+    ramped,
     wrap,
 )
 
@@ -39,14 +38,8 @@ def mecanum_control(run: Run, sim: SimModel, omega: float, vx: float, vy: float,
     rate) whose fastest wheel turns at ``omega``, along the ramp."""
     speeds = mecanum_speeds(sim.drive, vx, vy, yaw_rate)
     top = max(abs(s) for s in speeds.values())
-    commands = [(w.actuator_id, forward_sign(run, w) * speeds[w.joint] * omega / top)
-                for w in sim.drive.driven]
-
-    def control(t: float) -> None:
-        share = ramp(t)
-        for actuator, speed in commands:
-            run.data.ctrl[actuator] = wheel_command(run.model, actuator, share * speed)
-    return control
+    return ramped(run, [(w.actuator_id, forward_sign(run, w) * speeds[w.joint] * omega / top)
+                        for w in sim.drive.driven])
 
 
 def run_strafe(sim: SimModel, frame=None) -> ScenarioResult:

@@ -264,9 +264,9 @@ def test_wheels_reach_their_speed_against_the_losses_they_declare(cli, robots, m
     figures = {f["name"]: f["value"] for f in entry["scenarios"][0]["figures"]}
     assert figures["wheel speed reached"] >= 99.0 and figures["distance error"] < 2.0
     # the control: the servo asked for the speed alone settles short of it
-    import mobile_car.sim.driving as driving
+    import mobile_car.sim.run as run
 
-    monkeypatch.setattr(driving, "wheel_command", lambda model, actuator, velocity: velocity)
+    monkeypatch.setattr(run, "wheel_command", lambda model, actuator, velocity: velocity)
     result = cli("sim", robots["declared losses"], "--scenario", "drive", "--format", "json")
     (entry,) = json.loads(result.stdout)["files"]
     assert result.exit_code == 1

@@ -3,8 +3,15 @@
 from __future__ import annotations
 
 import os
+from collections import deque
 
 from ..errors import McarError
+
+# MuJoCo's own warnings ("Nan, Inf or huge value in QACC ..."), the latest kept here: by
+# default MuJoCo appends each to MUJOCO_LOG.TXT in the working folder, which is the user's
+# package (a file a `git add -A` then commits) and prints it; mcar judges the run by what the
+# robot did, and its scenarios name an unstable one.
+WARNINGS: deque[str] = deque(maxlen=100)
 
 
 class EngineUnavailableError(McarError):
@@ -20,4 +27,5 @@ def mujoco():
     except ImportError as error:  # pragma: no cover - a broken install
         raise EngineUnavailableError(f"cannot import MuJoCo ({error}); reinstall mcar, "
                                      "which depends on the mujoco package") from None
+    module.set_mju_user_warning(WARNINGS.append)
     return module

@@ -104,3 +104,19 @@ def test_an_export_writes_sims_spring_not_the_hostile_figure(cli, tmp_path, name
     exported = Exported(**{k: document[k] for k in Exported.__dataclass_fields__})
     with pytest.raises(McarError, match="drop failed as mcar sim judges it: "):
         verify_mjcf(tmp_path / "out", exported)
+
+
+def test_an_unstable_run_writes_no_log_into_the_working_folder(tmp_path, monkeypatch):
+    """MuJoCo appends its warnings to MUJOCO_LOG.TXT in the working folder, the user's
+    package, unless mcar takes them: it does, and keeps the latest."""
+    from mobile_car.sim.engine import WARNINGS, mujoco
+
+    monkeypatch.chdir(tmp_path)
+    mj = mujoco()
+    model = mj.MjModel.from_xml_string(
+        '<mujoco><worldbody><body><freejoint/><geom size="0.1"/></body></worldbody></mujoco>')
+    data = mj.MjData(model)
+    data.qpos[0] = float("nan")
+    mj.mj_step(model, data)
+    assert list(tmp_path.iterdir()) == []
+    assert WARNINGS[-1].startswith("Nan, Inf or huge value in QPOS")

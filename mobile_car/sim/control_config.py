@@ -48,7 +48,7 @@ def find_control_config(loaded, joints) -> tuple[ControlConfig | None, list[str]
     """(the multiplier of the controller driving ``joints`` (else the first one found),
     the sentences saying which files could not be read)."""
     problems: list[str] = []
-    for files in _control_packages(loaded, problems):
+    for files in control_packages(loaded, problems):
         found = []
         for path in files:
             found += _multipliers(path, problems)
@@ -67,7 +67,7 @@ def find_controllers(loaded) -> tuple[list, list[str], list[Path]]:
 
     problems: list[str] = []
     found, read = [], []
-    for files in _control_packages(loaded, problems):
+    for files in control_packages(loaded, problems):
         read += files
         for path in files:
             shown = display_path(path)
@@ -77,7 +77,7 @@ def find_controllers(loaded) -> tuple[list, list[str], list[Path]]:
     return found, problems, read
 
 
-def _control_packages(loaded, problems: list[str]):
+def control_packages(loaded, problems: list[str]):
     """Each control package's YAML files (at most MAX_FILES), nearest package first. A
     file that is a link out of the repository holding its package (or into its ``.git``)
     is not read, and said in ``problems``: a pull request commits

@@ -44,7 +44,6 @@ from pathlib import Path
 import numpy as np
 
 from ..check.urdf_model import parse_number
-from ..errors import McarError
 
 CORNERS = ("front_left", "front_right", "rear_left", "rear_right")
 RADIUS_TOLERANCE = 0.02   # of the wheels' radius: a controller YAML for other wheels
@@ -54,7 +53,6 @@ ROLLER_SHARE = 0.5        # a roller is smaller than this share of its wheel's r
 RIM_SHARE = 0.5           # ... and its centre this share of it or more off the axle
 MIN_ROLLERS = 3           # rollers on a hub without a tyre of its own
 SLANT_DEGREES = (20, 70)  # a roller's axis to its hub's: a mecanum wheel's 45°, roughly
-MAX_FILES = 20            # YAML files looked at in one control package
 CONTROLLER = "mecanum_drive_controller"
 PLANAR_MOVE = re.compile(r"planar_?move", re.IGNORECASE)
 # ros2_controllers' mecanum_drive_controller (Jazzy: ..._command_joint_name) and the
@@ -126,29 +124,15 @@ def urdf_declarations(root) -> list[Declaration]:
 
 
 def yaml_declarations(loaded) -> tuple[list[Declaration], list[str]]:
-    """The ``mecanum_drive_controller`` configurations of the robot's control package
-    (``X_control`` or ``X_controller`` beside ``X_description``, found on the package
-    search path as control_config finds it), and the files that could not be read."""
-    from ..load.inputs import display_path
-    from ..packages.asset_roots import link_out_of, real_path
-    from .control_config import SUFFIX, _description_packages
+    """The ``mecanum_drive_controller`` configurations of the robot's control packages
+    (:func:`.control_config.control_packages`: found, bounded and a link out of the
+    repository refused as for every controller), and the files that could not be read."""
+    from .control_config import control_packages
 
     found, problems = [], []
-    for name in _description_packages(loaded):
-        for suffix in ("_control", "_controller"):
-            try:
-                root = loaded.search.find(name[: -len(SUFFIX)] + suffix)
-            except McarError:
-                continue
-            files = sorted(root.glob("config/*.yaml")) + sorted(root.glob("*.yaml"))
-            for path in files[:MAX_FILES]:
-                # a package's link to a file outside it (a secret) is not read: its
-                # parse error would quote it
-                outside = link_out_of(path, real_path(root))
-                if outside:
-                    problems.append(f"{display_path(path)}: not read ({outside})")
-                else:
-                    found += _from_yaml(path, problems)
+    for files in control_packages(loaded, problems):
+        for path in files:
+            found += _from_yaml(path, problems)
     return found, problems
 
 

@@ -25,8 +25,7 @@ def sim_model_of(mj, path, exported, label: str):
     """A :class:`~mobile_car.sim.model.SimModel` of the exported MJCF at ``path`` with the
     manifest's drive (``exported.drive``), on a floor."""
     from ..sim.drives import choose_drive, find_tree
-    from ..sim.model import SimModel, add_floor, lowest_points, resting_parts
-    from ..sim.resting import rest_pose
+    from ..sim.model import add_floor, lowest_points
     from .mjcf import FREE_JOINT
 
     spec = mj.MjSpec.from_file(str(path))
@@ -47,7 +46,7 @@ def sim_model_of(mj, path, exported, label: str):
     joints = _joint_elements(mj, model, getattr(exported, "joint_types", None) or {})
     summary = exported.drive
     if summary is None:  # a vehicle sim drives no kind of: it must still stand, as in sim
-        return _standing(mj, model, spec, data)
+        return _resting(mj, model, spec, data, None, [], {})
     tree = find_tree(mj, model, data, joints, lowest_points(mj, model, data))
     try:
         drive, _ = choose_drive(tree, set(), summary["left"],
@@ -67,24 +66,38 @@ def sim_model_of(mj, path, exported, label: str):
                                       label).id
     springs, start = _springs(mj, model, data, getattr(exported, "springs", None) or [],
                               label)
-    ground, parts, clearance = resting_parts(model, lowest_points(mj, model, data),
-                                             drive.wheels, data)
+    return _resting(mj, model, spec, data, drive, springs, start)
+
+
+def _resting(mj, model, spec, data, drive, springs: list, start: dict):
+    """The SimModel of the export as sim has it at rest: what touches, the pose its
+    geometry rests in (leaning on a low castor; level, at the height the export placed it,
+    to the last bit sim's: a run at a motor's limit amplifies 3e-10 m into millimetres),
+    the springs released at their rest. Without a drive it rests on whatever touches."""
+    from ..sim.model import (
+        SimModel,
+        colliding_geoms,
+        lowest_points,
+        resting_parts,
+        support_geoms,
+    )
+    from ..sim.resting import rest_pose
+
+    wheels = drive.wheels if drive else []
+    ground, parts, clearance = resting_parts(model, lowest_points(mj, model, data), wheels,
+                                             data)
+    ground_geoms = [g for w in wheels for g in w.geom_ids] or colliding_geoms(model)
+    supports = support_geoms(model, ground_geoms, set(parts.values()))
     root = int(model.jnt_bodyid[model.joint(JUDGE_FREE_JOINT).id])
     height = float(model.qpos0[model.jnt_qposadr[model.joint(JUDGE_FREE_JOINT).id] + 2])
-    # The pose its geometry rests in, as sim finds it (leaning on a low castor); level,
-    # the height the export placed it at, to the last bit sim's (a run at a motor's limit
-    # amplifies 3e-10 m into millimetres).
-    wheels = [g for w in drive.wheels for g in w.geom_ids]
-    castors = set(parts.values())
-    supports = wheels + [g for g in range(model.ngeom) if model.geom_bodyid[g] in castors]
     rest = rest_pose(mj, model, _posed(mj, model, start), root, supports, lowest_points)
     if rest.roll == rest.pitch == 0.0:
         rest.height = height - ground
     return SimModel(model=model, spec=spec, root=model.body(root).name, root_body=root,
-                    drive=drive, why_no_drive=None, rest_height=rest.height,
-                    ground_parts=parts, clearance=clearance,
+                    drive=drive, why_no_drive=None if drive else "the export has no drive",
+                    rest_height=rest.height, ground_parts=parts, clearance=clearance,
                     floor_geom=model.geom("mcar_floor").id, mass=float(model.body_mass.sum()),
-                    ground_geoms=wheels, support_geoms=supports, rest=rest,
+                    ground_geoms=ground_geoms, support_geoms=supports, rest=rest,
                     springs=springs, start=start)
 
 
@@ -120,29 +133,6 @@ def _posed(mj, model, start: dict):
     for name, position in start.items():
         data.qpos[model.jnt_qposadr[model.joint(name).id]] = position
     return data
-
-
-def _standing(mj, model, spec, data):
-    """The SimModel of an export without a drive: it rests on whatever touches, judged by
-    drop alone."""
-    from ..sim.model import SimModel, colliding_geoms, lowest_points, resting_parts
-    from ..sim.resting import rest_pose
-
-    lowest = lowest_points(mj, model, data)
-    ground, parts, clearance = resting_parts(model, lowest, [], data)
-    root = int(model.jnt_bodyid[model.joint(JUDGE_FREE_JOINT).id])
-    height = float(model.qpos0[model.jnt_qposadr[model.joint(JUDGE_FREE_JOINT).id] + 2])
-    robot = colliding_geoms(model)
-    castors = set(parts.values())
-    supports = [g for g in robot if model.geom_bodyid[g] in castors] or robot
-    rest = rest_pose(mj, model, mj.MjData(model), root, supports, lowest_points)
-    if rest.roll == rest.pitch == 0.0:
-        rest.height = height - ground
-    return SimModel(model=model, spec=spec, root=model.body(root).name, root_body=root,
-                    drive=None, why_no_drive="the export has no drive", rest_height=rest.height,
-                    ground_parts=parts, clearance=clearance,
-                    floor_geom=model.geom("mcar_floor").id, mass=float(model.body_mass.sum()),
-                    ground_geoms=robot, support_geoms=supports, rest=rest)
 
 
 def judge(mj, path, exported, label: str) -> list[str]:

@@ -253,17 +253,11 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
 def _springs(mj, spec, shape, data, prepared, drive, mass: float, points: dict) -> list:
     """Sim's springs of the drive's wheel-drop and suspension joints (sim's own
     functions, on the same compiled shape, every joint at 0), applied to ``spec``."""
-    from ..sim.model import _springs as sim_springs
-    from ..sim.model import _supports, colliding_geoms
+    from ..sim.model import drive_springs
     from ..sim.springs import apply_springs
 
-    if drive is None:
-        return []
-    robot_geoms = colliding_geoms(shape)
-    ground_geoms = [g for w in drive.wheels for g in w.geom_ids] or robot_geoms
-    springs = sim_springs(mj, shape, data, prepared.joints, drive, prepared.joint_blocks,
-                          mass, _supports(shape, points, ground_geoms, robot_geoms,
-                                          {w.body_id for w in drive.wheels}))
+    springs = drive_springs(mj, shape, data, prepared.joints, drive, prepared.joint_blocks,
+                            mass, points)
     apply_springs(mj, spec, springs)
     return springs
 

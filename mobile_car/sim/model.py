@@ -189,10 +189,8 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     if not robot_geoms:
         raise SimModelError("no link has <collision> geometry: nothing can rest on the "
                             "floor, the robot would fall through it", file=label)
-    wheel_bodies = {w.body_id for w in wheels}
     ground_geoms = [g for w in wheels for g in w.geom_ids] or robot_geoms
-    springs = _springs(mj, shape, data, joints, drive, joint_blocks, mass,
-                       _supports(shape, lowest, ground_geoms, robot_geoms, wheel_bodies))
+    springs = drive_springs(mj, shape, data, joints, drive, joint_blocks, mass, lowest)
     start = {spring.joint: spring.rest for spring in springs}
     if start:  # the geometry at rest: every spring at its rest under its share of weight
         for name, position in start.items():
@@ -200,9 +198,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
         mj.mj_kinematics(shape, data)
         lowest = lowest_points(mj, shape, data)
     _ground, parts, clearance = resting_parts(shape, lowest, wheels, data)
-    castor_bodies = set(parts.values())
-    supports = ground_geoms + [g for g in robot_geoms if shape.geom_bodyid[g] in castor_bodies
-                               and g not in ground_geoms]
+    supports = support_geoms(shape, ground_geoms, set(parts.values()))
     rest = rest_pose(mj, shape, data, root_body_id(shape), supports, lowest_points)
     rolling_contacts(mj, spec, drive, parts, friction)
     add_rollers(mj, spec, shape, drive, sources)
@@ -233,10 +229,24 @@ def root_body_id(model) -> int:
     return next(b for b in range(1, model.nbody) if model.body_parentid[b] == 0)
 
 
-def _springs(mj, shape, data, joints, drive, blocks, mass, supports) -> list:
-    """The drive wheels' suspension and wheel-drop joints as springs (:mod:`.springs`)."""
+def support_geoms(shape, ground_geoms: list[int], castor_bodies: set[int]) -> list[int]:
+    """What the robot's rest pose stands on: ``ground_geoms`` (its wheels', else all it
+    collides with) and its castors' colliding geoms."""
+    return ground_geoms + [g for g in colliding_geoms(shape) if g not in ground_geoms
+                           and shape.geom_bodyid[g] in castor_bodies]
+
+
+def drive_springs(mj, shape, data, joints, drive, blocks, mass, lowest: dict) -> list:
+    """The drive wheels' suspension and wheel-drop joints as springs (:mod:`.springs`),
+    each carrying its share of the weight among the parts that rest on the floor with
+    every joint at 0 (``lowest``: :func:`lowest_points` then); sim's model and the MJCF
+    export both make them here."""
     if drive is None:
         return []
+    wheel_bodies = {w.body_id for w in drive.wheels}
+    robot_geoms = colliding_geoms(shape)
+    ground_geoms = [g for w in drive.wheels for g in w.geom_ids] or robot_geoms
+    supports = _supports(shape, lowest, ground_geoms, robot_geoms, wheel_bodies)
     ours = {s.joint for s in drive.steering} | {w.joint for w in drive.wheels}
     names = sprung_joints(shape, data, joints, [w.body_id for w in drive.wheels], ours)
     if not names:

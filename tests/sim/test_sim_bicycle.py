@@ -11,6 +11,7 @@ import json
 
 import pytest
 from sim.robot_makers import BICYCLE_CONTROLLER, ackermann, bicycle, tricycle
+from sim.sim_json import sim
 
 from mobile_car.sim import model as sim_model
 
@@ -41,13 +42,6 @@ def made(tmp_path_factory):
     paths["declared"].write_text(bicycle(wheelbase=WHEELBASE))
     paths["folder"] = folder
     return paths
-
-
-def sim(cli, path, *options):
-    """(exit code, stderr, the JSON entry) of ``mcar sim PATH OPTIONS --format json``."""
-    result = cli("sim", path, *options, "--format", "json")
-    files = json.loads(result.stdout)["files"] if result.stdout.strip() else [None]
-    return result.exit_code, result.stderr, files[0]
 
 
 def figures(entry, scenario: str) -> dict[str, float]:

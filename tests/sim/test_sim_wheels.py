@@ -8,8 +8,6 @@ sim could not drive fails (exit 1) unless only drop was asked for."""
 
 from __future__ import annotations
 
-import json
-
 import pytest
 from sim.robot_makers import (
     ACKERMANN_CONTROLLER,
@@ -20,6 +18,7 @@ from sim.robot_makers import (
     tricycle,
     two_wheeler,
 )
+from sim.sim_json import sim
 
 PACKAGE_XML = ('<?xml version="1.0"?><package format="3"><name>{}</name><version>0.0.1'
                '</version><description>d</description><maintainer email="t@example.com">t'
@@ -53,13 +52,6 @@ def made(tmp_path_factory):
     paths["bicycle"].write_text(bicycle_model())
     paths["folder"] = folder
     return paths
-
-
-def sim(cli, path, *options):
-    """(exit code, stderr, the JSON entry) of ``mcar sim PATH OPTIONS --format json``."""
-    result = cli("sim", path, *options, "--format", "json")
-    files = json.loads(result.stdout)["files"] if result.stdout.strip() else [None]
-    return result.exit_code, result.stderr, files[0]
 
 
 def line_of(path, text: str) -> int:

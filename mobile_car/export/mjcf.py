@@ -303,12 +303,14 @@ def is_vehicle(root) -> bool:
     """Whether the URDF ``root`` is a vehicle as sim decides it before any engine runs: two
     or more continuous joints moving collision geometry, and another link with some to
     stand on."""
+    from ..sim.vehicle import lacks
+
     colliding = {link.get("name") for link in root.iterchildren("link")
                  if link.find("collision") is not None}
     wheels = {child.get("link") for joint in root.iterchildren("joint")
               if joint.get("type") == "continuous"
               for child in joint.iterchildren("child") if child.get("link") in colliding}
-    return len(wheels) >= 2 and bool(colliding - wheels)
+    return lacks(colliding, wheels) is None
 
 
 def parse_robot(urdf: bytes, label: str):

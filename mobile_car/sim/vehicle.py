@@ -33,14 +33,27 @@ def not_a_vehicle(robot) -> NotAVehicle | None:
     not go unsimulated."""
     colliding = {link.name for link in robot.links if link.collisions}
     wheels = {j.child for j in robot.joints if j.type == "continuous" and j.child in colliding}
+    kind = lacks(colliding, wheels)
+    if kind == "no wheels":
+        return NotAVehicle(kind, _no_wheels(robot))
+    if kind == "one wheel":
+        return NotAVehicle(kind, f"{', '.join(sorted(wheels))} on a continuous joint")
+    if kind is not None:
+        return NotAVehicle(kind, f"only {', '.join(sorted(wheels))} have collision geometry, "
+                                 "no castor or body")
+    return None
+
+
+def lacks(colliding: set[str], wheels: set[str]) -> str | None:
+    """What keeps a robot from being a vehicle (a NotAVehicle kind), or None: ``colliding``,
+    its links with collision geometry; ``wheels``, those of them a continuous joint turns.
+    The test of :func:`not_a_vehicle`, and of an export's manifest (no check model there)."""
     if not wheels:
-        return NotAVehicle("no wheels", _no_wheels(robot))
+        return "no wheels"
     if len(wheels) < 2:
-        return NotAVehicle("one wheel", f"{', '.join(sorted(wheels))} on a continuous joint")
+        return "one wheel"
     if not colliding - wheels:
-        return NotAVehicle("nothing but its wheels to stand on",
-                           f"only {', '.join(sorted(wheels))} have collision geometry, no "
-                           "castor or body")
+        return "nothing but its wheels to stand on"
     return None
 
 

@@ -29,7 +29,7 @@ KILL_WORKER = Path(__file__).parent / "kill_worker"
 # Points of the sweeps a signal interrupts: the results file appears with the first row,
 # and the signal follows it within 0.2 s, so six leave the sweep well under way (a point
 # takes ~0.3 s or more).
-SIGNALLED = 6
+SIGNALLED = 12  # points: enough that a SIGINT sent at the first row lands before the last
 
 
 def sweep(*args, cwd, env=None, timeout=300):

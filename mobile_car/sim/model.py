@@ -115,6 +115,9 @@ class SimModel:
     rest: RestPose | None = None  # how the geometry rests (leaning on a low castor)
     control: object = None  # skid-steer: its control package's ControlConfig, if found
     rollers: object = None  # mecanum: .rollers.Rollers, to align before every step
+    # wheel link -> (radius, half length) of each collision cylinder its tyre sphere stands
+    # for (round tyres, above): the shape the wheel has, for what is measured of it at rest
+    tyres: dict[str, list] = field(default_factory=dict)
 
     @property
     def kind(self) -> str | None:
@@ -134,7 +137,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
                 kind: str | None = None, declared=None, mecanum=()) -> SimModel:
     """``left``, ``right``: the driven joints of each side (a name, comma-separated names
     or a list), ``kind``: a drive kind (:mod:`.drives`), else declared or found from the
-    tree; ``declared``: the package's drive declarations (:func:`.report.declarations`),
+    tree; ``declared``: the package's drive declarations (:func:`.prepare.declarations`),
     None for the URDF's plugins alone;
     ``effort`` (N·m), ``speed`` (rad/s): the drive motors' figures where the description
     gives none (:mod:`.motors`); ``mecanum``: the mecanum declarations of the
@@ -200,6 +203,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     _ground, parts, clearance = resting_parts(shape, lowest, wheels, data)
     supports = support_geoms(shape, ground_geoms, set(parts.values()))
     rest = rest_pose(mj, shape, data, root_body_id(shape), supports, lowest_points)
+    tyres = _tyre_cylinders(mj, shape, drive)
     rolling_contacts(mj, spec, drive, parts, friction)
     add_rollers(mj, spec, shape, drive, sources)
     add_motors(mj, spec, drive, mass)
@@ -221,7 +225,20 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
                     clearance=clearance,
                     floor_geom=model.geom("mcar_floor").id, notes=notes, mass=mass, held=held,
                     springs=springs, start=start, ground_geoms=ground_geoms,
-                    support_geoms=supports, rest=rest, rollers=aligned)
+                    support_geoms=supports, rest=rest, rollers=aligned, tyres=tyres)
+
+
+def _tyre_cylinders(mj, shape, drive) -> dict[str, list]:
+    """Wheel link -> (radius, half length) of its colliding cylinders, which
+    :func:`rolling_contacts` rounds into spheres (a bicycle's stay cylinders)."""
+    if drive is None or drive.kind == "bicycle":
+        return {}
+    found = {}
+    for wheel in drive.wheels:
+        found[wheel.link] = [(float(shape.geom_size[g][0]), float(shape.geom_size[g][1]))
+                             for g in wheel.geom_ids
+                             if shape.geom_type[g] == mj.mjtGeom.mjGEOM_CYLINDER]
+    return found
 
 
 def root_body_id(model) -> int:

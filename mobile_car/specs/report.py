@@ -9,8 +9,11 @@ import math
 from dataclasses import dataclass, field
 
 from ..errors import EXIT_OK, EXIT_PROBLEMS
+from ..names import shown
 
 UNITS = {"deg": "°"}  # printed so; JSON keeps the unit's name
+# What starts Markdown (GitHub's: tables, links, emphasis, strike-through) or HTML
+MARKUP = frozenset("\\`*_[]<>|&!#~")
 LISTED = 2            # a list of points longer than this is summed up in text
 
 
@@ -107,14 +110,14 @@ def text_table(report: SpecsReport) -> list[str]:
 def markdown(report: SpecsReport) -> list[str]:
     """The same tables in Markdown, for a pull request: one heading per section, the
     notes and rule diagnostics listed under it."""
-    lines = [f"## mcar specs: {_cell(report.robot or '')} (`{_cell(report.file)}`)", ""]
+    lines = [f"## mcar specs: {_cell(report.robot or '')} ({_cell(report.file)})", ""]
     for section in report.sections:
         lines += [f"### {section.name}", ""]
         if section.figures:
             proved = any(f.proof is not None for f in section.figures)
             lines += ["| figure | key | value | source | assumes |" + " MuJoCo |" * proved,
                       "|---|---|---|---|---|" + "---|" * proved]
-            lines += [f"| {_cell(f.label)} | `{f.key}` | {_cell(show(f.value, f.unit))} | "
+            lines += [f"| {_cell(f.label)} | {_cell(f.key)} | {_cell(show(f.value, f.unit))} | "
                       f"{_cell(f.source)} | {_cell(f.assumption)} |"
                       + (f" {_cell(_proof_text(f.proof))} |" if proved else "")
                       for f in section.figures]
@@ -126,9 +129,10 @@ def markdown(report: SpecsReport) -> list[str]:
 
 
 def _cell(text: str) -> str:
-    """Text fit for one Markdown table cell: no line break, no bare ``|``."""
-    return (" ".join(str(text).split()).replace("&", "&amp;").replace("<", "&lt;")
-            .replace(">", "&gt;").replace("|", "\\|"))
+    """Text fit for one Markdown table cell: controls escaped (a name's line break shows
+    as ``\\n``), and each character that could start Markdown or HTML (a link, emphasis,
+    a tag, a cell's end) backslash-escaped: a name is data, not markup."""
+    return "".join(f"\\{c}" if c in MARKUP else c for c in " ".join(shown(text).split()))
 
 
 def as_json(report: SpecsReport) -> dict:

@@ -65,11 +65,12 @@ def test_markdown_is_a_table_a_pull_request_shows(cli, car_file):
     result = _specs(cli, car_file, "--format", "markdown")
     assert result.exit_code == 0, result.stderr
     text = result.stdout
-    assert text.startswith("## mcar specs: box_on_wheels (`")
+    assert text.startswith("## mcar specs: box\\_on\\_wheels (")
     assert "### body\n\n| figure | key | value | source | assumes |\n|---|---|---|---|---|\n" \
         in text
     # the description's tags are escaped, else a Markdown page would swallow them as HTML
-    assert "| mass | `body.mass` | 5.2 kg | &lt;inertial&gt;&lt;mass&gt; of 4 links |  |" in text
+    assert "| mass | body.mass | 5.2 kg | \\<inertial\\>\\<mass\\> of 4 links |  |" in text
+    assert "| load on castor\\_link | loads.castor\\_link | " in text
 
 
 def test_a_figure_its_proof_contradicts_fails_the_run(cli, car_file, monkeypatch):

@@ -14,12 +14,22 @@ from .outline import DIRECTIONS, footprint, hull, radii
 __all__ = ["footprint", "hull", "radii", "section"]
 
 REST = "the robot at rest on the floor, as mcar sim releases it"
-# The figures (all in m) that need MuJoCo's model of the robot at rest: key -> label.
-NEED_MODEL = dict(zip(
-    ("body.com_height", "body.footprint", "body.radius.circumscribed", "body.radius.inscribed",
-     "body.clearance", "wheels.radius", "wheels.track", "wheels.wheelbase"),
-    ("centre of mass height", "footprint", "circumscribed radius", "inscribed radius",
-     "ground clearance", "wheel radius", "track", "wheelbase"), strict=True))
+# key -> (label, unit) of every body figure but the loads (``loads.<link>``, N)
+FIGURES = {
+    "body.mass": ("mass", "kg"), "body.com": ("centre of mass", "m"),
+    "body.com_height": ("centre of mass height", "m"), "body.footprint": ("footprint", "m"),
+    "body.radius.circumscribed": ("circumscribed radius", "m"),
+    "body.radius.inscribed": ("inscribed radius", "m"),
+    "body.clearance": ("ground clearance", "m"), "wheels.radius": ("wheel radius", "m"),
+    "wheels.track": ("track", "m"), "wheels.wheelbase": ("wheelbase", "m"),
+}
+# What the URDF alone gives; the others need MuJoCo's model of the robot at rest.
+FROM_URDF = ("body.mass", "body.com")
+
+
+def _figure(key: str, value, source: str, assumption: str = "") -> Figure:
+    label, unit = FIGURES[key]
+    return Figure(key, label, value, unit, source, assumption)
 
 
 def section(context) -> Section:
@@ -40,26 +50,23 @@ def section(context) -> Section:
     leaning = _leaning(sim)
     links = sum(1 for b in range(1, sim.model.nbody) if sim.model.body_mass[b] > 0)
     out.figures += [
-        Figure("body.mass", "mass", sim.mass, "kg",
-               f"<inertial><mass> of {links} link{'s' * (links != 1)}"),
-        Figure("body.com", "centre of mass", com, "m",
-               "<inertial> of every link, joints at 0" + (", springs at rest" if sim.springs
-                                                          else "") + ", root frame"),
-        Figure("body.com_height", "centre of mass height", float(com_world[2]), "m",
-               "above the floor, " + REST, leaning),
+        _figure("body.mass", sim.mass, f"<inertial><mass> of {links} link{'s' * (links != 1)}"),
+        _figure("body.com", com, "<inertial> of every link, joints at 0"
+                + (", springs at rest" if sim.springs else "") + ", root frame"),
+        _figure("body.com_height", float(com_world[2]), "above the floor, " + REST, leaning),
     ]
     outline = footprint(sim, data)
     outer, inner = radii(outline)
     shapes = f"round shapes by their extreme points in {DIRECTIONS} directions"
     out.figures += [
-        Figure("body.footprint", "footprint", [list(p) for p in outline], "m",
-               "convex hull of every collision geometry at rest, projected on the floor; "
-               "floor frame", shapes),
-        Figure("body.radius.circumscribed", "circumscribed radius", outer, "m",
-               "farthest footprint vertex from the floor frame's origin"),
-        Figure("body.radius.inscribed", "inscribed radius", inner, "m",
-               "nearest footprint edge to the floor frame's origin" if inner or outer == 0
-               else "the floor frame's origin is outside the footprint"),
+        _figure("body.footprint", [list(p) for p in outline],
+                "convex hull of every collision geometry at rest, projected on the floor; "
+                "floor frame", shapes),
+        _figure("body.radius.circumscribed", outer,
+                "farthest footprint vertex from the floor frame's origin"),
+        _figure("body.radius.inscribed", inner,
+                "nearest footprint edge to the floor frame's origin" if inner or outer == 0
+                else "the floor frame's origin is outside the footprint"),
         _clearance(sim, data),
     ]
     out.figures += _wheels(sim)
@@ -89,50 +96,63 @@ def _clearance(sim, data) -> Figure:
 
     model = sim.model
     wheels = sim.drive.wheels if sim.drive else []
-    skip = {w.body_id for w in wheels} | set(sim.ground_parts.values()) | \
-        roller_bodies(model, wheels)
+    touching = {w.body_id for w in wheels} | set(sim.ground_parts.values())
+    skip = touching | roller_bodies(model, wheels) | _carriers(model, touching, sim.root_body)
     lowest = lowest_points(mujoco(), model, data)
     heights = [(lowest[g], g) for g in colliding_geoms(model)
                if int(model.geom_bodyid[g]) not in skip]
     if not heights:
-        return Figure("body.clearance", "ground clearance", None, "m",
-                      "every colliding part is a wheel or a castor")
+        return _figure("body.clearance", None,
+                       "every colliding part is a wheel or a castor")
     height, g = min(heights)
     link = model.body(int(model.geom_bodyid[g])).name
-    return Figure("body.clearance", "ground clearance", float(height), "m",
-                  f"lowest point of {link}, the lowest part that is no wheel or castor, "
-                  + REST)
+    return _figure("body.clearance", float(height),
+                   f"lowest point of {link}, the lowest part that is no wheel or castor, "
+                   + REST)
+
+
+def _carriers(model, touching: set[int], root: int) -> set[int]:
+    """The bodies that move with what touches the floor: those above a wheel or castor
+    on a joint of their own (a castor's swivel fork, a wheel-drop arm), which ride at its
+    height; a part fixed to the body (Jackal's chassis) is the body's."""
+    found = set()
+    for body in touching:
+        parent = int(model.body_parentid[body])
+        while parent not in (0, root):
+            if model.body_jntnum[parent] > 0:
+                found.add(parent)
+            parent = int(model.body_parentid[parent])
+    return found
 
 
 def _wheels(sim) -> list[Figure]:
     drive = sim.drive
     if drive is None:
         why = sim.why_no_drive or "no drive wheels"
-        return [Figure(f"wheels.{key}", label, None, "m", f"no drive: {why}")
-                for key, label in (("radius", "wheel radius"), ("track", "track"),
-                                   ("wheelbase", "wheelbase"))]
+        return [_figure(key, None, f"no drive: {why}") for key in FIGURES
+                if key.startswith("wheels.")]
     driven = ", ".join(w.joint for w in drive.driven)
     kind = f"{drive.kind} drive ({drive.chosen})"
-    figures = [Figure("wheels.radius", "wheel radius", drive.radius, "m",
-                      f"collision geometry of the driven wheels {driven}; {kind}")]
+    figures = [_figure("wheels.radius", drive.radius,
+                       f"collision geometry of the driven wheels {driven}; {kind}")]
     if drive.left and drive.right:
-        figures.append(Figure("wheels.track", "track", drive.track, "m",
-                              "between the left and right driven wheels' centres"))
+        figures.append(_figure("wheels.track", drive.track,
+                               "between the left and right driven wheels' centres"))
     else:
-        figures.append(Figure("wheels.track", "track", None, "m",
-                              f"a {drive.kind}: its wheels are on its centre line"))
+        figures.append(_figure("wheels.track", None,
+                               f"a {drive.kind}: its wheels are on its centre line"))
     if drive.steering:
-        figures.append(Figure("wheels.wheelbase", "wheelbase", drive.wheelbase, "m",
-                              "from the rear axle to the steering pivots"))
+        figures.append(_figure("wheels.wheelbase", drive.wheelbase,
+                               "from the rear axle to the steering pivots"))
         return figures
     axles = sorted({round(w.x, 3) for w in drive.wheels})
     if len(axles) < 2:
-        figures.append(Figure("wheels.wheelbase", "wheelbase", None, "m",
-                              f"one axle (x = {axles[0]:g} m): no wheelbase"))
+        figures.append(_figure("wheels.wheelbase", None,
+                               f"one axle (x = {axles[0]:g} m): no wheelbase"))
     else:
         xs = [w.x for w in drive.wheels]
-        figures.append(Figure("wheels.wheelbase", "wheelbase", max(xs) - min(xs), "m",
-                              f"from the rearmost to the foremost axle ({len(axles)} axles)"))
+        figures.append(_figure("wheels.wheelbase", max(xs) - min(xs),
+                               f"from the rearmost to the foremost axle ({len(axles)} axles)"))
     return figures
 
 
@@ -144,10 +164,10 @@ def _without_model(checked) -> Section:
     mass, com = urdf_mass(checked)
     why = "needs MuJoCo's model of the robot, which it has not (notes)"
     out.figures += [
-        Figure("body.mass", "mass", mass, "kg", "<inertial><mass> of its links (URDF)"),
-        Figure("body.com", "centre of mass", com, "m",
-               "<inertial> of every link, joints at 0, root frame (URDF)" if com else
-               "no link has mass"),
+        _figure("body.mass", mass, "<inertial><mass> of its links (URDF)"),
+        _figure("body.com", com,
+                "<inertial> of every link, joints at 0, root frame (URDF)" if com else
+                "no link has mass"),
     ]
-    out.figures += [Figure(key, label, None, "m", why) for key, label in NEED_MODEL.items()]
+    out.figures += [_figure(key, None, why) for key in FIGURES if key not in FROM_URDF]
     return out

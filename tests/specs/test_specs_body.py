@@ -10,7 +10,7 @@ import re
 from pathlib import Path
 
 import pytest
-from sim.robot_makers import box_inertia
+from sim.robot_makers import box_inertia, castor_swivels
 from specs import robots
 from specs.robots import BALL_AT, BALL_MASS, BODY, BODY_AT, BODY_MASS, WHEEL_MASS
 
@@ -72,6 +72,17 @@ def test_clearance_is_the_body_not_a_wheel_or_the_castor(car):
     bottom = BODY_AT[2] - BODY[2] / 2 + robots.WHEEL_RADIUS
     assert figure.value == pytest.approx(bottom, abs=1e-6)
     assert "base_link" in figure.source
+
+
+def test_clearance_leaves_out_castor_forks(tmp_path):
+    """MiR's castors swivel in forks that reach 40 mm above the floor: they ride on the
+    castor wheels, the clearance is the body's (72 mm: 20% of the 60 mm radius above
+    the axle)."""
+    path = tmp_path / "swivels.urdf"
+    path.write_text(castor_swivels(radius=0.06))
+    figure = specs_of(path)["body.clearance"]
+    assert figure.value == pytest.approx(1.2 * 0.06, abs=1e-6)
+    assert figure.source.startswith("lowest point of base_link")
 
 
 def test_wheels(car):

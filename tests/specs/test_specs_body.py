@@ -125,7 +125,7 @@ def test_four_wheels_take_their_loads_from_mujoco(tmp_path):
 
 def test_a_robot_without_collision_keeps_its_mass_and_centre_of_mass(tmp_path):
     path = tmp_path / "ghost.urdf"
-    path.write_text(robots.box_on_wheels(collision=False))
+    path.write_text(robots.without_collisions(robots.box_on_wheels()))
     figures = specs_of(path)
     assert figures["body.mass"].value == pytest.approx(MASS)
     assert figures["body.com"].value == pytest.approx(COM, abs=1e-9)

@@ -111,8 +111,10 @@ def test_a_robot_that_fails_its_check_is_reported_as_check_does(cli, tmp_path):
     assert result.stdout == ""
     # check's own lines, its summary left out
     assert result.stderr.splitlines() == check.stderr.splitlines()[:-1]
-    assert f'{bad}:31: error: link \'castor_link\' <collision>: <sphere radius="0"> must be ' \
-           '> 0 [E113]' in result.stderr.splitlines()
+    line = next(n for n, text in enumerate(bad.read_text().splitlines(), 1)
+                if '<sphere radius="0"/>' in text)
+    assert f'{bad}:{line}: error: link \'castor_link\' <collision>: <sphere radius="0"> must ' \
+           'be > 0 [E113]' in result.stderr.splitlines()
 
 
 @pytest.mark.parametrize(("args", "message"), [

@@ -45,29 +45,22 @@ def _specs(name: str) -> dict:
 
 
 @pytest.fixture(scope="module")
-def car():
-    return _specs("car")
+def specs_of():
+    """name -> its JSON entry, each robot run once for the module's tests."""
+    done = {}
 
+    def get(name: str) -> dict:
+        if name not in done:
+            done[name] = _specs(name)
+        return done[name]
 
-@pytest.fixture(scope="module")
-def burger():
-    return _specs("burger")
-
-
-@pytest.fixture(scope="module")
-def husky():
-    return _specs("husky")
-
-
-@pytest.fixture(scope="module")
-def jackal():
-    return _specs("jackal")
+    return get
 
 
 @pytest.mark.parametrize("name", [
     "car", *(pytest.param(n, marks=needs_folder) for n in ("burger", "husky", "jackal"))])
-def test_every_body_figure_is_there_with_a_source(request, name):
-    figures = request.getfixturevalue(name)["figures"]
+def test_every_body_figure_is_there_with_a_source(specs_of, name):
+    figures = specs_of(name)["figures"]
     _, mass, radius, track, wheelbase, loads_from = ROBOTS[name]
     for key in BODY_KEYS:
         assert figures[key]["source"], key
@@ -92,8 +85,8 @@ def test_every_body_figure_is_there_with_a_source(request, name):
 
 
 @needs_folder
-def test_burger_rests_leaning_on_its_caster_and_says_so(burger):
-    figures = burger["figures"]
+def test_burger_rests_leaning_on_its_caster_and_says_so(specs_of):
+    figures = specs_of("burger")["figures"]
     assert figures["body.com_height"]["assumption"].startswith("leaning as its geometry rests")
     # Its wheels stand out of its 140 mm box: 80 mm out, 18 mm wide, 33 mm in radius, on
     # joints at rpy="-1.57 0 0", so each disc leans π/2 - 1.57 rad out of the vertical.

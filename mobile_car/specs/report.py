@@ -77,10 +77,11 @@ def _number(value) -> str:
     return f"{value:.4g}"
 
 
-def _proof_text(proof) -> str:
+def _proof_text(proof, unit: str) -> str:
+    """``MuJoCo 23.4° ✓``, ``MuJoCo 19° ✗ disagrees``; "" for a figure without a proof."""
     if proof is None:
         return ""
-    measured = "not measured" if proof.measured is None else show(proof.measured, "")
+    measured = "not measured" if proof.measured is None else show(proof.measured, unit)
     return f"MuJoCo {measured} " + ("✓" if proof.agrees else "✗ disagrees")
 
 
@@ -92,7 +93,7 @@ def text_table(report: SpecsReport) -> list[str]:
         if not section.figures:
             continue
         proved = any(f.proof is not None for f in section.figures)
-        rows = [(f.label, show(f.value, f.unit), _proof_text(f.proof) if proved else None,
+        rows = [(f.label, show(f.value, f.unit), _proof_text(f.proof, f.unit) if proved else None,
                  f.source, f.assumption) for f in section.figures]
         label_width = max(len(r[0]) for r in rows)
         value_width = max(len(r[1]) for r in rows)
@@ -119,7 +120,7 @@ def markdown(report: SpecsReport) -> list[str]:
                       "|---|---|---|---|---|" + "---|" * proved]
             lines += [f"| {_cell(f.label)} | {_cell(f.key)} | {_cell(show(f.value, f.unit))} | "
                       f"{_cell(f.source)} | {_cell(f.assumption)} |"
-                      + (f" {_cell(_proof_text(f.proof))} |" if proved else "")
+                      + (f" {_cell(_proof_text(f.proof, f.unit))} |" if proved else "")
                       for f in section.figures]
             lines.append("")
         notes = [d.text() for d in section.diagnostics] + section.notes

@@ -94,7 +94,9 @@ def test_a_figure_its_proof_contradicts_fails_the_run(cli, car_file, monkeypatch
     assert result.stderr.splitlines() == [
         f"{car_file}: error: statics.tip.forward (tip angle, forward): 30° computed, MuJoCo "
         "measured 19° (tolerance 1°): tipped on a slope"]
-    assert "MuJoCo 23.5 ✓" in result.stdout and "MuJoCo 19 ✗ disagrees" in result.stdout
+    (left,) = [line for line in result.stdout.splitlines() if "tip angle, left" in line]
+    assert left.split()[3:] == ["23.4°", "MuJoCo", "23.5°", "✓", "support", "polygon"]
+    assert "30°  MuJoCo 19° ✗ disagrees  support polygon" in result.stdout
     document = json.loads(_specs(cli, car_file, "--format", "json").stdout)
     assert document["exit_code"] == 1
     assert document["files"][0]["figures"]["statics.tip.forward"]["proof"] == {

@@ -129,7 +129,7 @@ def _wheels(sim) -> list[Figure]:
     drive = sim.drive
     if drive is None:
         why = sim.why_no_drive or "no drive wheels"
-        return [_figure(key, None, f"no drive: {why}") for key in FIGURES
+        return [_figure(key, None, why) for key in FIGURES
                 if key.startswith("wheels.")]
     driven = ", ".join(w.joint for w in drive.driven)
     kind = f"{drive.kind} drive ({drive.chosen})"

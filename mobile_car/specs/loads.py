@@ -1,9 +1,10 @@
-"""The static load on each wheel and castor at rest (N). Three supports that are not in a
-line carry the robot's weight in the one way the moments allow: by statics, exactly.
-Any other number (four wheels, a sprung pair) is statically indeterminate: the loads are
-then MuJoCo's contact forces (mj_contactForce) once the robot has settled on its wheels
-and castors, which depend on the contacts' stiffness as a real robot's depend on its
-tyres and frame. Either way they sum to m·g; the source says which, and how closely."""
+"""The static load on each wheel and castor at rest (N). One, two or three supports (not
+in a line) carry the robot's weight in the one way the moments allow: by statics, exactly.
+More (four wheels, two castors) are statically indeterminate, and a centre of mass outside
+the supports rests on something else: the loads are then MuJoCo's contact forces
+(mj_contactForce) once the robot has settled on its wheels and castors, which depend on
+the contacts' stiffness as a real robot's depend on its tyres and frame. Either way they
+sum to m·g; the source says which, and how closely."""
 
 from __future__ import annotations
 
@@ -49,29 +50,45 @@ def loads(sim, data) -> Loads:
     points = support_points(sim, data)
     weight = sim.mass * GRAVITY
     com = data.subtree_com[sim.root_body][:2] - data.xpos[sim.root_body][:2]
-    if len(points) == 3:
-        solved = _three_points(points, (float(com[0]), float(com[1])), weight)
-        if solved is not None:
-            return Loads(solved, "statics: three supports carry m·g with no moment about "
-                                 "the centre of mass (exact)")
-    return _settled(sim, points, weight)
+    solved, why = by_statics(points, (float(com[0]), float(com[1])), weight)
+    if solved is not None:
+        return Loads(solved, why)
+    return _settled(sim, points, weight, why)
 
 
-def _three_points(points: dict, com: tuple[float, float], weight: float) -> dict | None:
-    """Forces F on three supports: ΣF = W, Σx·F = W·x_com, Σy·F = W·y_com; None when the
-    points are in a line (no unique answer)."""
+def by_statics(points: dict, com: tuple[float, float], weight: float):
+    """(link -> N, source) where one, two or three supports carry ``weight`` in one way
+    only, every force pushing up; else (None, why MuJoCo must tell)."""
     import numpy as np
 
     names = list(points)
-    matrix = np.array([[1.0] * 3, [points[n][0] for n in names], [points[n][1] for n in names]])
-    if abs(np.linalg.det(matrix)) < 1e-12:
-        return None
-    forces = np.linalg.solve(matrix, np.array([weight, weight * com[0], weight * com[1]]))
-    return {n: float(f) for n, f in zip(names, forces, strict=True)}
+    xy = np.array([points[n] for n in names], dtype=float).reshape(-1, 2)
+    if len(names) == 1:
+        return {names[0]: weight}, "statics: one support carries m·g (exact)"
+    if len(names) == 2:
+        along = xy[1] - xy[0]
+        share = float(np.dot(np.asarray(com) - xy[0], along) / np.dot(along, along))
+        forces = [weight * (1 - share), weight * share]
+        how = ("statics: two supports share m·g as the centre of mass lies between them "
+               "(balanced across their line; exact)")
+    elif len(names) == 3:
+        matrix = np.vstack([np.ones(3), xy.T])
+        if abs(np.linalg.det(matrix)) < 1e-12:
+            return None, "3 supports in a line: statically indeterminate"
+        forces = list(np.linalg.solve(matrix, np.array([weight, weight * com[0],
+                                                        weight * com[1]])))
+        how = ("statics: three supports carry m·g with no moment about the centre of mass "
+               "(exact)")
+    else:
+        return None, f"{len(names)} supports: statically indeterminate"
+    if min(forces) < 0:
+        return None, "the centre of mass is outside its supports"
+    return {n: float(f) for n, f in zip(names, forces, strict=True)}, how
 
 
-def _settled(sim, points: dict, weight: float) -> Loads:
-    """MuJoCo's normal contact forces on each support after SETTLE_TIME at rest."""
+def _settled(sim, points: dict, weight: float, why: str) -> Loads:
+    """MuJoCo's normal contact forces on each support after SETTLE_TIME at rest (``why``:
+    why statics could not tell)."""
     import numpy as np
 
     from ..sim.model import resting_tyres
@@ -100,9 +117,9 @@ def _settled(sim, points: dict, weight: float) -> Loads:
             found[link] = found.get(link, 0.0) + float(force[0])
     total = sum(found.values())
     off = abs(total - weight) / weight if weight else 0.0
-    result = Loads(found, f"MuJoCo contact forces after {SETTLE_TIME:g} s at rest "
-                          f"({len(points)} supports: statically indeterminate); they sum to "
-                          f"{total:.4g} N, m·g {weight:.4g} N ({100 * off:.2f} % off)")
+    result = Loads(found, f"MuJoCo contact forces after {SETTLE_TIME:g} s at rest ({why}); "
+                          f"they sum to {total:.4g} N, m·g {weight:.4g} N "
+                          f"({100 * off:.2f} % off)")
     if others:
         result.notes.append(f"parts other than the wheels and castors carry {others:.4g} N "
                             "at rest")

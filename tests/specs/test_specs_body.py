@@ -10,7 +10,7 @@ import re
 from pathlib import Path
 
 import pytest
-from sim.robot_makers import box_inertia, castor_swivels
+from sim.robot_makers import bicycle, box_inertia, castor_swivels
 from specs import robots
 from specs.robots import BALL_AT, BALL_MASS, BODY, BODY_AT, BODY_MASS, WHEEL_MASS
 
@@ -19,6 +19,7 @@ from mobile_car.load.inputs import RobotInput
 from mobile_car.load.robot import LoadOptions
 from mobile_car.specs.body import hull, radii
 from mobile_car.specs.compute import compute
+from mobile_car.specs.loads import by_statics
 
 G = 9.81
 
@@ -162,3 +163,30 @@ def test_hull_and_radii():
     # the floor frame's origin outside the outline: no inscribed circle about it
     assert radii(hull([(1, 1), (2, 1), (2, 2), (1, 2)])) == pytest.approx((math.sqrt(8), 0))
     assert hull([(0, 0), (1, 1), (2, 2)]) == [(0, 0), (2, 2)]  # collinear: its two ends
+
+
+def test_statics_tells_one_two_and_three_supports_and_no_more():
+    one, how = by_statics({"a": (0.3, 0.1)}, (0, 0), 10.0)
+    assert one == {"a": 10.0} and how.startswith("statics: one support")
+    two, how = by_statics({"rear": (-0.1, 0), "front": (0.3, 0)}, (0.0, 0.0), 8.0)
+    assert two == pytest.approx({"rear": 6.0, "front": 2.0}) and "two supports" in how
+    three, _ = by_statics({"l": (0, 0.1), "r": (0, -0.1), "c": (-0.2, 0)}, (-0.05, 0), 4.0)
+    assert three == pytest.approx({"l": 1.5, "r": 1.5, "c": 1.0})
+    # what statics cannot tell is MuJoCo's to measure, and the source says why
+    assert by_statics({"l": (0, 0.1), "r": (0, -0.1), "c": (0.2, 0)}, (-0.05, 0), 4.0) == \
+        (None, "the centre of mass is outside its supports")
+    assert by_statics({"a": (0, 0), "b": (1, 0), "c": (2, 0)}, (1, 0), 1.0) == \
+        (None, "3 supports in a line: statically indeterminate")
+    four = {name: (x, y) for name, x, y in (("a", 1, 1), ("b", 1, -1), ("c", -1, 1),
+                                            ("d", -1, -1))}
+    assert by_statics(four, (0, 0), 1.0) == (None, "4 supports: statically indeterminate")
+
+
+def test_a_bicycle_stands_on_two_supports_by_statics(tmp_path):
+    path = tmp_path / "bicycle.urdf"
+    path.write_text(bicycle())
+    figures = specs_of(path)
+    loads = [f for k, f in figures.items() if k.startswith("loads.")]
+    assert len(loads) == 2 and all(f.source.startswith("statics: two supports") for f in loads)
+    assert sum(f.value for f in loads) == pytest.approx(figures["body.mass"].value * G)
+    assert figures["wheels.track"].value is None

@@ -175,6 +175,11 @@ _TABLE = [
          "have, in `<joint>`, `<joint_name>`, `<left_joint>`, `<leftJoint>`, `<jointName>` "
          "and the like", "n/a"),
     # What mcar specs finds (docs/specs.md)
+    Rule("W501", "effort-under-gravity", "`mcar specs`: a joint whose `<limit effort>` is under "
+         "the torque (revolute) or force (prismatic) gravity asks of it in its worst pose "
+         "within its limits and those of the joints beyond it, an effort of 0 included "
+         "(MuJoCo's gravity load, the figures in the message; a suspension a spring carries "
+         "is not judged)", "n/a"),
     Rule("W530", "inertia-implausible", "`mcar specs`: a declared inertia MuJoCo refuses, or "
          "over 3 times or under 1/3 what the link's geometry (collision, else visual) gives "
          "with its mass about a principal axis; the message gives the `<inertial>` to write "

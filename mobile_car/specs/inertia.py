@@ -12,7 +12,9 @@ W530 **inertia-implausible**: the declared tensor is one MuJoCo refuses
 (:func:`mobile_car.check.mujoco_inertia.refusals`: not positive definite, or breaking the
 triangle inequality), or off the geometry's by more than FACTOR on a principal axis of
 the geometry's tensor (the declared tensor's moment about that axis against the
-geometry's: a swapped axis is caught as well as a wrong size). The message gives both
+geometry's: a swapped axis is caught as well as a wrong size); not said of a link whose
+shapes all fit in a 2 cm cube (check.masses.PLACEHOLDER: a sensor's stand-in, as
+mass-implausible leaves them too). The message gives both
 figures and the ``<inertial>`` to put in place of the declared one, located through the
 source map at the ``<inertia>`` the user wrote (a macro file's line, and the call).
 """
@@ -20,8 +22,9 @@ source map at the ``<inertia>`` the user wrote (a macro file's line, and the cal
 from __future__ import annotations
 
 from ..check.context import Reporter
+from ..check.masses import PLACEHOLDER
 from ..check.mujoco_inertia import refusals
-from ..check.rest_pose import ZERO, link_shapes
+from ..check.rest_pose import ZERO, link_shapes, own_box
 from ..check.urdf_model import parse_number
 from .figures import Figure, Section
 
@@ -80,10 +83,26 @@ def inertia_section(checked) -> Section:
             source += f"; not watertight, its convex hull taken: {', '.join(hulls)}"
         found.figures.append(Figure(f"inertia.{link.name}", f"inertia of {link.name}",
                                     values, "kg m²", source, ASSUMED))
+        if _placeholder(bodies, meshes):
+            continue
         _judge(link, values, tensor, refused.get(link.name), (xyz, rpy, mass),
                _place(checked, link.parts["inertial"]), report)
     found.diagnostics = report.diagnostics
     return found
+
+
+def _placeholder(bodies: list, meshes: dict) -> bool:
+    """Whether the shapes all fit in a PLACEHOLDER cube: a stand-in for a sensor or a
+    mount, not a claim about the part's size (as mass-implausible judges them, E119)."""
+    bounds = {element: mesh.bounds for element, mesh in meshes.items()}
+    across = 0.0
+    for _kind, shape, _xyz, _rpy, dims in bodies:
+        box = own_box(shape.tag, dims, shape, bounds)
+        if box is None:
+            return False
+        low, high = box[1]
+        across = max(across, *(h - lo for lo, h in zip(low, high, strict=True)))
+    return across < PLACEHOLDER
 
 
 def _mass(inertial) -> float | None:

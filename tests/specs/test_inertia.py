@@ -226,3 +226,15 @@ def test_a_tensor_mujoco_refuses_is_w530_though_its_size_is_near(tmp_path):
            "it (principal moments 50, 50, 120 kg m² break A + B >= C (50 + 50 < 120))" \
            in warning.message
     assert warning.text().endswith("[W530]")
+
+
+def test_a_sensors_stand_in_shape_has_its_figure_but_is_not_judged(tmp_path):
+    # a 1 cm box for a 10 g IMU with a token 1e-7 kg m²: 60 times its box's, but the box
+    # is a stand-in (as mass-implausible leaves shapes within a 2 cm cube); the 3 cm one
+    # is judged
+    token = '<inertia ixx="1e-7" ixy="0" ixz="0" iyy="1e-7" iyz="0" izz="1e-7"/>'
+    found = section_of(written(tmp_path, "imu.urdf", robot(
+        link("imu", 0.01, collision('<box size="0.01 0.01 0.01"/>'), token),
+        link("camera", 0.01, collision('<box size="0.03 0.03 0.03"/>'), token))))
+    close(found.figure("inertia.imu").value, box_six(0.01, 0.01, 0.01, 0.01))
+    assert [d.message.split("'")[1] for d in found.diagnostics] == ["camera"]

@@ -11,7 +11,9 @@ middle and upper limit (a continuous one every quarter turn), every combination 
 COMBINATIONS of them drawn at random (seeded), against the joint every COARSE_DEG; the
 three worst combinations again every STEP_DEG (a prismatic joint: a twentieth of its
 travel), then finer around the worst. The joints before it stay at 0 (the pose check and
-render show). A ``<mimic>`` joint follows its leader's pose and is not judged itself.
+render show). A ``<mimic>`` joint follows its leader's pose and is not judged itself; a
+continuous joint gravity turns in no pose and that declares no effort (a castor's swivel,
+a wheel rolling free) is named in a note, without figures.
 
 A suspension joint of sim's drive is carried by a spring (:mod:`mobile_car.sim.springs`):
 its figure is what the spring carries at rest under the robot's weight, and it is not
@@ -67,6 +69,7 @@ def joints_section(checked, sim=None) -> Section:
     search = PoseSearch(model, _mimics(checked.robot.joints),
                         sim.rest.quat if sim is not None and sim.rest else None)
     report = Reporter(checked.file, checked.where)
+    idle = []  # continuous joints gravity never loads, declaring no effort
     for joint in judged:
         limit = joint.parts.get("limit")
         effort = parse_number(limit.get("effort")) if limit is not None else None
@@ -86,6 +89,11 @@ def joints_section(checked, sim=None) -> Section:
                                "(read as fixed): not judged")
             continue
         load, pose, tried = worst
+        carried = search.carried(joint.name)
+        loaded = load > NOISE * carried * GRAVITY
+        if joint.type == "continuous" and effort is None and not loaded:
+            idle.append(joint.name)
+            continue
         shown = ", ".join(_position(name, value, kind) for name, value, kind in pose)
         found.figures.append(Figure(
             f"joints.{joint.name}.gravity", f"gravity load on {joint.name}", load, unit,
@@ -96,12 +104,16 @@ def joints_section(checked, sim=None) -> Section:
             f"joints.{joint.name}.effort", f"declared effort of {joint.name}", effort, unit,
             f"<limit effort> of joint {joint.name} ({limit_at})" if effort is not None else
             f"joint {joint.name} declares no <limit effort>"))
-        carried = search.carried(joint.name)
-        if effort is not None and load > NOISE * carried * GRAVITY and effort < load:
+        if effort is not None and loaded and effort < load:
             report.add("W501", limit if limit is not None else joint.element,
                        f"joint '{joint.name}': <limit effort> {effort:g} {unit} is under the "
                        f"{load:.4g} {unit} gravity asks of it in its worst pose ({shown}), "
                        f"carrying {carried:.4g} kg: it cannot hold it there")
+    if idle:
+        many = len(idle) > 1
+        found.notes.append(f"joint{'s' * many} {', '.join(idle)}: continuous, no <limit "
+                           f"effort>, and gravity turns {'them' if many else 'it'} in no pose "
+                           "(castor swivels, wheels rolling free): no figure")
     found.diagnostics = report.diagnostics
     return found
 

@@ -102,6 +102,17 @@ def test_a_mimic_joint_follows_its_leader_and_is_not_judged(tmp_path):
     assert shoulder.value == pytest.approx(G * reach, rel=1e-3)
 
 
+def test_a_continuous_joint_gravity_never_turns_is_a_note_not_figures(tmp_path):
+    # a castor's swivel: upright, its wheel's mass on its axis
+    text = steering(kingpin=0.0, offset=0.0).replace('type="revolute"', 'type="continuous"')
+    text = text.replace('<limit lower="-0.6" upper="0.6" effort="0" velocity="1"/>', "")
+    found = joints_section(checked(tmp_path, "swivel.urdf", text))
+    assert found.figures == [] and found.diagnostics == []
+    assert found.notes == ["joint steer_joint: continuous, no <limit effort>, and gravity "
+                           "turns it in no pose (castor swivels, wheels rolling free): no "
+                           "figure"]
+
+
 def test_with_sims_model_the_drive_wheels_are_left_out_and_a_spring_carries_its_joint(
         tmp_path):
     from sim.robot_makers import sprung

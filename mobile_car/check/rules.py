@@ -174,7 +174,7 @@ _TABLE = [
     Rule("W232", "gazebo-plugin-joint", "a `<gazebo>` plugin naming a joint Gazebo does not "
          "have, in `<joint>`, `<joint_name>`, `<left_joint>`, `<leftJoint>`, `<jointName>` "
          "and the like", "n/a"),
-    # What mcar specs finds (docs/specs.md)
+    # What mcar specs finds in what the robot can do
     Rule("W501", "effort-under-gravity", "`mcar specs`: a joint whose `<limit effort>` is under "
          "the torque (revolute) or force (prismatic) gravity asks of it in its worst pose "
          "within its limits and those of the joints beyond it, an effort of 0 included "

@@ -58,7 +58,7 @@ def inertia_section(checked) -> Section:
             found.notes.append(f"link {link.name}: {mass:g} kg but no geometry to take an "
                                "inertia from")
             continue
-        placed, hulls = [], []
+        placed = []
         for _kind, shape, xyz, rpy, dims in bodies:
             try:
                 solid = _solid(shape, dims, meshes, solids)
@@ -67,13 +67,13 @@ def inertia_section(checked) -> Section:
                                    "inertia from its geometry")
                 placed = None
                 break
-            hulls += [_named(shape)] if solid.hull else []
             placed.append(solids.placed(solid, xyz, rpy))
         if not placed:
             continue
         xyz, rpy = _origin(inertial)
         tensor = solids.tensor_about(placed, mass, xyz, rpy)
         values = solids.six(tensor)
+        hulls = [_named(b[1]) for b, s in zip(bodies, placed, strict=True) if s.hull]
         where = _place(checked, inertial.get("mass", link.element))
         shown = ", ".join(_named(b[1]) for b in bodies)
         source = f"{kind} geometry ({shown}), declared mass {mass:g} kg ({where})"
@@ -81,14 +81,31 @@ def inertia_section(checked) -> Section:
             source += ": no collision geometry, the visual's taken"
         if hulls:
             source += f"; not watertight, its convex hull taken: {', '.join(hulls)}"
+        paths = [meshes[b[1]].path if b[1].tag == "mesh" else None for b in bodies]
+        proof = _proof(bodies, paths, [s.hull for s in placed], mass, (xyz, rpy), values)
         found.figures.append(Figure(f"inertia.{link.name}", f"inertia of {link.name}",
-                                    values, "kg m²", source, ASSUMED))
+                                    values, "kg m²", source, ASSUMED, proof))
         if _placeholder(bodies, meshes):
             continue
         _judge(link, values, tensor, refused.get(link.name), (xyz, rpy, mass),
                _place(checked, link.parts["inertial"]), report)
     found.diagnostics = report.diagnostics
     return found
+
+
+def _proof(bodies, paths, hulls, mass, origin, values):
+    """MuJoCo's proof of the figure (:mod:`.inertia_proof`); a mesh MuJoCo cannot be
+    given (its cache copy not written) leaves it unproven, said."""
+    from ..errors import McarError
+    from .figures import Proof
+    from .inertia_proof import mujoco_proof, shown_tolerance
+
+    try:
+        return mujoco_proof(bodies, paths, hulls, mass, *origin, values)
+    except (McarError, OSError) as error:
+        why = error.message if isinstance(error, McarError) else error.strerror or error
+        return Proof(None, False, shown_tolerance(),
+                     f"MuJoCo was not given the meshes: {why}")
 
 
 def _placeholder(bodies: list, meshes: dict) -> bool:

@@ -238,3 +238,30 @@ def test_a_sensors_stand_in_shape_has_its_figure_but_is_not_judged(tmp_path):
         link("camera", 0.01, collision('<box size="0.03 0.03 0.03"/>'), token))))
     close(found.figure("inertia.imu").value, box_six(0.01, 0.01, 0.01, 0.01))
     assert [d.message.split("'")[1] for d in found.diagnostics] == ["camera"]
+
+
+def test_mujoco_takes_the_same_inertias_from_the_same_shapes(primitives, meshes):
+    for found in (primitives, meshes):
+        for figure in found.figures:
+            assert figure.proof.agrees, (figure.key, figure.proof.detail)
+            close(figure.proof.measured, figure.value, rel=1e-6)
+            assert figure.proof.detail.startswith(
+                "MuJoCo's inertia from the same shapes (inertiafromgeom): off by ")
+
+
+def test_control_mujocos_proof_disagrees_with_a_figure_that_is_off(tmp_path):
+    from mobile_car.check.rest_pose import link_shapes
+    from mobile_car.specs.inertia_proof import mujoco_proof
+
+    text = robot(link("block", 3, collision('<box size="0.3 0.2 0.1"/>', xyz="0.1 0 0")))
+    checked = check_input(RobotInput(written(tmp_path, "off.urdf", text)))
+    block = next(link for link in checked.robot.links if link.name == "block")
+    bodies = link_shapes(block.element).bodies
+    right = box_six(3, 0.3, 0.2, 0.1)
+    right[3] += 3 * 0.01  # the box 0.1 m ahead of the centre of mass: m d² about y, z
+    right[5] += 3 * 0.01
+    proof = mujoco_proof(bodies, [None], [False], 3, (0, 0, 0), (0, 0, 0), right)
+    assert proof.agrees
+    wrong = right[:3] + [right[3] * 1.001] + right[4:]
+    proof = mujoco_proof(bodies, [None], [False], 3, (0, 0, 0), (0, 0, 0), wrong)
+    assert not proof.agrees and proof.detail.endswith("off by 0.00088 of the largest moment")

@@ -405,7 +405,10 @@ def jointed_model(urdf: bytes, label: str) -> tuple[object, list[str]]:
     kinematics only, where sim's model holds the joints that are not the drive's still
     (:func:`_hold_the_rest`). A tensor MuJoCo refuses is made physical
     (:func:`~mobile_car.check.mujoco_inertia.make_physical`: a tensor changes no gravity
-    load), a moving link without mass gets a token one (the notes say which)."""
+    load), a moving link without mass gets a token one (the notes say which). Each hinge
+    and slide joint has an equality ``mcar_hold_<joint>``, off: switched on
+    (``data.eq_active``) it holds the joint where its ``eq_data[0]`` says, a lock the
+    proof of a figure puts on the joints it does not measure."""
     from ..check.mujoco_inertia import make_physical, refusals
 
     mj = mujoco()
@@ -421,6 +424,11 @@ def jointed_model(urdf: bytes, label: str) -> tuple[object, list[str]]:
     except ValueError as error:
         raise SimModelError(f"MuJoCo cannot read the robot: {_engine_message(error)}",
                             file=label) from None
+    for joint in list(spec.joints):
+        if joint.type in (mj.mjtJoint.mjJNT_HINGE, mj.mjtJoint.mjJNT_SLIDE):
+            hold = spec.add_equality(name=f"mcar_hold_{joint.name}", type=mj.mjtEq.mjEQ_JOINT,
+                                     objtype=mj.mjtObj.mjOBJ_JOINT, name1=joint.name)
+            hold.active = False
     return _compile(spec, label), notes
 
 

@@ -22,7 +22,8 @@ judged against its effort (a note compares them).
 W501 **effort-under-gravity**: a declared effort under the worst load (0 included), at
 the joint's ``<limit>``.
 
-Keys ``joints.<joint>.gravity`` and ``joints.<joint>.effort``, in N·m or N.
+Keys ``joints.<joint>.gravity`` (proven by holding the joint there in a simulation:
+:mod:`.joints_proof`) and ``joints.<joint>.effort``, in N·m or N.
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ import math
 from ..check.context import Reporter
 from ..check.urdf_model import parse_number
 from .figures import Figure, Section
+from .joints_proof import held_load
 
 STEP_DEG = 5.0
 COARSE_DEG = 15.0
@@ -99,7 +101,8 @@ def joints_section(checked, sim=None) -> Section:
             f"joints.{joint.name}.gravity", f"gravity load on {joint.name}", load, unit,
             f"MuJoCo's gravity load (qfrc_bias at rest), worst of {tried} poses: {shown}",
             "joints before it at 0, the body as it rests; the joints beyond it each at its "
-            "lower, middle and upper limit (continuous: every quarter turn)"))
+            "lower, middle and upper limit (continuous: every quarter turn)",
+            held_load(search, joint.name, pose, load, unit)))
         found.figures.append(Figure(
             f"joints.{joint.name}.effort", f"declared effort of {joint.name}", effort, unit,
             f"<limit effort> of joint {joint.name} ({limit_at})" if effort is not None else
@@ -280,18 +283,26 @@ class PoseSearch:
         count = math.ceil((high - low) / step - 1e-9)
         return [low + (high - low) * i / count for i in range(count + 1)]
 
+    def pose(self, data, values: dict) -> None:
+        """``data`` at rest (qpos0, still) but for the joints of ``values`` (name ->
+        position) and their followers."""
+        self._set(data, [(self._joint(name), value) for name, value in values.items()])
+
+    def _set(self, data, pairs) -> None:
+        model = self.model
+        data.qpos[:] = model.qpos0
+        data.qvel[:] = 0
+        for joint, value in pairs:
+            data.qpos[model.jnt_qposadr[joint]] = value
+        for follower, (leader, multiplier, offset) in self.followers.items():
+            source = data.qpos[model.jnt_qposadr[model.joint(leader).id]]
+            data.qpos[model.jnt_qposadr[model.joint(follower).id]] = multiplier * source + offset
+
     def _load(self, joint: int, q: float, beyond: list[int], combo: tuple) -> float:
         """|qfrc_bias| of ``joint`` at zero velocity with it at ``q``, ``beyond`` at
         ``combo``, the rest at 0 (qpos0) and each follower where its leader puts it."""
         mj, model, data = self.mj, self.model, self.data
-        data.qpos[:] = model.qpos0
-        data.qvel[:] = 0
-        data.qpos[model.jnt_qposadr[joint]] = q
-        for j, value in zip(beyond, combo, strict=True):
-            data.qpos[model.jnt_qposadr[j]] = value
-        for follower, (leader, multiplier, offset) in self.followers.items():
-            source = data.qpos[model.jnt_qposadr[model.joint(leader).id]]
-            data.qpos[model.jnt_qposadr[model.joint(follower).id]] = multiplier * source + offset
+        self._set(data, [(joint, q), *zip(beyond, combo, strict=True)])
         mj.mj_kinematics(model, data)
         mj.mj_comPos(model, data)
         mj.mj_comVel(model, data)

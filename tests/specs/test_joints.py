@@ -133,3 +133,32 @@ def test_with_sims_model_the_drive_wheels_are_left_out_and_a_spring_carries_its_
     assert (f"joint wheel_drop_left_joint is a suspension: a spring carries its "
             f"{carried.value:.4g} N at rest, not its effort (its <limit effort> 0 N is under "
             "that)") in found.notes
+
+
+def test_mujoco_holds_each_joint_in_its_worst_pose_with_the_figures_force(tmp_path):
+    # the shoulder held horizontal with its forearm straight out: were the elbow not
+    # locked, the forearm would swing down and the shoulder would carry less
+    found = joints_section(checked(tmp_path, "arm.urdf", arm()))
+    for key in ("joints.shoulder.gravity", "joints.elbow.gravity"):
+        figure = found.figure(key)
+        assert figure.proof.agrees, figure.proof.detail
+        assert figure.proof.measured == pytest.approx(figure.value, rel=0.01)
+        assert figure.proof.detail.startswith("MuJoCo held it in that pose for 0.3 s, the "
+                                              "other joints locked, with a servo on it alone: ")
+    lifted = joints_section(checked(tmp_path, "lift.urdf", lift())).figure(
+        "joints.lift_joint.gravity")
+    assert lifted.proof.agrees and lifted.proof.measured == pytest.approx(5 * G, rel=0.01)
+
+
+def test_control_the_hold_disagrees_with_a_load_that_is_off(tmp_path):
+    from mobile_car.sim.model import jointed_model
+    from mobile_car.specs.joints import PoseSearch
+    from mobile_car.specs.joints_proof import held_load
+
+    result = checked(tmp_path, "lift.urdf", lift())
+    model, _notes = jointed_model(result.loaded.urdf, "lift.urdf")
+    search = PoseSearch(model, {})
+    pose = [("lift_joint", 0.1, "prismatic")]
+    assert held_load(search, "lift_joint", pose, 5 * G, "N").agrees
+    proof = held_load(search, "lift_joint", pose, 5 * G * 1.02, "N")
+    assert not proof.agrees and proof.measured == pytest.approx(5 * G, rel=1e-3)

@@ -244,8 +244,11 @@ class PoseSearch:
         model = self.model
         top = int(model.jnt_bodyid[joint])
         found = []
+        # (ints: a numpy int is never `in` a tuple of MuJoCo's enums)
+        turning = (int(self.mj.mjtJoint.mjJNT_HINGE), int(self.mj.mjtJoint.mjJNT_SLIDE))
         for j in range(model.njnt):
-            if j == joint or model.joint(j).name in self.followers:
+            if j == joint or model.joint(j).name in self.followers \
+                    or int(model.jnt_type[j]) not in turning:  # (a floating joint's body)
                 continue
             body = int(model.jnt_bodyid[j])
             while body > top:

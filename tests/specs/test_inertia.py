@@ -265,3 +265,14 @@ def test_control_mujocos_proof_disagrees_with_a_figure_that_is_off(tmp_path):
     wrong = right[:3] + [right[3] * 1.001] + right[4:]
     proof = mujoco_proof(bodies, [None], [False], 3, (0, 0, 0), (0, 0, 0), wrong)
     assert not proof.agrees and proof.detail.endswith("off by 0.00088 of the largest moment")
+
+
+def test_the_tensor_is_given_in_the_declared_inertial_axes(tmp_path):
+    # the inertial frame turned a quarter turn about z: its x is the link's y
+    turned = f'<origin xyz="0 0 0" rpy="0 0 {math.pi / 2!r}"/>'
+    text = robot(link("block", 3, collision('<box size="0.3 0.2 0.1"/>'),
+                      box_inertia(3, 0.2, 0.3, 0.1), turned))
+    found = section_of(written(tmp_path, "turned.urdf", text))
+    close(found.figure("inertia.block").value, box_six(3, 0.2, 0.3, 0.1))
+    assert not found.diagnostics  # declared right, in those axes
+    assert found.figure("inertia.block").proof.agrees

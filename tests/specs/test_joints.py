@@ -162,3 +162,57 @@ def test_control_the_hold_disagrees_with_a_load_that_is_off(tmp_path):
     assert held_load(search, "lift_joint", pose, 5 * G, "N").agrees
     proof = held_load(search, "lift_joint", pose, 5 * G * 1.02, "N")
     assert not proof.agrees and proof.measured == pytest.approx(5 * G, rel=1e-3)
+
+
+LIFT_MACRO = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <!-- lift: a carriage of mass m kg on a prismatic joint, up to effort N -->
+  <xacro:macro name="lift" params="parent m effort">
+    <joint name="lift_joint" type="prismatic">
+      <parent link="${parent}"/><child link="carriage"/>
+      <axis xyz="0 0 1"/>
+      <limit lower="0" upper="0.3"
+             effort="${effort}" velocity="0.1"/>
+    </joint>
+    <link name="carriage">
+      <inertial><mass value="${m}"/>
+        <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>
+    </link>
+  </xacro:macro>
+</robot>
+"""
+
+LIFTER = """<?xml version="1.0"?>
+<robot name="lifter" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="parts/lift.xacro"/>
+  <link name="base_link"/>
+  <xacro:lift parent="base_link" m="5" effort="20"/>
+</robot>
+"""
+
+
+def test_w501_points_at_the_limit_in_the_macro_file_and_the_call(tmp_path, monkeypatch):
+    (tmp_path / "parts").mkdir()
+    written(tmp_path / "parts", "lift.xacro", LIFT_MACRO)
+    written(tmp_path, "lifter.urdf.xacro", LIFTER)
+    monkeypatch.chdir(tmp_path)
+    result = check_input(RobotInput(Path("lifter.urdf.xacro")))
+    (warning,) = joints_section(result).diagnostics
+    assert warning.text() == (
+        f"parts/lift.xacro:{line_of(LIFT_MACRO, '<limit ')}: warning: joint 'lift_joint': "
+        f"<limit effort> 20 N is under the {5 * G:.4g} N gravity asks of it in its worst "
+        "pose (lift_joint 0 m), carrying 5 kg: it cannot hold it there (in xacro:lift "
+        "called at lifter.urdf.xacro:5) [W501]")
+
+
+def test_gravity_leans_as_the_robot_rests(tmp_path):
+    from mobile_car.sim.model import jointed_model
+    from mobile_car.specs.joints import PoseSearch
+
+    result = checked(tmp_path, "lift.urdf", lift())
+    for lean, share in ((0.1, math.cos(0.1)), (math.pi / 2, 0.0)):
+        model, _notes = jointed_model(result.loaded.urdf, "lift.urdf")
+        # the root turned by ``lean`` about x (w, x, y, z): the lift's axis leans with it
+        search = PoseSearch(model, {}, [math.cos(lean / 2), math.sin(lean / 2), 0, 0])
+        load, _pose, _tried = search.worst("lift_joint")
+        assert load == pytest.approx(5 * G * share, abs=1e-9)

@@ -403,10 +403,50 @@ def _prepare(root, base: Path, search) -> list[str]:
             link = collision.getparent()
             notes.append(f"link {link.get('name')}: collision mesh {filename} left out: {why}")
             link.remove(collision)
+    _compiler_options(root)
+    return notes
+
+
+def _compiler_options(root) -> None:
+    """The description's own masses and every link a body: no inertia from geometry, no
+    fixed link fused into its parent, no tensor balanced behind the user's back."""
     extension = etree.SubElement(root, "mujoco")
     etree.SubElement(extension, "compiler", discardvisual="true", fusestatic="false",
                      inertiafromgeom="false", balanceinertia="false", strippath="false")
-    return notes
+
+
+def jointed_model(urdf: bytes, label: str) -> tuple[object, list[str]]:
+    """(the robot's masses on their joints as MuJoCo reads them, notes): every joint free,
+    the root fixed to the world, no geometry. What gravity asks of a joint (``mcar specs``,
+    :mod:`mobile_car.specs.joints`) depends on masses, centres of mass and the joints'
+    kinematics only, where sim's model holds the joints that are not the drive's still
+    (:func:`_hold_the_rest`). A tensor MuJoCo refuses is made physical
+    (:func:`~mobile_car.check.mujoco_inertia.make_physical`: a tensor changes no gravity
+    load), a moving link without mass gets a token one (the notes say which). Each hinge
+    and slide joint has an equality ``mcar_hold_<joint>``, off: switched on
+    (``data.eq_active``) it holds the joint where its ``eq_data[0]`` says, a lock the
+    proof of a figure puts on the joints it does not measure."""
+    from ..check.mujoco_inertia import make_physical, refusals
+
+    mj = mujoco()
+    root = etree.fromstring(urdf, etree.XMLParser(resolve_entities=False, no_network=True))
+    notes = as_urdfdom_reads(root)
+    for element in list(root.iter("visual", "collision", "gazebo", "transmission",
+                                  "ros2_control")):
+        element.getparent().remove(element)
+    notes += make_physical(root, refusals(root))
+    _compiler_options(root)
+    try:
+        spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
+    except ValueError as error:
+        raise SimModelError(f"MuJoCo cannot read the robot: {_engine_message(error)}",
+                            file=label) from None
+    for joint in list(spec.joints):
+        if joint.type in (mj.mjtJoint.mjJNT_HINGE, mj.mjtJoint.mjJNT_SLIDE):
+            hold = spec.add_equality(name=f"mcar_hold_{joint.name}", type=mj.mjtEq.mjEQ_JOINT,
+                                     objtype=mj.mjtObj.mjOBJ_JOINT, name1=joint.name)
+            hold.active = False
+    return _compile(spec, label), notes
 
 
 def add_floor(spec, mj) -> None:

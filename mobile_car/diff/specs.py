@@ -14,6 +14,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from ..names import shown
+
 # Decimals a figure is shown with, by unit; more when old and new would print the same.
 DECIMALS = {"deg": 1, "m": 3, "kg": 3, "N": 1, "N·m": 3, "m/s": 3, "": 3}
 MAX_DECIMALS = 9
@@ -109,10 +111,10 @@ def compare_specs(old_sections, new_sections, tolerance: float = 1e-9,
 
 
 def _number(value: float, decimals: int) -> str:
-    shown = f"{value:.{decimals}f}"
-    if "." in shown:
-        shown = shown.rstrip("0").rstrip(".")
-    return "0" if shown in ("-0", "") else shown
+    text = f"{value:.{decimals}f}"
+    if "." in text:
+        text = text.rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
 
 
 def _decimals(change: FigureChange) -> int:
@@ -140,11 +142,11 @@ def _flat(value) -> list | None:
     return None
 
 
-def shown(value, unit: str, decimals: int, source: str = "") -> str:
+def value_text(value, unit: str, decimals: int, source: str = "") -> str:
     """A value for people: ``24.1°``, ``[0.03, 0, 0.1] m``, ``12 items``, ``not computed
     (why)``."""
     if value is None:
-        return f"not computed ({source})" if source else "not computed"
+        return f"not computed ({shown(source)})" if source else "not computed"
     flat = _flat(value)
     if flat is not None:
         numbers = [_number(float(v), decimals) for v in flat]
@@ -152,7 +154,7 @@ def shown(value, unit: str, decimals: int, source: str = "") -> str:
         return _with_unit(text, unit)
     if isinstance(value, (list, tuple)):
         return f"{len(value)} items"
-    return str(value)
+    return shown(str(value))
 
 
 def _biggest_move(old, new) -> float | None:
@@ -187,17 +189,20 @@ def delta_text(change: FigureChange, decimals: int) -> str:
 
 
 def row(change: FigureChange) -> str:
-    """One change in words: ``tip-over left 24.1° → 19.3° (-4.8°)``."""
+    """One change in words: ``tip-over left 24.1° → 19.3° (-4.8°)``; what the robot
+    names (a sensor in a label, a link in a source) shown escaped (mobile_car.names), so
+    it cannot break the line or forge another."""
     decimals = _decimals(change)
+    label = shown(change.label)
     if change.status == "added":
-        return f"added {change.label}: " + shown(change.new, change.unit, decimals,
+        return f"added {label}: " + value_text(change.new, change.unit, decimals,
                                                   change.new_source)
     if change.status == "removed":
-        return f"removed {change.label} (was " + shown(change.old, change.unit, decimals,
+        return f"removed {label} (was " + value_text(change.old, change.unit, decimals,
                                                         change.old_source) + ")"
     moved = delta_text(change, decimals)
-    text = (f"{change.label} {shown(change.old, change.unit, decimals, change.old_source)}"
-            f" → {shown(change.new, change.unit, decimals, change.new_source)}")
+    text = (f"{label} {value_text(change.old, change.unit, decimals, change.old_source)}"
+            f" → {value_text(change.new, change.unit, decimals, change.new_source)}")
     return f"{text} ({moved})" if moved else text
 
 
@@ -219,14 +224,14 @@ def summary(diff: SpecsDiff) -> str:
 
 
 def _diagnostic_rows(diff: SpecsDiff) -> list[str]:
-    return ([f"new {d.rule}: {d.message}" for d in diff.new_diagnostics]
-            + [f"gone {d.rule}: {d.message}" for d in diff.gone_diagnostics])
+    return ([f"new {d.rule}: {shown(d.message)}" for d in diff.new_diagnostics]
+            + [f"gone {d.rule}: {shown(d.message)}" for d in diff.gone_diagnostics])
 
 
 def text(diff: SpecsDiff) -> str:
     """The figures' changes for a terminal, one per line, keys in brackets."""
-    lines = [f"Specs {diff.old_label} → {diff.new_label}: {summary(diff)}"]
-    lines += [f"  {row(c)}  [{c.key}]" for c in diff.changes]
+    lines = [f"Specs {shown(diff.old_label)} → {shown(diff.new_label)}: {summary(diff)}"]
+    lines += [f"  {row(c)}  [{shown(c.key)}]" for c in diff.changes]
     lines += [f"  {line}" for line in _diagnostic_rows(diff)]
     return "\n".join(lines) + "\n"
 
@@ -242,12 +247,12 @@ def markdown(diff: SpecsDiff) -> str:
         lines += ["| Figure | Old | New | Change |", "|---|---|---|---|"]
         for c in diff.changes:
             decimals = _decimals(c)
-            old = "(absent)" if c.status == "added" else shown(c.old, c.unit, decimals,
+            old = "(absent)" if c.status == "added" else value_text(c.old, c.unit, decimals,
                                                               c.old_source)
-            new = "(absent)" if c.status == "removed" else shown(c.new, c.unit, decimals,
+            new = "(absent)" if c.status == "removed" else value_text(c.new, c.unit, decimals,
                                                                 c.new_source)
             lines.append("| " + " | ".join(_cell(v) for v in (
-                f"{c.label} `{c.key}`", old, new,
+                f"{shown(c.label)} `{shown(c.key)}`", old, new,
                 c.status if c.status != "changed" else delta_text(c, decimals))) + " |")
         lines.append("")
     lines += [f"- {line}" for line in _diagnostic_rows(diff)]
@@ -279,9 +284,10 @@ def as_json(diff: SpecsDiff) -> dict:
 
 
 def specs_sections(loaded, options: dict | None = None) -> list:
-    """The Sections ``mcar specs`` computes for a loaded robot that passed mcar check
-    (specs-core's compute; default options)."""
+    """The Sections ``mcar specs`` computes for a loaded robot that passed mcar check:
+    default options, no MuJoCo proofs (they check a figure, never change it, and cost
+    seconds)."""
     from ..check.checker import check_loaded
     from ..specs.compute import compute
 
-    return compute(check_loaded(loaded), options or {})
+    return compute(check_loaded(loaded), {"proof": False, **(options or {})})

@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from PIL import Image, ImageDraw
 
+from ..names import shown
 from ..render.camera import Camera, fit_camera
 from ..render.compose import TEXT_COLOR, compose, font, format_length, nice_step, png_bytes
 from ..render.options import RenderOptions
@@ -235,7 +236,7 @@ def _top_overlays(layer: _Layer, overlay: Overlay) -> None:
         layer.image.alpha_composite(wedges)
         dot = layer.line * 1.5
         layer.draw.ellipse([cx - dot, cy - dot, cx + dot, cy + dot], fill=LIDAR_COLOUR)
-        layer.label((cx + dot * 2, cy - dot * 2), lidar.name, LIDAR_COLOUR)
+        layer.label((cx + dot * 2, cy - dot * 2), shown(lidar.name), LIDAR_COLOUR)
     if overlay.com is not None:
         layer.marker((overlay.com[0], overlay.com[1], overlay.floor_z))
     layer.scale_bar()

@@ -173,6 +173,9 @@ def delta_text(change: FigureChange, decimals: int) -> str:
     """``-4.8°`` for a scalar, ``+0, +0.01, +0.03 m`` for a point, ``each number moved up
     to 0.012 m`` for a polygon or sectors of the same shape; else ""."""
     if change.delta is not None:
+        # 9.9434° → 9.9723° shows as 9.9° → 10°: its change is +0.03°, not +0°
+        while decimals < MAX_DECIMALS and _number(change.delta, decimals) == "0":
+            decimals += 1
         sign = "+" if change.delta > 0 else ""
         return _with_unit(sign + _number(change.delta, decimals), change.unit)
     old, new = _flat(change.old), _flat(change.new)

@@ -81,6 +81,18 @@ def test_the_tolerance_hides_smaller_moves(diff):
                                               "sensors.sonar.range"]  # not forward: 0.02°
 
 
+def test_a_small_change_is_never_shown_as_zero():
+    # TurtleBot3 burger to waffle: each value rounds to a different tenth, their change
+    # to none
+    diff = specs.compare_specs(sections(OLD), sections(changed(statics__climb=18.04)))
+    assert specs.text(diff).splitlines()[1] == (
+        "  climb 18° → 18.04° (+0.04°)  [statics.climb]")
+    diff = specs.compare_specs(sections(changed(statics__climb=9.9434)),
+                               sections(changed(statics__climb=9.9723)))
+    assert specs.text(diff).splitlines()[1] == (
+        "  climb 9.9° → 10° (+0.03°)  [statics.climb]")
+
+
 def test_a_figure_one_side_could_not_compute_says_why():
     new = sections(changed(statics__climb=None) | {"statics.climb": (None, "deg", "climb")},
                    sources={"statics.climb": "no drive: the robot has no driven wheels"})

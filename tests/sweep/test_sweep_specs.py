@@ -62,19 +62,30 @@ def test_cells_hold_numbers_and_say_why_a_cell_is_empty():
         "statics.top_speed: this robot has no such figure; body.com: not a number (list)")
 
 
+def _fake_sections(checked, options=None):
+    base = next(j for j in checked.robot.joints if j.name == "base_joint")
+    radius = float(base.parts["origin"].get("xyz").split()[2])  # the axle height: r
+    return hand_sections(radius)
+
+
 @pytest.fixture
 def job(monkeypatch):
-    def fake(checked, options=None):
-        base = next(j for j in checked.robot.joints if j.name == "base_joint")
-        radius = float(base.parts["origin"].get("xyz").split()[2])  # the axle height: r
-        return hand_sections(radius)
-
-    monkeypatch.setattr(specs, "specs_sections", fake)
+    monkeypatch.setattr(specs, "specs_sections", _fake_sections)
     return SweepJob(ROBOT, None, scenarios=("drop",), specs=KEYS)
 
 
-def test_a_point_row_has_the_figures_as_columns(job):
-    row = evaluate_point(job, 0, {"wheel_radius": 0.04})
+@pytest.fixture(scope="module")
+def rows():
+    """Two points evaluated once for the tests that read them: 40 mm and 30 mm wheels."""
+    job = SweepJob(ROBOT, None, scenarios=("drop",), specs=KEYS)
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(specs, "specs_sections", _fake_sections)
+        return [evaluate_point(job, i, {"wheel_radius": r, "track_width": 0.16})
+                for i, r in enumerate((0.04, 0.03))]
+
+
+def test_a_point_row_has_the_figures_as_columns(rows):
+    row = rows[0]
     assert row["status"] == "ok", row["reason"]
     assert row["statics.tip.left"] == pytest.approx(40.0, abs=1e-6)
     assert row["body.mass"] == pytest.approx(0.74, abs=1e-6)
@@ -101,14 +112,15 @@ def test_a_rejected_point_computes_nothing(job):
     assert all(math.isnan(row[key]) for key in KEYS) and row["specs_notes"] == ""
 
 
-def test_the_table_keeps_the_columns_through_csv_and_resume(job, tmp_path):
+def test_the_table_keeps_the_columns_through_csv_and_resume(job, rows, tmp_path):
     from mobile_car.sweep import results
     from mobile_car.sweep.execute import crashed_row
 
-    rows = [evaluate_point(job, 0, {"wheel_radius": 0.04}),
-            crashed_row(Point(1, {"wheel_radius": 0.03}), "died twice", job.specs)]
-    fingerprint = job.fingerprint(["wheel_radius"])
-    frame = results.table(rows, ["wheel_radius"], fingerprint, job.specs)
+    names = ["wheel_radius", "track_width"]
+    table_rows = [rows[0], crashed_row(Point(1, {"wheel_radius": 0.03, "track_width": 0.16}),
+                                       "died twice", job.specs)]
+    fingerprint = job.fingerprint(names)
+    frame = results.table(table_rows, names, fingerprint, job.specs)
     assert list(frame.columns).index("statics.tip.left") > list(frame.columns).index(
         "centre_moved_m")
     path = tmp_path / "results.csv"
@@ -117,8 +129,9 @@ def test_the_table_keeps_the_columns_through_csv_and_resume(job, tmp_path):
     assert back["statics.tip.left"].tolist()[0] == pytest.approx(40.0)
     assert math.isnan(back["statics.tip.left"].tolist()[1])
     assert back["specs_notes"].tolist()[1] == ""
-    points = [Point(0, {"wheel_radius": 0.04}), Point(1, {"wheel_radius": 0.03})]
-    kept = results.resumed_rows(str(path), points, ["wheel_radius"], fingerprint, job.specs)
+    points = [Point(0, {"wheel_radius": 0.04, "track_width": 0.16}),
+              Point(1, {"wheel_radius": 0.03, "track_width": 0.16})]
+    kept = results.resumed_rows(str(path), points, names, fingerprint, job.specs)
     assert [row["point"] for row in kept] == [0]  # the crashed one runs again
 
 
@@ -131,20 +144,18 @@ def test_a_sweep_with_other_specs_is_another_sweep(job):
                                                   specs=()).fingerprint(names)
 
 
-def test_the_plot_is_coloured_by_a_specs_figure(job):
+def test_the_plot_is_coloured_by_a_specs_figure(job, rows):
     pytest.importorskip("matplotlib", reason="the sweep extra (pip install 'mcar[sweep]')")
     from mobile_car.sweep import results
     from mobile_car.sweep.plot import draw_sweep
 
-    rows = [evaluate_point(job, i, {"wheel_radius": r, "track_width": 0.16})
-            for i, r in enumerate((0.03, 0.04))]
     frame = results.table(rows, ["wheel_radius", "track_width"], "x", job.specs)
     figure = draw_sweep(frame, "wheel_radius", "track_width", "statics.tip.left",
                         {"wheel_radius": "m", "track_width": "m"})
     colour_bar = figure.axes[1]
     assert colour_bar.get_ylabel() == "statics.tip.left"
     valid = next(c for c in figure.axes[0].collections if c.get_gid() == "valid")
-    assert valid.get_array().tolist() == pytest.approx([30.0, 40.0])
+    assert valid.get_array().tolist() == pytest.approx([40.0, 30.0])
 
 
 def test_the_command_refuses_a_list_figure_before_it_runs(run_mcar, tmp_path):

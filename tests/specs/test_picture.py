@@ -5,6 +5,7 @@ tests draw a robot written here under them with a real renderer."""
 
 from __future__ import annotations
 
+import contextlib
 import io
 import math
 from pathlib import Path
@@ -214,7 +215,12 @@ def test_the_robot_is_drawn_under_the_figures(cart_views):
 
 
 def test_the_options_write_the_picture_atomically(cart, tmp_path, monkeypatch):
-    from mobile_car.cli.specs_picture import check_picture_name, picture_options, write_picture
+    from mobile_car.cli.specs_picture import (
+        check_picture_name,
+        picture_options,
+        start_probe,
+        write_picture,
+    )
 
     from mobile_car.errors import RendererUnavailableError
 
@@ -222,7 +228,9 @@ def test_the_options_write_the_picture_atomically(cart, tmp_path, monkeypatch):
     @picture_options
     def command(picture, renderer):
         check_picture_name(picture)
-        write_picture(picture, cart_sections(), cart, renderer)
+        with contextlib.ExitStack() as stack:
+            probe = start_probe(stack, renderer)
+            write_picture(picture, cart_sections(), cart, renderer, probe)
 
     target = tmp_path / "specs.png"
     result = CliRunner().invoke(command, ["--picture", str(target)])

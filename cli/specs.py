@@ -3,6 +3,7 @@ proven in MuJoCo where physics can show it."""
 
 from __future__ import annotations
 
+import contextlib
 import json
 
 import click
@@ -11,8 +12,16 @@ from mobile_car.errors import combine_exit_codes
 from mobile_car.names import json_safe, shown
 
 from . import streams
-from .common import INPUT_HELP, checked_robots, handle_errors, load_inputs, robot_options
+from .common import (
+    INPUT_HELP,
+    checked_robots,
+    chosen_robot,
+    handle_errors,
+    load_inputs,
+    robot_options,
+)
 from .sim import drive_options, drive_setting, require_both_sides
+from .specs_picture import check_picture_name, picture_options, start_probe, write_picture
 
 HELP = f"""What the robot can do: its size, weight and balance, the slopes it stands
 and climbs, its joints' loads, what its sensors see, the Nav2 and controller settings
@@ -24,6 +33,8 @@ measurement beside it where physics can prove it.
   mcar specs ROBOT --format json > specs.json  figures by key, for scripts
   mcar specs ROBOT --format markdown           for a pull request
   mcar specs ROBOT --no-proof                  computed figures only: no MuJoCo runs
+  mcar specs [ROBOT] --picture specs.png       the figures drawn over the robot (of
+                                               the package's complete robot, unless named)
 
 \b
 Frames: the root frame is the robot's root link at rest; the floor frame its
@@ -80,24 +91,32 @@ Exit codes:
 @click.option("--friction", type=click.FloatRange(min=0), metavar="MU",
               help="The tyres' friction with the floor where the description gives none "
                    "(default 1.0, MuJoCo's).")
+@picture_options
 @drive_options
 @robot_options
 @handle_errors
-def command(words, output_format, no_proof, friction, effort, speed, left, right, kind,
-            fix_inertia, package_paths, sets, config_files):
+def command(words, output_format, no_proof, friction, picture, renderer, effort, speed, left,
+            right, kind, fix_inertia, package_paths, sets, config_files):
     require_both_sides(left, right)
+    check_picture_name(picture)
     options = {"proof": not no_proof, "friction": friction, "effort": effort, "speed": speed,
                "left": left, "right": right, "kind": kind, "fix_inertia": fix_inertia}
     reports, codes = [], []
-    with load_inputs(words, package_paths, sets, config_files) as (selection, load_options):
+    with contextlib.ExitStack() as stack, \
+            load_inputs(words, package_paths, sets, config_files) as (selection, load_options):
         from mobile_car.specs.compute import compute
         from mobile_car.specs.report import SpecsReport
 
-        for inp, checked in checked_robots(selection, load_options, codes):
+        # --picture draws one robot: the one named, or the package's complete robot
+        inputs = [chosen_robot(selection, "mcar specs --picture")] if picture else None
+        probe = start_probe(stack, renderer) if picture else None
+        for inp, checked in checked_robots(selection, load_options, codes, inputs):
             sections = compute(checked, {**options, "setting": drive_setting(inp)})
             result = SpecsReport(checked.file, checked.robot.name, sections)
             reports.append(result)
             codes.append(result.exit_code)
+            if picture:
+                write_picture(picture, sections, checked, renderer, probe)
     _emit(reports, output_format, combine_exit_codes(codes))
     raise SystemExit(combine_exit_codes(codes))
 

@@ -173,6 +173,24 @@ _TABLE = [
     Rule("W232", "gazebo-plugin-joint", "a `<gazebo>` plugin naming a joint Gazebo does not "
          "have, in `<joint>`, `<joint_name>`, `<left_joint>`, `<leftJoint>`, `<jointName>` "
          "and the like", "n/a"),
+    # The package's own ROS configuration against the robot (mcar check, mcar specs)
+    Rule("W510", "stack-wheel-separation", "the control package's drive controller gives a "
+         "`wheel_separation` (times its `wheel_separation_multiplier`: the effective "
+         "figure) more than 1% off the drive wheels' spacing (a skid-steer robot's may "
+         "rightly be larger, its wheels scrub), or a `wheelbase` (`wheel_separation_h`) more "
+         "than 1% off an Ackermann or bicycle drive's", "n/a"),
+    Rule("W511", "stack-wheel-radius", "the drive controller's `wheel_radius` (times its "
+         "radius multiplier), `*_wheels_radius` or `*_wheel_radius` more than 1% off the "
+         "drive wheels' collision radius", "n/a"),
+    Rule("W512", "stack-wheel-names", "the drive controller names, among its left, right or "
+         "mecanum wheels, a joint that is no such drive wheel of the robot (missing, "
+         "another side's, not a wheel)", "n/a"),
+    Rule("W513", "stack-footprint", "Nav2's `footprint` leaves part of the robot's outline "
+         "on the floor out (by over 1 mm), or, with no footprint, its `robot_radius` is "
+         "under the robot's circumscribed radius", "n/a"),
+    Rule("W514", "stack-laser-filter", "a laser_filters chain whose angular bounds filters "
+         "leave part of a sector the robot's own body blocks in the scan (mcar specs, "
+         "with the sensors section)", "n/a"),
     # Notes
     Rule("N401", "gazebo-lumped", "a link Gazebo lumps into its parent by a fixed joint: "
          "one body with the parent's mass, collisions and visuals", "n/a"),

@@ -201,7 +201,9 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
                     built.note(item)
                     if item.variant is None and item.check_result is not None:
                         # what `mcar check` of the same file would find: its record too
-                        replay.record(item.input, pictures, item.check_result, cache.stamper)
+                        yaml_read, compared = _package_yaml(item.check_result)
+                        replay.record(item.input, pictures, item.check_result, cache.stamper,
+                                      also=yaml_read, compared=compared)
                     if passed:
                         checked.append(item)
                         if helper is not None:
@@ -253,6 +255,18 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
         click.echo(f"mcar ci: against {revision.name}: {changed} of {len(compared)} robot "
                    "files changed", err=True)
     sys.exit(code)
+
+
+def _package_yaml(result) -> tuple[list, bool]:
+    """(the package's controller and Nav2 YAML files, whether there are none): ci's check
+    does not compare them with the robot (W510-W513 are `mcar check`'s), so a record of a
+    robot that has some is not one `mcar check` may read back."""
+    if result.loaded is None:
+        return [], True
+    from mobile_car.specs.stack_check import find_package_yaml
+
+    found = find_package_yaml(result.loaded)
+    return found.read, not found
 
 
 def _gazebo_helper():

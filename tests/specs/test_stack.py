@@ -226,3 +226,34 @@ def test_husky_and_jackal_match_their_shipped_controller(robot, track, radius, m
     assert header[1].endswith(f"{robot}_control/config/control.yaml:{line}): effective "
                               f"{track * multiplier:.4f} m")
     assert yaml.safe_load(yaml_text(header, document)) == document
+
+
+def test_the_stack_section_says_the_effective_separation_and_compares_the_package(tmp_path,
+                                                                                monkeypatch):
+    """mcar specs' stack section (specs-core's SpecsContext: checked, sim, body)."""
+    from types import SimpleNamespace
+
+    from specs.stack_package import DIFF_CONTROL
+
+    from mobile_car.specs.stack import section
+
+    control = DIFF_CONTROL.format(left="wheel_left_joint", right="wheel_right_joint",
+                                  separation=0.16, radius=0.03)
+    control += "    wheel_separation_multiplier: 1.25\n"
+    monkeypatch.chdir(tmp_path)
+    robot = write_package(tmp_path, two_wheeler(), {"bot_control/config/control.yaml": control})
+    checked, sim = checked_and_model(robot, tmp_path)
+    result = section(SimpleNamespace(checked=checked, sim=sim, body=body(), options={}))
+    (figure,) = result.figures
+    assert (figure.key, figure.value, figure.unit) == ("stack.wheel_separation", 0.2, "m")
+    assert figure.source == ("the drive wheels' spacing (wheels.track) x "
+                             "wheel_separation_multiplier 1.25 "
+                             "(bot_control/config/control.yaml:7)")
+    assert [d.text() for d in result.diagnostics] == [
+        "bot_control/config/control.yaml:5: warning: wheel_separation 0.16 m x "
+        "wheel_separation_multiplier 1.25 = 0.2 m effective, but the drive wheels "
+        "wheel_left_joint and wheel_right_joint are 0.16 m apart (+25.0%): odometry and "
+        "turning rates would be off [W510]",
+        "bot_control/config/control.yaml:6: warning: wheel_radius 0.03 m, but the drive "
+        "wheels' collision radius is 0.033 m (-9.1%): the robot would drive faster or slower "
+        "than commanded [W511]"]

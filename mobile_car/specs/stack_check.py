@@ -303,18 +303,10 @@ def _radius(path, keys, radius) -> list[Diagnostic]:
 
 
 def _nav2(path, keys, outline, radius) -> list[Diagnostic]:
-    import yaml
-
     found = []
     polygon = None
     if "footprint" in keys:
-        node = keys["footprint"][1]
-        try:
-            value = yaml.safe_load(node.value) if isinstance(node, yaml.ScalarNode) else \
-                yaml.safe_load(yaml.serialize(node))
-        except yaml.YAMLError:
-            value = None
-        polygon = _polygon(value)
+        polygon = _polygon(_footprint_value(keys["footprint"][1]))
         if polygon and outline:
             outside = [p for p in outline if not _covers(polygon, p)]
             if outside:
@@ -332,6 +324,24 @@ def _nav2(path, keys, outline, radius) -> list[Diagnostic]:
                              f"{radius:.3f} m from its root (body.radius.circumscribed): "
                              "Nav2 would plan paths it cannot fit through"))
     return found
+
+
+def _footprint_value(node):
+    """A footprint as Nav2 writes it (the string "[[x, y], ...]", parsed by the bounded
+    loader: a pull request's YAML may nest it a million deep) or as a YAML list."""
+    import yaml
+
+    from ..config.bounded_yaml import compose_and_load
+
+    if isinstance(node, yaml.SequenceNode):
+        return [[getattr(c, "value", None) for c in getattr(p, "value", ())]
+                for p in node.value]
+    if not isinstance(node, yaml.ScalarNode):
+        return None
+    try:
+        return compose_and_load(node.value)[1]
+    except (yaml.YAMLError, RecursionError):
+        return None
 
 
 def _polygon(value) -> list[tuple[float, float]] | None:

@@ -211,3 +211,25 @@ def test_an_edited_controller_yaml_is_compared_again_not_read_back(run_mcar, tmp
     assert "[W510]" not in run().stderr  # (read back)
     (tmp_path / CONTROL).write_text(diff_control(separation=0.176))
     assert len(warnings(run(), "W510")) == 1
+
+
+@pytest.mark.parametrize("robot", ["irobot_create_description/urdf/create3.urdf.xacro",
+                                   "husky_description/urdf/husky.urdf.xacro",
+                                   "steer_bot_description/urdf/steer_bot.urdf.xacro"])
+def test_released_packages_own_yaml_agrees_with_their_robots(robot):
+    """Create 3's control.yaml gives wheel_separation 0.233 and wheel_radius 0.03575, as
+    its URDF; Husky's gives only a multiplier; steer_bot's ROS 1 ackermann controller a
+    wheel_separation_h (its wheelbase) and radius: each read, none flagged."""
+    from sim.test_sim_real_robots import FOLDER
+
+    if FOLDER is None:
+        pytest.skip("the shared real-robots folder is absent")
+    from mobile_car.check.checker import check_input
+    from mobile_car.load.inputs import RobotInput
+    from mobile_car.load.robot import LoadOptions
+    from mobile_car.specs.stack_check import resting_model
+
+    checked = check_input(RobotInput(FOLDER / robot), LoadOptions(package_paths=[FOLDER]))
+    found = find_package_yaml(checked.loaded)
+    assert found.controllers and found.read
+    assert compare(found, checked, resting_model(checked), [])[0] == []

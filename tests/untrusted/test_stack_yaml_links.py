@@ -63,3 +63,26 @@ def test_package_yaml_linked_out_of_its_package_is_not_read(run_mcar, tmp_path, 
             f"{(work / 'bot_navigation').resolve()})"]
     else:  # the same bytes inside the package: read, and their error quotes the line
         assert any(MARK in note for note in notes)
+
+
+DEEP = 200_000  # nesting PyYAML's recursive composer cannot follow
+
+
+def test_hostile_numbers_and_a_deep_footprint_are_one_line_each(run_mcar, tmp_path):
+    """Nav2's footprint is a string Nav2 parses itself: mcar parses it with the bounded
+    loader. NaN and 1e999 figures are not numbers to compare."""
+    import yaml
+
+    work = tmp_path / "ws"
+    deep = "[" * DEEP + "]" * DEEP
+    hostile = PLANTED.replace("0.5", ".nan").replace("0.033", "1e999")
+    write_package(work, two_wheeler(), {
+        "bot_navigation/params/nav2.yaml": f'local_costmap:\n  footprint: "{deep}"\n'
+                                           f"  robot_radius: -1e999\n",
+        "bot_control/config/control.yaml": hostile})
+    result = run_mcar("check", "bot_description/robot.urdf", "--package-path", work, cwd=work)
+    assert result.returncode == 0, result.stderr
+    assert "Traceback" not in result.stderr and "[W51" not in result.stderr
+    # control: what the footprint would do to a plain yaml.safe_load
+    with pytest.raises(RecursionError):
+        yaml.safe_load(deep)

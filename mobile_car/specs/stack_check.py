@@ -21,6 +21,8 @@ What is compared (tolerance TOLERANCE, relative):
   ``wheel_separation_h`` (ROS 1) with an Ackermann or bicycle drive's wheelbase;
 * ``wheel_radius`` x ``wheel_radius_multiplier`` (ROS 2: each side's), the steering
   controllers' ``*_wheels_radius`` and ``*_wheel_radius``, with the wheels' radius (W511);
+* mecanum_drive_controller's ``kinematics``: ``wheels_radius`` (W511) and
+  ``sum_of_robot_center_projection_on_X_Y_axis`` with the wheels' lx + ly (W510);
 * the joints a differential, skid-steer or mecanum controller names with the drive's
   wheels, by side (W512);
 * a Nav2 ``footprint`` that leaves part of the robot's own outline out, or, without a
@@ -44,7 +46,7 @@ NAVIGATION_SUFFIXES = (None, "_navigation")  # None: the description package its
 NAVIGATION_FOLDERS = ("config", "params")
 SEPARATION_KEYS = ("wheel_separation",)
 WHEELBASE_KEYS = ("wheelbase", "wheel_separation_h")
-RADIUS_KEYS = ("wheel_radius", "traction_wheels_radius", "rear_wheels_radius",
+RADIUS_KEYS = ("wheel_radius", "wheels_radius", "traction_wheels_radius", "rear_wheels_radius",
                "front_wheels_radius", "traction_wheel_radius", "rear_wheel_radius",
                "front_wheel_radius")
 RADIUS_MULTIPLIERS = ("wheel_radius_multiplier", "left_wheel_radius_multiplier",
@@ -223,33 +225,72 @@ def _controller(path, keys, drive, joints, sections, notes) -> list[Diagnostic]:
                                  f"to steering pivots) is {wheelbase:.4g} m "
                                  f"({_off(value, wheelbase)})"))
     found += _radius(path, keys, radius)
+    if declaration.kind == "mecanum" and drive.kind == "mecanum":
+        found += _mecanum_kinematics(path, keys, drive, radius)
+    return found
+
+
+def _mecanum_kinematics(path, keys, drive, radius) -> list[Diagnostic]:
+    """mecanum_drive_controller's ``kinematics``: ``wheels_radius`` (W511) and
+    ``sum_of_robot_center_projection_on_X_Y_axis``, lx + ly (W510)."""
+    import yaml
+
+    node = keys.get("kinematics", (None, None))[1]
+    if not isinstance(node, yaml.MappingNode):
+        return []
+    inner = {k.value: (k, v) for k, v in node.value if isinstance(k, yaml.ScalarNode)}
+    found = _radius(path, inner, radius)
+    key = "sum_of_robot_center_projection_on_X_Y_axis"
+    value = _number(inner, key)
+    wheels = drive.left + drive.right
+    lx_ly = sum(abs(w.x) + abs(w.y) for w in wheels) / len(wheels)
+    if value is not None and _differs(value, lx_ly):
+        found.append(_at("W510", path, inner[key][0],
+                         f"{key} {value:g} m, but the wheels stand {lx_ly:.4g} m from the "
+                         f"root frame along x plus along y ({_off(value, lx_ly)})"))
     return found
 
 
 def _names(path, keys, drive, joints) -> list[Diagnostic]:
+    """W512 for each joint a controller names that is not the drive wheel it names it as:
+    a side's (differential, skid-steer), or a corner's (mecanum)."""
     from ..sim.control_config import _names_in_order
     from ..sim.declared import YAML_LEFT, YAML_MECANUM, YAML_RIGHT
 
-    found = []
-    left, right = {w.joint for w in drive.left}, {w.joint for w in drive.right}
     if drive.kind == "mecanum":
-        sides = [(YAML_MECANUM, None, left | right, set())]
+        corners = _corners(drive)
+        where = {joint: corner.replace("_", " ") for corner, joint in corners.items()}
+        groups = [(tag, [corners[tag.split("_wheel")[0]]]) for tag in YAML_MECANUM
+                  if tag.split("_wheel")[0] in corners]
     else:
-        sides = [(YAML_LEFT, "left", left, right), (YAML_RIGHT, "right", right, left)]
-    for tags, side, own, other in sides:
-        for tag in (t for t in tags if t in keys):
-            for name in _names_in_order(keys[tag][1]):
-                if name in own:
-                    continue
-                if name not in joints:
-                    why = "the robot has no joint of that name"
-                elif name in other:
-                    why = f"it is a {'right' if side == 'left' else 'left'} wheel"
-                else:
-                    wheels = ", ".join(sorted(own)) or "none"
-                    why = f"it is no {side + ' ' if side else ''}drive wheel ({wheels})"
-                found.append(_at("W512", path, keys[tag][0], f"{tag} names {name}: {why}"))
+        sides = {"left": [w.joint for w in drive.left], "right": [w.joint for w in drive.right]}
+        where = {joint: side for side, names in sides.items() for joint in names}
+        groups = [(tag, sides["left"]) for tag in YAML_LEFT] + \
+            [(tag, sides["right"]) for tag in YAML_RIGHT]
+    found = []
+    for tag, own in groups:
+        if tag not in keys:
+            continue
+        for name in _names_in_order(keys[tag][1]):
+            if name in own:
+                continue
+            if name not in joints:
+                why = "the robot has no joint of that name"
+            elif name in where:
+                why = f"it is the {where[name]} wheel"
+            else:
+                why = f"it is no drive wheel ({', '.join(own)})"
+            found.append(_at("W512", path, keys[tag][0], f"{tag} names {name}: {why}"))
     return found
+
+
+def _corners(drive) -> dict[str, str]:
+    """front_left, rear_left, front_right, rear_right -> the mecanum wheel's joint."""
+    corners = {}
+    for side, group in (("left", drive.left), ("right", drive.right)):
+        ordered = sorted(group, key=lambda w: -w.x)
+        corners[f"front_{side}"], corners[f"rear_{side}"] = ordered[0].joint, ordered[-1].joint
+    return corners
 
 
 def _separation(path, keys, drive, track, notes) -> list[Diagnostic]:

@@ -67,7 +67,7 @@ def test_radius_and_wheel_names_are_compared(run_mcar, tmp_path):
         f"{CONTROL}:6: warning: wheel_radius 0.03 m, but the drive wheels' collision radius "
         "is 0.033 m (-9.1%): the robot would drive faster or slower than commanded [W511]"]
     assert warnings(result, "W512") == [
-        f"{CONTROL}:3: warning: left_wheel_names names wheel_right_joint: it is a right "
+        f"{CONTROL}:3: warning: left_wheel_names names wheel_right_joint: it is the right "
         "wheel [W512]",
         f"{CONTROL}:4: warning: right_wheel_names names wheel_missing: the robot has no "
         "joint of that name [W512]"]
@@ -233,3 +233,33 @@ def test_released_packages_own_yaml_agrees_with_their_robots(robot):
     found = find_package_yaml(checked.loaded)
     assert found.controllers and found.read
     assert compare(found, checked, resting_model(checked), [])[0] == []
+
+
+MECANUM = """mecanum_drive_controller:
+  ros__parameters:
+    front_left_wheel_command_joint_name: front_left_wheel_joint
+    front_right_wheel_command_joint_name: front_right_wheel_joint
+    rear_left_wheel_command_joint_name: rear_left_wheel_joint
+    rear_right_wheel_command_joint_name: {rear_right}
+    kinematics:
+      wheels_radius: {radius}
+      sum_of_robot_center_projection_on_X_Y_axis: {lx_ly}
+"""
+
+
+def test_a_mecanum_controllers_kinematics_and_names(run_mcar, tmp_path):
+    from sim.robot_makers import mecanum
+
+    good = MECANUM.format(rear_right="rear_right_wheel_joint", radius=0.06, lx_ly=0.4)
+    write_package(tmp_path, mecanum(), {CONTROL: good})
+    assert "[W51" not in check(run_mcar, tmp_path).stderr
+    bad = MECANUM.format(rear_right="rear_left_wheel_joint", radius=0.066, lx_ly=0.44)
+    write_package(tmp_path, mecanum(), {CONTROL: bad})
+    result = check(run_mcar, tmp_path)
+    assert [line for line in result.stderr.splitlines() if "[W51" in line] == [
+        f"{CONTROL}:6: warning: rear_right_wheel_command_joint_name names "
+        "rear_left_wheel_joint: it is the rear left wheel [W512]",
+        f"{CONTROL}:8: warning: wheels_radius 0.066 m, but the drive wheels' collision radius "
+        "is 0.06 m (+10.0%): the robot would drive faster or slower than commanded [W511]",
+        f"{CONTROL}:9: warning: sum_of_robot_center_projection_on_X_Y_axis 0.44 m, but the "
+        "wheels stand 0.4 m from the root frame along x plus along y (+10.0%) [W510]"]

@@ -40,13 +40,13 @@ def write_stack_files(stack_dir, stack_distro: str, sections, sim, checked) -> l
         return []
     from mobile_car.load.inputs import display_path
     from mobile_car.specs.stack import write_stack
-    from mobile_car.specs.stack_check import find_package_yaml
+    from mobile_car.specs.stack_check import find_package_yaml, package_control
 
     inputs = find_package_yaml(checked.loaded).read if checked.loaded is not None else []
     if checked.loaded is not None:
         inputs += list(checked.loaded.deps)
     written = write_stack(stack_dir, sections, sim, stack_distro,
-                          getattr(sim, "control", None), inputs)
+                          package_control(checked, sim), inputs)
     for path in written:
         click.echo(f"wrote {display_path(path)}", err=True)
     return written

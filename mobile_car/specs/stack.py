@@ -257,13 +257,14 @@ def write_stack(folder, sections, sim, distro: str = "jazzy", control=None,
 def section(context) -> Section:
     """The stack section: the controller geometry as written (figures stack.*), and the
     package's own YAML compared with it (:mod:`.stack_check`, W510-W514)."""
-    from .stack_check import compare_package
+    from .stack_check import compare_package, package_control
 
     sim, checked = context.sim, context.checked
     result = Section("stack")
+    # (SpecsContext gives the body section; the statics and sensors ones where it has them)
     sections = [context.body] + list(getattr(context, "sections", []) or [])
     drive = getattr(sim, "drive", None)
-    control = getattr(sim, "control", None)
+    control = package_control(checked, sim)
     if drive is not None and drive.kind in ("differential", "skid-steer"):
         track = figure_value(sections, "wheels.track") or drive.track
         effective = effective_separation(track, control)

@@ -142,7 +142,6 @@ def resting_model(checked):
     """sim's model of the robot (its drive as the package declares it), None where
     MuJoCo cannot make one (sim reports why)."""
     from ..errors import McarError
-    from ..sim.control_config import find_control_config
     from ..sim.mecanum import yaml_declarations
     from ..sim.model import build_model
     from ..sim.report import declarations
@@ -155,9 +154,22 @@ def resting_model(checked):
                           declared=declared, mecanum=mecanum)
     except (McarError, ValueError):
         return None
-    if sim.drive is not None:
-        sim.control, _ = find_control_config(loaded, [w.joint for w in sim.drive.driven])
+    sim.control = package_control(checked, sim)
     return sim
+
+
+def package_control(checked, sim):
+    """The ControlConfig (``wheel_separation_multiplier``) of the package's controller
+    driving sim's wheels: sim's own where it read it (a skid-steer robot's), else read
+    now (None without one, or without a drive)."""
+    if getattr(sim, "control", None) is not None:
+        return sim.control
+    drive = getattr(sim, "drive", None)
+    if drive is None or checked.loaded is None:
+        return None
+    from ..sim.control_config import find_control_config
+
+    return find_control_config(checked.loaded, [w.joint for w in drive.driven])[0]
 
 
 def _body_figures(sim) -> list:

@@ -263,3 +263,24 @@ def test_a_mecanum_controllers_kinematics_and_names(run_mcar, tmp_path):
         "is 0.06 m (+10.0%): the robot would drive faster or slower than commanded [W511]",
         f"{CONTROL}:9: warning: sum_of_robot_center_projection_on_X_Y_axis 0.44 m, but the "
         "wheels stand 0.4 m from the root frame along x plus along y (+10.0%) [W510]"]
+
+
+def test_check_takes_the_outline_from_specs_body(cli, tmp_path, monkeypatch):
+    """check's W513 asks specs-core's body module for the robot's outline and radius
+    (here a stand-in giving a 0.3 m square and its 0.2121 m radius)."""
+    import types
+
+    fake = types.ModuleType("mobile_car.specs.body")
+    fake.footprint = lambda sim: [(0.15, -0.15), (0.15, 0.15), (-0.15, 0.15), (-0.15, -0.15)]
+    fake.radii = lambda points: (max((x * x + y * y) ** 0.5 for x, y in points), 0.15)
+    monkeypatch.setitem(sys.modules, "mobile_car.specs.body", fake)
+    monkeypatch.chdir(tmp_path)
+    write_package(tmp_path, two_wheeler(), {
+        CONTROL: diff_control(),
+        "bot_navigation/params/nav2.yaml": NAV2.format(key="robot_radius", value="0.2")})
+    result = cli("check", "-q", "bot_description/robot.urdf", "--package-path", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    assert warnings(result, "W513") == [
+        "bot_navigation/params/nav2.yaml:4: warning: robot_radius 0.2 m, but the robot "
+        "reaches 0.212 m from its root (body.radius.circumscribed): Nav2 would plan paths it "
+        "cannot fit through [W513]"]

@@ -14,7 +14,8 @@ from sim.robot_makers import skid_steer, two_wheeler
 from specs.stack_package import DIFF_CONTROL, checked_and_model, write_package
 
 from mobile_car.specs.figures import Figure, Section
-from mobile_car.specs.stack_check import compare, find_package_yaml
+from mobile_car.specs.stack_check import find_package_yaml
+from mobile_car.specs.stack_compare import compare
 
 CONTROL = "bot_control/config/control.yaml"
 

@@ -149,30 +149,31 @@ def _checked(inputs, options, stdin, basis, keep: bool) -> list:
         from mobile_car.check.checker import check_input
 
         result = check_input(inp, options, stdin=stdin)
-        read = _compare_package_yaml(result)
+        read, absent = _compare_package_yaml(result)
         results.append(result)
         if replayable:
             if stamper is None:
                 from mobile_car.freshness import Stamper
 
                 stamper = Stamper()
-            replay.record(inp, basis(), result, stamper, also=read)
+            replay.record(inp, basis(), result, stamper, also=read, absent=absent)
     return results
 
 
-def _compare_package_yaml(result) -> list:
+def _compare_package_yaml(result) -> tuple[list, list]:
     """The robot's package's own controller and Nav2 YAML compared with it (W510-W513,
-    mobile_car.specs.stack_check), added to its diagnostics; the YAML files looked at,
-    which its record depends on too. A package without such YAML builds nothing."""
+    mobile_car.specs.stack_check), added to its diagnostics; (the YAML files looked at,
+    the sibling packages that are not there): its record depends on both. A package
+    without such YAML builds nothing."""
     if result.loaded is None or result.failure is not None:
-        return []
+        return [], []
     from mobile_car.check.diagnostics import Diagnostic
     from mobile_car.specs.stack_check import check_package
 
-    diagnostics, read = check_package(result)
+    diagnostics, found = check_package(result)
     if diagnostics:
         result.diagnostics = sorted(result.diagnostics + diagnostics, key=Diagnostic.sort_key)
-    return read
+    return found.read, found.absent
 
 
 def _emit_github(results: list) -> None:

@@ -201,9 +201,10 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
                     built.note(item)
                     if item.variant is None and item.check_result is not None:
                         # what `mcar check` of the same file would find: its record too
-                        yaml_read, compared = _package_yaml(item.check_result)
+                        found = _package_yaml(item.check_result)
                         replay.record(item.input, pictures, item.check_result, cache.stamper,
-                                      also=yaml_read, compared=compared)
+                                      also=found.read, compared=not found,
+                                      absent=found.absent)
                     if passed:
                         checked.append(item)
                         if helper is not None:
@@ -257,16 +258,13 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
     sys.exit(code)
 
 
-def _package_yaml(result) -> tuple[list, bool]:
-    """(the package's controller and Nav2 YAML files, whether there are none): ci's check
-    does not compare them with the robot (W510-W513 are `mcar check`'s), so a record of a
-    robot that has some is not one `mcar check` may read back."""
-    if result.loaded is None:
-        return [], True
-    from mobile_car.specs.stack_check import find_package_yaml
+def _package_yaml(result):
+    """The package's controller and Nav2 YAML (specs.stack_check.Found): ci's check does
+    not compare it with the robot (W510-W513 are `mcar check`'s), so a record of a robot
+    that has some is not one `mcar check` may read back."""
+    from mobile_car.specs.stack_check import Found, find_package_yaml
 
-    found = find_package_yaml(result.loaded)
-    return found.read, not found
+    return Found() if result.loaded is None else find_package_yaml(result.loaded)
 
 
 def _gazebo_helper():

@@ -115,11 +115,13 @@ def _small(path: Path) -> bool:
         return False
 
 
-def record(inp, basis: Basis, result, stamper: Stamper, also=(), compared: bool = True) -> None:
+def record(inp, basis: Basis, result, stamper: Stamper, also=(), compared: bool = True,
+           absent=()) -> None:
     """Keep the CheckResult just made of the input ``inp`` (`mcar check` and `mcar ci`
     both do, so that either's run spares the other's); a failed load, a robot too large
     to keep or a file that cannot be stamped: nothing kept. ``also``: other files the
-    result depends on (the package's controller and Nav2 YAML); ``compared`` False: that
+    result depends on (the package's controller and Nav2 YAML), ``absent`` files it
+    depends on staying absent (a sibling control package); ``compared`` False: that
     YAML was not compared with the robot (ci's check), so `mcar check` does not read the
     record back (mobile_car.specs.stack_check)."""
     label, path = inp.label, inp.path
@@ -136,7 +138,7 @@ def record(inp, basis: Basis, result, stamper: Stamper, also=(), compared: bool 
     reads = [r for m in result.mesh_files for r in m.reads]
     files = stamper.stamps([*result.loaded.deps, path, *basis.files,
                             *(m.path for m in result.mesh_files), *reads,
-                            *result.loaded.search.settings_read, *also])
+                            *result.loaded.search.settings_read, *also], absent=absent)
     if files is None:
         return  # a file missing now may appear later: nothing to stamp it by
     try:

@@ -37,6 +37,9 @@ class Found:
         self.nav2: list[tuple[Path, dict]] = []
         self.filters: list[tuple[Path, dict]] = []
         self.read: list[Path] = []
+        # where a sibling package without YAML now would put its package.xml: a check's
+        # record depends on their staying absent (a control package added beside it)
+        self.absent: list[Path] = []
         self.problems: list[str] = []
 
     def __bool__(self) -> bool:
@@ -53,6 +56,7 @@ def find_package_yaml(loaded) -> Found:
                                                   NAVIGATION_SUFFIXES, NAVIGATION_FOLDERS)
                   for p in files]
     found.read = list(dict.fromkeys(controls + navigation))  # (an edit may make one relevant)
+    found.absent = _absent_siblings(loaded)
     for path in found.read:
         text = _text(path)
         if text is None:
@@ -72,6 +76,21 @@ def find_package_yaml(loaded) -> Found:
     return found
 
 
+def _absent_siblings(loaded) -> list[Path]:
+    """``X_control/package.xml``... beside the robot's own ``X_description`` package that
+    do not exist: where a control or navigation package added later would appear."""
+    from ..packages.search import enclosing_package
+    from ..sim.control_config import CONTROL_SUFFIXES, SUFFIXES
+
+    own = enclosing_package(loaded.input.path) if loaded.input.path is not None else None
+    if own is None or not own[0].endswith(SUFFIXES):
+        return []
+    stem = next(own[0][: -len(s)] for s in SUFFIXES if own[0].endswith(s))
+    candidates = [own[1].parent / (stem + suffix) / "package.xml"
+                  for suffix in CONTROL_SUFFIXES + NAVIGATION_SUFFIXES[1:]]
+    return [path for path in candidates if not path.exists()]
+
+
 def _text(path: Path) -> str | None:
     from ..errors import McarError
     from ..load.bounded import read_input
@@ -82,24 +101,24 @@ def _text(path: Path) -> str | None:
         return None  # (yaml_mappings says why, if it is ever parsed)
 
 
-def check_package(checked) -> tuple[list[Diagnostic], list[Path]]:
-    """``mcar check``'s comparison: (W510-W513 diagnostics, the YAML files read, for
-    the check's record). Nothing is built, and MuJoCo not imported, for a robot whose
-    packages hold no such YAML, nor for one check already failed."""
+def check_package(checked) -> tuple[list[Diagnostic], Found]:
+    """``mcar check``'s comparison: (W510-W513 diagnostics, what was found: the files
+    the check's record depends on). Nothing is built, and MuJoCo not imported, for a
+    robot whose packages hold no such YAML, nor for one check already failed."""
     loaded = checked.loaded
     if loaded is None or not checked.sound or checked.errors:
-        return [], []
+        return [], Found()
     found = find_package_yaml(loaded)
     if not found:
-        return [], found.read
+        return [], found
     sim = resting_model(checked)
     if sim is None:
-        return [], found.read
+        return [], found
     from .stack_compare import compare
 
     sections = _body_figures(sim)
     diagnostics, _notes = compare(found, checked, sim, sections)
-    return diagnostics, found.read
+    return diagnostics, found
 
 
 def compare_package(checked, sim, sections) -> tuple[list[Diagnostic], list[str], list[Path]]:

@@ -11,7 +11,12 @@ import sys
 
 import pytest
 from sim.robot_makers import skid_steer, two_wheeler
-from specs.stack_package import DIFF_CONTROL, checked_and_model, write_package
+from specs.stack_package import (
+    DIFF_CONTROL,
+    PACKAGE_XML,
+    checked_and_model,
+    write_package,
+)
 
 from mobile_car.specs.figures import Figure, Section
 from mobile_car.specs.stack_check import find_package_yaml
@@ -211,6 +216,29 @@ def test_an_edited_controller_yaml_is_compared_again_not_read_back(run_mcar, tmp
     assert "[W510]" not in run().stderr
     assert "[W510]" not in run().stderr  # (read back)
     (tmp_path / CONTROL).write_text(diff_control(separation=0.176))
+    assert len(warnings(run(), "W510")) == 1
+
+
+def test_a_control_package_added_beside_the_robots_is_compared(run_mcar, tmp_path):
+    """A record made while the package had no sibling control package is not read back
+    once one appears beside it."""
+    robot = two_wheeler().replace('<robot name="two_wheeler">',
+                                  '<robot name="two_wheeler" '
+                                  'xmlns:xacro="http://www.ros.org/wiki/xacro">')
+    write_package(tmp_path, robot, {})
+    (tmp_path / "bot_description" / "robot.urdf").rename(
+        tmp_path / "bot_description" / "robot.urdf.xacro")
+    env = {"MCAR_CACHE_DIR": str(tmp_path / "cache")}
+
+    def run():
+        return run_mcar("check", "-q", "bot_description/robot.urdf.xacro", "--package-path",
+                        tmp_path, cwd=tmp_path, env=env)
+
+    assert "[W510]" not in run().stderr
+    control = tmp_path / CONTROL
+    control.parent.mkdir(parents=True)
+    control.write_text(diff_control(separation=0.176))
+    (tmp_path / "bot_control" / "package.xml").write_text(PACKAGE_XML.format("bot_control"))
     assert len(warnings(run(), "W510")) == 1
 
 

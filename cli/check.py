@@ -53,6 +53,11 @@ includes, meshes, --config files, arguments, the environment variables it names)
 not expanded again: its results are read back from the user's cache folder, the same
 output and exit code (docs/check.md).
 
+Where the robot's package ships the rest of its ROS configuration (a drive
+controller's YAML in X_control, Nav2's in X_navigation), a sound robot's is compared
+with it: a wheel separation, radius, wheel name or Nav2 footprint that is off is a
+warning at the YAML line (W510-W513; docs/check.md).
+
 --gazebo gives each sound robot to libsdformat, which Gazebo loads URDF with, and
 reports what it changes: links lumped into their parent by fixed joints (notes,
 N401), links dropped for want of mass with everything that moves below them (E150),
@@ -144,14 +149,31 @@ def _checked(inputs, options, stdin, basis, keep: bool) -> list:
         from mobile_car.check.checker import check_input
 
         result = check_input(inp, options, stdin=stdin)
+        read, absent = _compare_package_yaml(result)
         results.append(result)
         if replayable:
             if stamper is None:
                 from mobile_car.freshness import Stamper
 
                 stamper = Stamper()
-            replay.record(inp, basis(), result, stamper)
+            replay.record(inp, basis(), result, stamper, also=read, absent=absent)
     return results
+
+
+def _compare_package_yaml(result) -> tuple[list, list]:
+    """The robot's package's own controller and Nav2 YAML compared with it (W510-W513,
+    mobile_car.specs.stack_check), added to its diagnostics; (the YAML files looked at,
+    the sibling packages that are not there): its record depends on both. A package
+    without such YAML builds nothing."""
+    if result.loaded is None or result.failure is not None:
+        return [], []
+    from mobile_car.check.diagnostics import Diagnostic
+    from mobile_car.specs.stack_check import check_package
+
+    diagnostics, found = check_package(result)
+    if diagnostics:
+        result.diagnostics = sorted(result.diagnostics + diagnostics, key=Diagnostic.sort_key)
+    return found.read, found.absent
 
 
 def _emit_github(results: list) -> None:

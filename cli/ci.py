@@ -201,7 +201,10 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
                     built.note(item)
                     if item.variant is None and item.check_result is not None:
                         # what `mcar check` of the same file would find: its record too
-                        replay.record(item.input, pictures, item.check_result, cache.stamper)
+                        found = _package_yaml(item.check_result)
+                        replay.record(item.input, pictures, item.check_result, cache.stamper,
+                                      also=found.read, compared=not found,
+                                      absent=found.absent)
                     if passed:
                         checked.append(item)
                         if helper is not None:
@@ -253,6 +256,15 @@ def command(words, output_format, build_dir, render_dir, no_render, no_sim, no_g
         click.echo(f"mcar ci: against {revision.name}: {changed} of {len(compared)} robot "
                    "files changed", err=True)
     sys.exit(code)
+
+
+def _package_yaml(result):
+    """The package's controller and Nav2 YAML (specs.stack_check.Found): ci's check does
+    not compare it with the robot (W510-W513 are `mcar check`'s), so a record of a robot
+    that has some is not one `mcar check` may read back."""
+    from mobile_car.specs.stack_check import Found, find_package_yaml
+
+    return Found() if result.loaded is None else find_package_yaml(result.loaded)
 
 
 def _gazebo_helper():

@@ -90,7 +90,7 @@ def replay(inp, basis: Basis) -> ReplayedResult | None:
     use = None if inp.named_xacro else inp.xacro_use
     key = run_key(label, path, basis)
     entry = read_record(_record_path(path), SECTION).get(key[:40])
-    if not entry or entry.get("key") != key:
+    if not entry or entry.get("key") != key or entry.get("compared") is not True:
         return None
     try:
         result = _from_entry(label, entry)
@@ -115,10 +115,15 @@ def _small(path: Path) -> bool:
         return False
 
 
-def record(inp, basis: Basis, result, stamper: Stamper) -> None:
+def record(inp, basis: Basis, result, stamper: Stamper, also=(), compared: bool = True,
+           absent=()) -> None:
     """Keep the CheckResult just made of the input ``inp`` (`mcar check` and `mcar ci`
     both do, so that either's run spares the other's); a failed load, a robot too large
-    to keep or a file that cannot be stamped: nothing kept."""
+    to keep or a file that cannot be stamped: nothing kept. ``also``: other files the
+    result depends on (the package's controller and Nav2 YAML), ``absent`` files it
+    depends on staying absent (a sibling control package); ``compared`` False: that
+    YAML was not compared with the robot (ci's check), so `mcar check` does not read the
+    record back (mobile_car.specs.stack_check)."""
     label, path = inp.label, inp.path
     if path is None or result.failure is not None or result.loaded is None or \
             not result.loaded.from_xacro or \
@@ -133,7 +138,7 @@ def record(inp, basis: Basis, result, stamper: Stamper) -> None:
     reads = [r for m in result.mesh_files for r in m.reads]
     files = stamper.stamps([*result.loaded.deps, path, *basis.files,
                             *(m.path for m in result.mesh_files), *reads,
-                            *result.loaded.search.settings_read])
+                            *result.loaded.search.settings_read, *also], absent=absent)
     if files is None:
         return  # a file missing now may appear later: nothing to stamp it by
     try:
@@ -144,6 +149,7 @@ def record(inp, basis: Basis, result, stamper: Stamper) -> None:
 
     key = run_key(label, path, basis)
     entry = {"key": key, "files": files, "sound": bool(result.sound), "tree": tree,
+             "compared": compared,
              "extents": None if result.extents is None else list(result.extents),
              "diagnostics": [[d.rule, d.file, d.line, d.message] for d in result.diagnostics],
              "document": as_json(result)}

@@ -180,6 +180,27 @@ _TABLE = [
          "within its limits and those of the joints beyond it, an effort of 0 included "
          "(MuJoCo's gravity load, the figures in the message; a suspension a spring carries "
          "is not judged)", "n/a"),
+    # The package's own ROS configuration against the robot (mcar check, mcar specs)
+    Rule("W510", "stack-wheel-separation", "the control package's drive controller gives a "
+         "`wheel_separation` (times its `wheel_separation_multiplier`: the effective "
+         "figure) more than 1% off the drive wheels' spacing (a skid-steer robot's may "
+         "rightly be larger, its wheels scrub), a `wheelbase` (`wheel_separation_h`) more "
+         "than 1% off an Ackermann or bicycle drive's, or a mecanum controller's "
+         "`sum_of_robot_center_projection_on_X_Y_axis` more than 1% off its wheels' lx + ly",
+         "n/a"),
+    Rule("W511", "stack-wheel-radius", "the drive controller's `wheel_radius` (times its "
+         "radius multiplier), `*_wheels_radius`, `*_wheel_radius` or mecanum's "
+         "`kinematics.wheels_radius` more than 1% off the drive wheels' collision radius",
+         "n/a"),
+    Rule("W512", "stack-wheel-names", "the drive controller names, among its left, right or "
+         "mecanum corners, a joint that is not that drive wheel of the robot (missing, "
+         "another side's or corner's, not a wheel)", "n/a"),
+    Rule("W513", "stack-footprint", "Nav2's `footprint` leaves part of the robot's outline "
+         "on the floor out (by over 1 mm), or, with no footprint, its `robot_radius` is "
+         "under the robot's circumscribed radius", "n/a"),
+    Rule("W514", "stack-laser-filter", "a laser_filters chain whose angular bounds filters "
+         "leave part of a sector the robot's own body blocks in the scan (mcar specs, "
+         "with the sensors section)", "n/a"),
     Rule("W530", "inertia-implausible", "`mcar specs`: a declared inertia MuJoCo refuses, or "
          "over 3 times or under 1/3 what the link's geometry (collision, else visual) gives "
          "with its mass about a principal axis; the message gives the `<inertial>` to write "

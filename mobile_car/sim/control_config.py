@@ -77,22 +77,27 @@ def find_controllers(loaded) -> tuple[list, list[str], list[Path]]:
     return found, problems, read
 
 
-def control_packages(loaded, problems: list[str]):
+def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
+                     folders=("config", "")):
     """Each control package's YAML files (at most MAX_FILES), nearest package first. A
     file that is a link out of the repository holding its package (or into its ``.git``)
     is not read, and said in ``problems``: a pull request commits
     ``X_control/config/c.yaml`` -> a token file, and the YAML error quoting its first line
-    would print the token."""
+    would print the token. ``suffixes``, ``folders``: the sibling packages looked in
+    (``X`` + suffix; None: the description package itself) and their folders holding the
+    YAML ("": the package's own folder), for the other readers of a robot's ROS
+    configuration (Nav2's parameters in ``X_navigation/params``: specs.stack_check)."""
     from ..packages.asset_roots import link_out_of, repository_of
 
     for name in _description_packages(loaded):
         stem = next(name[: -len(s)] for s in SUFFIXES if name.endswith(s))
-        for suffix in CONTROL_SUFFIXES:
+        for suffix in suffixes:
             try:
-                root = loaded.search.find(stem + suffix)
+                root = loaded.search.find(name if suffix is None else stem + suffix)
             except McarError:
                 continue
-            files = sorted(root.glob("config/*.yaml")) + sorted(root.glob("*.yaml"))
+            files = [path for folder in folders
+                     for path in sorted(root.glob(f"{folder}/*.yaml" if folder else "*.yaml"))]
             repository, kept = repository_of(root), []
             for path in files[:MAX_FILES]:
                 why = link_out_of(path, repository)

@@ -22,6 +22,7 @@ from .common import (
 )
 from .sim import drive_options, drive_setting, require_both_sides
 from .specs_picture import check_picture_name, picture_options, start_probe, write_picture
+from .specs_stack import stack_options, write_stack_files
 
 HELP = f"""What the robot can do: its size, weight and balance, the slopes it stands
 and climbs, its joints' loads, what its sensors see, the Nav2 and controller settings
@@ -92,11 +93,13 @@ Exit codes:
               help="The tyres' friction with the floor where the description gives none "
                    "(default 1.0, MuJoCo's).")
 @picture_options
+@stack_options
 @drive_options
 @robot_options
 @handle_errors
-def command(words, output_format, no_proof, friction, picture, renderer, effort, speed, left,
-            right, kind, fix_inertia, package_paths, sets, config_files):
+def command(words, output_format, no_proof, friction, picture, renderer, stack_dir,
+            stack_distro, effort, speed, left, right, kind, fix_inertia, package_paths, sets,
+            config_files):
     require_both_sides(left, right)
     check_picture_name(picture)
     options = {"proof": not no_proof, "friction": friction, "effort": effort, "speed": speed,
@@ -104,19 +107,23 @@ def command(words, output_format, no_proof, friction, picture, renderer, effort,
     reports, codes = [], []
     with contextlib.ExitStack() as stack, \
             load_inputs(words, package_paths, sets, config_files) as (selection, load_options):
-        from mobile_car.specs.compute import compute
+        from mobile_car.specs.compute import computed
         from mobile_car.specs.report import SpecsReport
 
-        # --picture draws one robot: the one named, or the package's complete robot
-        inputs = [chosen_robot(selection, "mcar specs --picture")] if picture else None
+        # --picture and --stack are of one robot: the one named, or the package's complete one
+        one = "mcar specs --picture" if picture else "mcar specs --stack"
+        inputs = [chosen_robot(selection, one)] if picture or stack_dir else None
         probe = start_probe(stack, renderer) if picture else None
         for inp, checked in checked_robots(selection, load_options, codes, inputs):
-            sections = compute(checked, {**options, "setting": drive_setting(inp)})
+            context = computed(checked, {**options, "setting": drive_setting(inp)})
+            sections = context.sections
             result = SpecsReport(checked.file, checked.robot.name, sections)
             reports.append(result)
             codes.append(result.exit_code)
             if picture:
                 write_picture(picture, sections, checked, renderer, probe)
+            if stack_dir is not None:
+                write_stack_files(stack_dir, stack_distro, sections, context.sim, checked)
     _emit(reports, output_format, combine_exit_codes(codes))
     raise SystemExit(combine_exit_codes(codes))
 

@@ -18,19 +18,25 @@ MODEL_OPTIONS = ("left", "right", "kind", "effort", "speed", "fix_inertia", "set
 
 def compute(checked, options: dict | None = None) -> list:
     """The Sections of a robot that passed ``mcar check`` (a CheckResult); ``options``
-    as :class:`~.context.SpecsContext` documents. sim's notes on the model (what it
+    as :class:`~.context.SpecsContext` documents."""
+    return computed(checked, options).sections
+
+
+def computed(checked, options: dict | None = None) -> SpecsContext:
+    """:func:`compute`'s context once every section is in it (``sections``), with sim's
+    model (``sim``) the stack's files are written from. sim's notes on the model (what it
     changed, or why there is none) open the body section's notes."""
     options = dict(options or {})
     sim, notes = specs_model(checked, **{k: options[k] for k in MODEL_OPTIONS if k in options})
     context = SpecsContext(checked, sim, None, options)
     context.body = body.section(context)
     context.body.notes[:0] = notes
-    sections = [context.body]
+    context.sections = [context.body]
     for name in PARTS:
         part = _part(name)
         if part is not None:
-            sections.append(part.section(context))
-    return sections
+            context.sections.append(part.section(context))
+    return context
 
 
 def _part(name: str):

@@ -13,9 +13,12 @@ class SpecsContext:
     the SimModel (:func:`.model.specs_model`), None where MuJoCo cannot model the robot;
     ``body`` the body Section; ``options``: ``friction`` (mu, None: the description's),
     ``effort`` (N·m), ``speed`` (rad/s), ``proof`` (False: no MuJoCo runs), and sim's
-    drive options (``left``, ``right``, ``kind``, ``fix_inertia``, ``setting``)."""
+    drive options (``left``, ``right``, ``kind``, ``fix_inertia``, ``setting``);
+    ``sections`` the sections computed so far, body first (the stack reads the statics'
+    top speed and the sensors' blocked sectors)."""
 
     checked: object
     sim: object
     body: object = None
     options: dict = field(default_factory=dict)
+    sections: list = field(default_factory=list)

@@ -261,8 +261,8 @@ def section(context) -> Section:
 
     sim, checked = context.sim, context.checked
     result = Section("stack")
-    # (SpecsContext gives the body section; the statics and sensors ones where it has them)
-    sections = [context.body] + list(getattr(context, "sections", []) or [])
+    # (the sections computed before it: body, statics, joints, sensors)
+    sections = context.sections
     drive = getattr(sim, "drive", None)
     control = package_control(checked, sim)
     if drive is not None and drive.kind in ("differential", "skid-steer"):

@@ -167,11 +167,8 @@ def package_control(checked, sim):
 
 
 def _body_figures(sim) -> list:
-    """The body figures W513 needs, from specs-core's body module where it is present."""
-    try:
-        from .body import footprint, radii
-    except ImportError:
-        return []
+    """The body figures W513 needs: specs' own outline and radius."""
+    from .body import footprint, radii
     from .figures import Figure, Section
 
     points = footprint(sim)

@@ -105,9 +105,12 @@ def centroid(solids: list[Solid]) -> np.ndarray:
 
 
 def six(tensor) -> list[float]:
-    """[ixx, ixy, ixz, iyy, iyz, izz], URDF's order."""
-    return [float(tensor[0, 0]), float(tensor[0, 1]), float(tensor[0, 2]),
-            float(tensor[1, 1]), float(tensor[1, 2]), float(tensor[2, 2])]
+    """[ixx, ixy, ixz, iyy, iyz, izz], URDF's order; a product of inertia under 1e-12 of
+    the largest moment is rounding's noise off a zero (a turned cylinder's 1e-21), 0."""
+    values = [float(tensor[0, 0]), float(tensor[0, 1]), float(tensor[0, 2]),
+              float(tensor[1, 1]), float(tensor[1, 2]), float(tensor[2, 2])]
+    small = 1e-12 * max(abs(v) for v in values)
+    return [0.0 if abs(v) < small else v for v in values]
 
 
 def matrix(values) -> np.ndarray:

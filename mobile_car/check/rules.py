@@ -1,8 +1,9 @@
 """The rules ``mcar check`` applies, each with a stable id, like a linter's.
 
 ``E1xx`` are errors (the file is wrong: exit 1), ``W2xx`` are warnings (doubtful: exit 0,
-or 1 with ``--strict``), ``N4xx`` are notes (information: never a failure). Ids never
-change meaning; a retired rule keeps its number. The ``E15x``, ``W23x`` and ``N40x`` rules
+or 1 with ``--strict``), ``N4xx`` are notes (information: never a failure); ``E5xx`` and
+``W5xx`` judge what the robot can do (``mcar specs``; its statics: W502-W506, E503).
+Ids never change meaning; a retired rule keeps its number. The ``E15x``, ``W23x`` and ``N40x`` rules
 are what Gazebo's libsdformat changes in the robot, found by ``mcar check --gazebo``.
 ``urdfdom`` says what Debian's ``check_urdf`` (urdfdom 3.0) does with the same problem:
 ``rejects`` (exit 255), ``ignores`` (logs an error or nothing, still exits 0, drops the
@@ -173,6 +174,22 @@ _TABLE = [
     Rule("W232", "gazebo-plugin-joint", "a `<gazebo>` plugin naming a joint Gazebo does not "
          "have, in `<joint>`, `<joint_name>`, `<left_joint>`, `<leftJoint>`, `<jointName>` "
          "and the like", "n/a"),
+    # What the robot can do (mcar specs): statics
+    Rule("E503", "cannot-drive", "the drive motors cannot move the robot on flat ground: "
+         "their effort (less the wheel joints' declared friction) over the wheel radius "
+         "does not beat the castors' drag (mcar specs' statics.climb is 0)", "n/a"),
+    Rule("W502", "tips-climbing", "the motors climb a slope (statics.climb) on which the "
+         "robot tips over backward driving up it, or forward reversing up it (statics.tip."
+         "backward, statics.tip.forward)", "n/a"),
+    Rule("W503", "weak-climb", "the robot cannot climb a 5° ramp: its motors or its driven "
+         "wheels' grip give out first (statics.climb, which says which)", "n/a"),
+    Rule("W504", "tips-across", "the motors climb a slope on which the robot, turned across "
+         "it, tips over sideways (statics.tip.left or right under statics.climb): its track "
+         "is too narrow or its centre of mass too high", "n/a"),
+    Rule("W505", "no-static-stability", "the centre of mass is not inside the polygon the "
+         "robot stands on at rest (statics.tip.min 0°): it stands only balanced", "n/a"),
+    Rule("W506", "proof-disagrees", "MuJoCo's proof of a statics figure (the tilt and climb "
+         "runs) disagrees with the computed figure beyond its tolerance", "n/a"),
     # Notes
     Rule("N401", "gazebo-lumped", "a link Gazebo lumps into its parent by a fixed joint: "
          "one body with the parent's mass, collisions and visuals", "n/a"),

@@ -1,13 +1,16 @@
 """The climb proof: MuJoCo drives the robot straight up a slope MARGIN under its computed
 climb angle, where it must climb, and MARGIN over it, where it must not (docs/specs.md,
 "Proofs"). As in the tilt proof gravity is turned, not the floor, and the contacts are
-the proof model's (:func:`.proof_tilt.proof_model`). The wheels are sim's motors: their
+the proof model's (:func:`.proof_tilt.proof_model`), as soft as sim drives on (on the
+tilt's stiff resting contacts Husky's tyres chattered and slid back 1° under its limit). The wheels are sim's motors: their
 velocity servos, limited to their effort, commanded a crawl (CRAWL at the rim, sim's
 speed where that is slower) after sim's ramp; the robot climbs when, over the last
 MEASURE s of DRIVE s, it goes up the slope at PROGRESS of r·ω or more. A crawl, because
 1° under its limit a robot has ~0.17 m/s² to spare: at sim's speed it was still
 catching up after its ramp (a 10 kg box at 0.25 m/s: 64%), which says nothing of the
-slope."""
+slope. The servos are SERVO_STIFFER times sim's gain: at sim's, Husky's wheels lagged
+their command by a third under the torque a 39° slope asks (kv·Δω = τ), which is the
+servo's droop, not the slope; their effort limits are sim's."""
 
 from __future__ import annotations
 
@@ -21,6 +24,7 @@ DRIVE = 2.5         # s after the settle
 MEASURE = 0.5       # s: the speed is averaged over the run's last
 PROGRESS = 0.8      # of r·ω·t
 STEEPEST = 88.0     # deg: no slope over it is tried
+SERVO_STIFFER = 20.0
 GRAVITY = 9.81
 
 
@@ -54,9 +58,12 @@ def climb(sim, found, slope_deg: float) -> float:
     from ..sim.run import SETTLE_TIME, Run, command_speed, forward_sign, ramped
     from .proof_tilt import proof_model
 
-    model, copied = proof_model(sim, found)
+    model, copied = proof_model(sim, found, resting=False)
     theta = math.radians(slope_deg)
     model.opt.gravity[:] = [-GRAVITY * math.sin(theta), 0.0, -GRAVITY * math.cos(theta)]
+    for wheel in sim.drive.driven:
+        model.actuator_gainprm[wheel.actuator_id][0] *= SERVO_STIFFER
+        model.actuator_biasprm[wheel.actuator_id][2] *= SERVO_STIFFER
     run = Run(copied)
     omega = min(command_speed(sim), CRAWL / sim.drive.radius)
     commands = [(w.actuator_id, forward_sign(run, w) * omega) for w in sim.drive.driven]

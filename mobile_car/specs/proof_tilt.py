@@ -113,9 +113,11 @@ def _azimuth(source: str) -> float:
     return float(text.split("°", 1)[0])
 
 
-def proof_model(sim, found):
+def proof_model(sim, found, resting: bool = True):
     """A copy of sim's model for a proof: each contact's friction as the figures assume
-    it (above the floor's priority), Coulomb's elliptic cone, and the SimModel over it."""
+    it (above the floor's priority), Coulomb's elliptic cone, and the SimModel over it;
+    ``resting``: the contacts as stiff as sim's drop makes them (a driving proof keeps
+    sim's driving contacts)."""
     from ..sim.engine import mujoco
     from ..sim.model import RESTING_SOLREF
 
@@ -126,7 +128,8 @@ def proof_model(sim, found):
             if model.geom_bodyid[g] == contact.body and g in sim.support_geoms:
                 model.geom_friction[g][0] = max(contact.mu, 1e-5)
                 model.geom_priority[g] = 2
-                model.geom_solref[g] = RESTING_SOLREF
+                if resting:
+                    model.geom_solref[g] = RESTING_SOLREF
     model.opt.cone, model.opt.impratio = mj.mjtCone.mjCONE_ELLIPTIC, IMPRATIO
     return model, dataclasses.replace(sim, model=model)
 

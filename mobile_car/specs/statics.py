@@ -144,14 +144,19 @@ class Statics:
         climb = first_failure(lambda t: push(t) >= 0)
         by_motors = first_failure(lambda t: push(t, traction=False) >= 0)
         by_traction = first_failure(lambda t: push(t, motors=False) >= 0)
-        limit = "the motors" if by_motors <= by_traction + 1e-6 else "traction"
+        if abs(climb - by_motors) < 1e-4:
+            limit = "the motors"
+        elif abs(climb - by_traction) < 1e-4:
+            limit = "traction"
+        else:  # the loaded wheels push their motor's most, the others slip
+            limit = "the motors and traction together"
         force = sum(f for f, _ in wheels.values())
         efforts = "; ".join(sorted({f"{w.motor.effort:.4g} N·m ({w.motor.effort_from})"
                                     for _, w in wheels.values()}))
         return Figure("statics.climb", label, _deg(climb), "deg",
-                      f"limited by {limit}: the motors hold {_deg(by_motors)}° "
+                      f"limited by {limit}: the motors hold {_most(by_motors)} "
                       f"(Σ effort/r = {force:.4g} N of m·g = {weight:.4g} N; effort "
-                      f"{efforts}), the driven wheels' grip {_deg(by_traction)}°",
+                      f"{efforts}), the driven wheels' grip {_most(by_traction)}",
                       "facing straight up the slope; castors drag with their μ")
 
 
@@ -237,6 +242,13 @@ def _parts(contacts) -> str:
 def _frictions(contacts) -> str:
     seen = dict.fromkeys(f"{c.link} μ {c.mu:g} ({c.mu_from})" for c in contacts)
     return "; ".join(seen)
+
+
+def _most(angle: float) -> str:
+    """An angle the search found no limit under: "any slope" past STEEPEST."""
+    from .slopes import STEEPEST
+
+    return "any slope" if angle >= STEEPEST - 1e-9 else f"{_deg(angle)}°"
 
 
 def _deg(angle: float) -> float:

@@ -29,11 +29,18 @@ GRAVITY = 9.81
 
 
 def prove_climb(sim, found, section, friction=None) -> None:
-    """Fill statics.climb's proof (nothing to prove without a figure)."""
+    """Fill statics.climb's proof (nothing to prove without a figure; a robot that tips
+    backward first cannot show it: a note says so, the tilt proved the tip)."""
     figure = section.figure("statics.climb")
     if figure is None or figure.value is None:
         return
     angle = figure.value
+    back = section.figure("statics.tip.backward")
+    if back is not None and back.value is not None and angle + MARGIN >= back.value:
+        section.notes.append(f"statics.climb not proven: the robot tips over backward at "
+                             f"{back.value:.1f}° (W502), before the {angle:.1f}° its motors "
+                             "climb")
+        return
     lines, agrees = [], True
     under = angle - MARGIN
     if under > 0:

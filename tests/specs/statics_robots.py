@@ -49,12 +49,13 @@ def _wheel(name, x, y, radius, width, mass, limit, mu):
 
 def box_on_wheels(wheelbase=0.4, track=0.4, radius=0.05, body_mass=9.6, wheel_mass=0.1,
                   body=(0.3, 0.2, 0.1), lift=0.0, com_x=0.0, effort=None, velocity=None,
-                  mu=None):
+                  mu=None, ends=("front", "rear")):
     """A box body on four wheels, all driven (skid-steer), the wheels' centres at the root
     origin's height; the body's mass at ``lift`` above the axles (its centre) and
     ``com_x`` ahead. The robot's centre of mass: x = body_mass·com_x / m, height
     radius + body_mass·lift / m above the floor; it tips over an axle or a side at
-    atan(d / h), d from it to the wheels' contact lines."""
+    atan(d / h), d from it to the wheels' contact lines. ``ends``: the axles it has
+("rear" alone, with wheelbase 0: two wheels under the centre, no castor)."""
     limit = ""
     if effort is not None or velocity is not None:
         limit = (f'\n    <limit effort="{effort if effort is not None else 100:g}" '
@@ -73,6 +74,8 @@ def box_on_wheels(wheelbase=0.4, track=0.4, radius=0.05, body_mass=9.6, wheel_ma
       {box_inertia(body_mass, x, y, z)}</inertial>
   </link>"""]
     for end, wx in (("front", wheelbase / 2), ("rear", -wheelbase / 2)):
+        if end not in ends:
+            continue
         for side, sign in (("left", 1), ("right", -1)):
             parts.append(_wheel(f"{end}_{side}_wheel", wx, sign * track / 2, radius, 0.04,
                                 wheel_mass, limit, mu))

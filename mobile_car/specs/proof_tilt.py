@@ -6,8 +6,9 @@ Gravity turns instead of the floor (the same slope to the robot; the floor's con
 frame stays put). The slope rises at FAST_RATE to WINDOW below the computed angle, then
 at SLOW_RATE, quasi-static, until the event or WINDOW past it. Events: it tips when a
 part it stood on has risen LIFT (the angle taken is where that rise began: ONSET_LIFT);
-it slides when its centre of mass has moved SLIDE along the floor (the angle taken is
-where its speed last rose past SLIDE_SPEED: MuJoCo's soft friction creeps below it).
+it slides when a part it stands on has moved SLIDE along the floor (the angle taken is
+where that part's speed last rose past SLIDE_SPEED: MuJoCo's soft friction creeps below
+it; a part, not the centre of mass, which barely moves when the robot starts to turn).
 Brakes are a damping on the driven wheels' joints that lets them creep BRAKE_CREEP
 (m/s at the rim under the whole weight). Each contact gets the friction the figure
 assumed, and the friction cone is elliptic (Coulomb's: MuJoCo's default pyramid holds
@@ -149,14 +150,13 @@ def tilt(sim, found, azimuth: float, expected: float) -> Tilt:
     run.step(SETTLE)
     bodies = sorted({c.body for c in found.contacts})
     start_heights = run.data.xpos[bodies, 2].copy()
-    root, start = sim.root_body, None
+    start, last = None, run.data.xpos[bodies, :2].copy()
     a = math.radians(azimuth)
     slow_from = max(0.0, math.radians(expected) - WINDOW)
     end = min(math.radians(expected) + WINDOW, math.radians(89.0))
     theta, elapsed = 0.0, 0.0
     onset_lift = onset_slide = None
     step = model.opt.timestep
-    free_dof = run.free_dof
     while theta < end:
         theta += (FAST_RATE if theta < slow_from else SLOW_RATE) * step
         elapsed += step
@@ -171,12 +171,14 @@ def tilt(sim, found, azimuth: float, expected: float) -> Tilt:
             onset_lift = None
         if lift > LIFT:
             return Tilt(azimuth, "tips", math.degrees(onset_lift), elapsed)
-        speed = float(np.hypot(*run.data.qvel[free_dof:free_dof + 2]))
+        where = run.data.xpos[bodies, :2]
+        speed = float(np.hypot(*(where - last).T).max()) / step
+        last = where.copy()
         if speed <= SLIDE_SPEED:
             onset_slide = None
         elif onset_slide is None:  # (what crept before does not count)
-            onset_slide, start = theta, run.data.subtree_com[root][:2].copy()
-        elif float(np.hypot(*(run.data.subtree_com[root][:2] - start))) > SLIDE:
+            onset_slide, start = theta, where.copy()
+        elif float(np.hypot(*(where - start).T).max()) > SLIDE:
             return Tilt(azimuth, "slides", math.degrees(onset_slide), elapsed)
         if not math.isfinite(lift):
             return Tilt(azimuth, None, None, elapsed)

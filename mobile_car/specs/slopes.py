@@ -8,11 +8,13 @@ mass (height h above the floor, projection c) meets the floor at p = c + h·tan 
 robot stands while p is inside its support polygon and tips when p crosses its edge, at
 θ = atan(d / h), d the distance from c to the edge along u. The contacts carry the normal
 load as a rigid body on equally stiff contacts does (the load a plane through them,
-exact for three); friction holds while m·g·sin θ ≤ Σ μᵢ·Nᵢ along u (each contact's
-friction that points along u: all of a held contact's, the part of a free wheel's along
-its axle, none of a swivel castor's). The moments the contacts' friction makes about the
-vertical are not balanced: equal in every held contact, as on four braked wheels, they
-need not be."""
+exact for three, over the contacts that touch at rest until the weight's line leaves
+them and the robot rocks onto a castor a few mm up). Friction holds while the contacts
+can resist the slope's pull m·g·sin θ along u at the centre of mass, forces and the
+moment about the vertical balanced, each contact within its friction: a held contact's
+μᵢ·Nᵢ in any direction, a free wheel's along its axle only, a swivel castor's none
+(:func:`holding`: the largest such pull, from the support function of the set of
+wrenches the contacts can make)."""
 
 from __future__ import annotations
 
@@ -20,6 +22,7 @@ import math
 
 STEP = math.radians(0.05)  # the slope search's step, then bisected
 STEEPEST = math.radians(89.0)
+BISECTIONS = 11  # of a 2° bracket: 0.001°
 
 
 def hull(points: list[tuple[float, float]]) -> list[tuple[float, float]]:
@@ -92,6 +95,48 @@ def least_tip(polygon, com) -> tuple[float, float]:
     return math.atan2(best[0], h), best[1] % (2 * math.pi)
 
 
+def loads_of(contacts, p) -> list[float]:
+    """:func:`loads` over the contacts that touch at rest while the weight's line
+    meets the floor within them; past an edge of theirs the robot rocks about it onto
+    the castors a few mm up on that side, and the ones beyond the edge lift."""
+    touching = [i for i, c in enumerate(contacts) if c.touching]
+    if len(touching) == len(contacts) or not touching:
+        return loads([(c.x, c.y) for c in contacts], p)
+    polygon = hull([(contacts[i].x, contacts[i].y) for i in touching])
+    if not inside(polygon, p):
+        active = _rocked(contacts, touching, polygon, p)
+    else:
+        active = touching
+    shares = loads([(contacts[i].x, contacts[i].y) for i in active], p)
+    out = [0.0] * len(contacts)
+    for i, share in zip(active, shares):
+        out[i] = share
+    return out
+
+
+def _rocked(contacts, touching, polygon, p) -> list[int]:
+    """The contacts the robot stands on once it rocked over the edge of ``polygon`` that
+    ``p`` is beyond: the touching ones on that edge and the others past it."""
+    edges = list(zip(polygon, polygon[1:] + polygon[:1])) if len(polygon) >= 3 else \
+        [tuple(polygon), tuple(reversed(polygon))] if len(polygon) == 2 else []
+    best, edge = -math.inf, None
+    for a, b in edges:
+        length = math.hypot(b[0] - a[0], b[1] - a[1]) or 1.0
+        out = -((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])) / length
+        if out > best:
+            best, edge = out, (a, b, length)
+    if edge is None:
+        return list(range(len(contacts)))
+    a, b, length = edge
+
+    def beyond(c):
+        return -((b[0] - a[0]) * (c.y - a[1]) - (b[1] - a[1]) * (c.x - a[0])) / length
+
+    on_edge = [i for i in touching if abs(beyond(contacts[i])) < 1e-6]
+    past = [i for i, c in enumerate(contacts) if not c.touching and beyond(c) > 0]
+    return on_edge + past if past else list(range(len(contacts)))
+
+
 def loads(points, p) -> list[float]:
     """Each point's share of the normal load (summing to 1) when the weight's line meets
     the floor at ``p``: a plane N = a + b·x + c·y through the points, as equally stiff
@@ -127,20 +172,86 @@ def grip(contact, ux: float, uy: float) -> float:
 
 def slide_angle(contacts, polygon, com, azimuth: float, limit: float = STEEPEST) -> float:
     """The slope (rad) at which the robot slides towards ``azimuth``: the least θ with
-    tan θ > Σ μᵢ·shareᵢ(θ) along it; ``limit`` if none below it (the weight's line is
-    kept within the polygon: past the tip angle the robot would be held up)."""
+    tan θ > :func:`holding` at the loads of θ; ``limit`` if none below it (the weight's
+    line is kept within the polygon: past the tip angle the robot would be held up)."""
     x, y, h = com
     ux, uy = math.cos(azimuth), math.sin(azimuth)
-    points = [(c.x, c.y) for c in contacts]
-    mus = [grip(c, ux, uy) for c in contacts]
     edge = reach(polygon, (x, y), azimuth)
 
-    def holds(theta: float) -> bool:
+    def held(theta: float) -> float:  # the slope the loads of theta hold
         d = min(h * math.tan(theta), max(0.0, edge - 1e-9))
-        shares = loads(points, (x + d * ux, y + d * uy))
-        return math.tan(theta) <= sum(m * s for m, s in zip(mus, shares))
+        shares = loads_of(contacts, (x + d * ux, y + d * uy))
+        return math.atan(holding(contacts, shares, (x, y), azimuth))
 
-    return first_failure(holds, limit)
+    # The loads shift slowly with the slope: the slope the level loads hold is close to
+    # the answer; from it, 2° steps to the first slope that is not held, then halved.
+    low, probe = 0.0, min(held(0.0), limit)
+    while probe < limit and held(probe) >= probe:
+        low, probe = probe, min(limit, probe + math.radians(2.0))
+    if probe >= limit and held(limit) >= limit:
+        return limit
+    high = probe
+    for _ in range(BISECTIONS):
+        middle = (low + high) / 2
+        low, high = (middle, high) if held(middle) >= middle else (low, middle)
+    return low
+
+
+# Directions of the twists :func:`holding` searches first (a Fibonacci sphere), then
+# REFINE rounds about the best, each SHRINK times narrower.
+TWISTS = 600
+REFINE, SHRINK, AROUND = 8, 0.4, 40
+
+
+def holding(contacts, shares, c, azimuth: float) -> float:
+    """The largest pull along ``azimuth`` at ``c``, as a share of the normal load, that
+    the contacts' friction resists with the forces and the moment about the vertical
+    balanced. The wrenches (fx, fy, mz) the contacts can make are a convex set whose
+    support function in a direction t = (vx, vy, ω), a twist of the robot on the floor,
+    is Σ μᵢ·Nᵢ·|vᵢ| (vᵢ the contact's velocity under t; its axle's component for a free
+    wheel); the pull's wrench w stays inside while s ≤ h(t) / (t·w) for every t: the
+    least of that ratio is the answer. All held with one μ: μ (the contacts slide
+    together, their friction's centre on the pull's line)."""
+    import numpy as np
+
+    loaded = [(ct, s) for ct, s in zip(contacts, shares) if s > 1e-12]
+    if not loaded:
+        return 0.0
+    if all(ct.hold == "held" for ct, _ in loaded) and len({ct.mu for ct, _ in loaded}) == 1:
+        return loaded[0][0].mu
+    ux, uy = math.cos(azimuth), math.sin(azimuth)
+    xs = np.array([ct.x - c[0] for ct, _ in loaded])
+    ys = np.array([ct.y - c[1] for ct, _ in loaded])
+    force = np.array([ct.mu * s for ct, s in loaded])
+    held = np.array([ct.hold == "held" for ct, _ in loaded])
+    axle = np.array([ct.hold == "axle" for ct, _ in loaded])
+    axes = np.array([ct.axis for ct, _ in loaded])
+    scale = max(float(np.hypot(xs, ys).max()), 1e-3)  # ω in units of 1/scale
+    pull = np.array([ux, uy, 0.0])  # its moment about c is 0
+
+    def ratio(t):  # t: K x 3, (vx, vy, ω·scale)
+        omega = t[:, 2:3] / scale
+        vx = t[:, 0:1] - omega * ys
+        vy = t[:, 1:2] + omega * xs
+        speed = np.where(held, np.hypot(vx, vy), 0.0) + \
+            np.where(axle, np.abs(vx * axes[:, 0] + vy * axes[:, 1]), 0.0)
+        along = t @ pull
+        value = (speed * force).sum(axis=1) / np.where(along > 1e-12, along, np.nan)
+        return np.where(along > 1e-12, value, np.inf)
+
+    k = np.arange(TWISTS) + 0.5
+    polar, turn = np.arccos(1 - 2 * k / TWISTS), math.pi * (1 + 5 ** 0.5) * k
+    t = np.column_stack([np.sin(polar) * np.cos(turn), np.sin(polar) * np.sin(turn),
+                         np.cos(polar)])
+    values = ratio(t)
+    best, width = t[int(np.argmin(values))], 0.2
+    rng = np.random.default_rng(0)  # (fixed: the same figure every run)
+    for _ in range(REFINE):
+        around = best + width * rng.standard_normal((AROUND, 3))
+        around = np.vstack([best, around / np.linalg.norm(around, axis=1, keepdims=True)])
+        values = ratio(around)
+        best, width = around[int(np.argmin(values))], width * SHRINK
+    return float(min(ratio(best[None, :])[0], ratio(t).min()))
 
 
 def first_failure(holds, limit: float = STEEPEST) -> float:

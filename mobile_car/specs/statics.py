@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 
 from .figures import Figure, Section
-from .slopes import first_failure, hull, least_tip, loads, slide_angle, tip_angle
+from .slopes import first_failure, hull, least_tip, loads_of, slide_angle, tip_angle
 
 AZIMUTH_STEP = 15       # deg between the tip polar's rays
 DIRECTIONS = {"forward": 0, "left": 90, "backward": 180, "right": 270}
@@ -93,8 +93,9 @@ class Statics:
         slides = {a: self.slide(a) for a in range(0, 360, AZIMUTH_STEP)}
         worst = min(slides, key=slides.get)
         out.append(Figure("statics.slide", "slides at", _deg(slides[worst]), "deg",
-                          f"tan θ = Σ μ·load share along the slope, worst towards azimuth "
-                          f"{worst}°; {_frictions(found.contacts)}",
+                          f"the contacts' friction at their share of the load holds the "
+                          f"slope's pull (forces and turning balanced) up to tan θ, worst "
+                          f"towards azimuth {worst}°; {_frictions(found.contacts)}",
                           "the drive wheels braked; free wheels roll, swivel castors turn"))
         stands = {a: min(slides[a], self.tip(a)) for a in slides}
         stands[round(math.degrees(where))] = min(least, self.slide(math.degrees(where)))
@@ -120,12 +121,11 @@ class Statics:
         wheels = _motor_forces(sim)  # body -> (N its motor pushes, wheel)
         weight = found.mass * GRAVITY
         x, y, h = self.com
-        points = [(c.x, c.y) for c in found.contacts]
         edge = _reach_back(self)
 
         def shares(theta):
             d = min(h * math.tan(theta), max(0.0, edge - 1e-9))
-            return loads(points, (x - d, y))
+            return loads_of(found.contacts, (x - d, y))
 
         def push(theta, motors=True, traction=True) -> float:
             s, total = shares(theta), 0.0

@@ -19,6 +19,8 @@ from dataclasses import dataclass, field
 # edge, and its front edge 0.1 mm up counted as touching put the castor's load 15 mm
 # ahead of where MuJoCo carries it (its slide figure 1.7° off)
 FLAT = 0.00002
+# m: a geom whose lowest point is this close to the floor at rest touches it
+TOUCHING = 0.0001
 # A castor (a cylinder standing upright, a puck) touches along its rim: so many points.
 RIM_POINTS = 16
 
@@ -40,6 +42,7 @@ class Contact:
     mu: float
     mu_from: str
     axis: tuple[float, float] = (0.0, 0.0)
+    touching: bool = True  # at rest (not a castor a few mm up, which it rocks onto)
 
 
 @dataclass
@@ -103,9 +106,10 @@ def stance(sim, described: dict[str, float], friction: float | None) -> Stance:
             moving = _rolling_joints(sim, body)
             role = "castor" if link in sim.ground_parts else "part"
             hold, axis = ("free", (0.0, 0.0)) if moving else ("held", (0.0, 0.0))
+        touching = min(p[2] for p in points) <= TOUCHING
         for x, y, _z in points:
             contacts.append(Contact(float(x - origin[0]), float(y - origin[1]), link, body,
-                                    role, hold, mu, mu_from, axis))
+                                    role, hold, mu, mu_from, axis, touching))
     com = data.subtree_com[sim.root_body]
     return Stance(contacts, (float(com[0] - origin[0]), float(com[1] - origin[1]),
                              float(com[2])), float(sim.mass), notes)

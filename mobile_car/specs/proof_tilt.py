@@ -1,6 +1,6 @@
 """The tilt proof: MuJoCo stands the robot on a floor that tilts slowly about a horizontal
 axis, so that the slope falls towards an azimuth, its drive wheels braked, until it slides
-or tips; the angle is compared with the computed one (docs/specs.md, "Proofs").
+or tips; the angle is compared with the computed one (docs/specs-proofs.md).
 
 Gravity turns instead of the floor (the same slope to the robot; the floor's contact
 frame stays put). The slope rises at FAST_RATE to WINDOW below the computed angle, then
@@ -49,12 +49,10 @@ class Tilt:
     seconds: float         # simulated
 
 
-def prove_tilt(sim, found, section, friction=None) -> list[Tilt]:
+def prove_tilt(sim, found, section, statics) -> list[Tilt]:
     """Tilt the robot towards forward, left, backward, right and the azimuths of its
-    statics.stand and statics.slide figures; fill the figures' proofs."""
-    from .statics import Statics
-
-    statics = Statics(found, sim)
+    statics.stand and statics.slide figures; fill the figures' proofs. ``statics``: the
+    computed angles (rad) by azimuth (deg), ``.tip(a)`` and ``.slide(a)``."""
     value = {f.key: f for f in section.figures}
     stand_at = _azimuth(value["statics.stand"].source)
     slide_at = _azimuth(value["statics.slide"].source)

@@ -54,7 +54,7 @@ def reach(polygon, c: tuple[float, float], azimuth: float) -> float:
         return 0.0
     ux, uy = math.cos(azimuth), math.sin(azimuth)
     best = math.inf
-    for (ax, ay), (bx, by) in zip(polygon, polygon[1:] + polygon[:1]):
+    for (ax, ay), (bx, by) in zip(polygon, polygon[1:] + polygon[:1], strict=True):
         ex, ey = bx - ax, by - ay
         denominator = ux * ey - uy * ex
         if abs(denominator) < 1e-15:
@@ -68,7 +68,7 @@ def reach(polygon, c: tuple[float, float], azimuth: float) -> float:
 
 def inside(polygon, p, margin: float = 1e-12) -> bool:
     """Whether ``p`` is inside the counter-clockwise convex ``polygon`` (not on its edge)."""
-    for (ax, ay), (bx, by) in zip(polygon, polygon[1:] + polygon[:1]):
+    for (ax, ay), (bx, by) in zip(polygon, polygon[1:] + polygon[:1], strict=True):
         if (bx - ax) * (p[1] - ay) - (by - ay) * (p[0] - ax) <= margin:
             return False
     return len(polygon) >= 3
@@ -87,7 +87,7 @@ def least_tip(polygon, com) -> tuple[float, float]:
     if len(polygon) < 3 or not inside(polygon, (x, y)):
         return 0.0, 0.0
     best = (math.inf, 0.0)
-    for (ax, ay), (bx, by) in zip(polygon, polygon[1:] + polygon[:1]):
+    for (ax, ay), (bx, by) in zip(polygon, polygon[1:] + polygon[:1], strict=True):
         length = math.hypot(bx - ax, by - ay)
         distance = ((bx - ax) * (y - ay) - (by - ay) * (x - ax)) / length
         outward = math.atan2(-(bx - ax), by - ay)  # the edge's outward normal
@@ -109,7 +109,7 @@ def loads_of(contacts, p) -> list[float]:
         active = touching
     shares = loads([(contacts[i].x, contacts[i].y) for i in active], p)
     out = [0.0] * len(contacts)
-    for i, share in zip(active, shares):
+    for i, share in zip(active, shares, strict=True):
         out[i] = share
     return out
 
@@ -117,7 +117,7 @@ def loads_of(contacts, p) -> list[float]:
 def _rocked(contacts, touching, polygon, p) -> list[int]:
     """The contacts the robot stands on once it rocked over the edge of ``polygon`` that
     ``p`` is beyond: the touching ones on that edge and the others past it."""
-    edges = list(zip(polygon, polygon[1:] + polygon[:1])) if len(polygon) >= 3 else \
+    edges = list(zip(polygon, polygon[1:] + polygon[:1], strict=True)) if len(polygon) >= 3 else \
         [tuple(polygon), tuple(reversed(polygon))] if len(polygon) == 2 else []
     best, edge = -math.inf, None
     for a, b in edges:
@@ -154,7 +154,7 @@ def loads(points, p) -> list[float]:
         if shares.min() >= -1e-12 or len(active) == 1:
             out = [0.0] * len(points)
             total = float(shares.clip(min=0).sum()) or 1.0
-            for i, share in zip(active, shares.clip(min=0)):
+            for i, share in zip(active, shares.clip(min=0), strict=True):
                 out[i] = float(share) / total
             return out
         active.pop(int(shares.argmin()))
@@ -214,7 +214,7 @@ def holding(contacts, shares, c, azimuth: float) -> float:
     together, their friction's centre on the pull's line)."""
     import numpy as np
 
-    loaded = [(ct, s) for ct, s in zip(contacts, shares) if s > 1e-12]
+    loaded = [(ct, s) for ct, s in zip(contacts, shares, strict=True) if s > 1e-12]
     if not loaded:
         return 0.0
     if all(ct.hold == "held" for ct, _ in loaded) and len({ct.mu for ct, _ in loaded}) == 1:

@@ -39,14 +39,14 @@ def statics_section(checked, sim, options: dict | None = None) -> Section:
                                                                   no_network=True))
     found = stance(sim, gazebo_friction(root), options.get("friction"))
     result = Section("statics", notes=list(found.notes))
-    figures = Statics(found, sim).figures()
-    result.figures = figures
+    statics = Statics(found, sim)
+    result.figures = statics.figures()
     if options.get("proof", True) and sim.drive is not None:
         from .proof_climb import prove_climb
         from .proof_tilt import prove_tilt
 
-        prove_tilt(sim, found, result, options.get("friction"))
-        prove_climb(sim, found, result, options.get("friction"))
+        prove_tilt(sim, found, result, statics)
+        prove_climb(sim, found, result)
     elif sim.drive is None:
         result.notes.append("not a vehicle: no tilt or climb proof (they hold and drive its "
                             "wheels)")
@@ -130,7 +130,7 @@ class Statics:
         def push(theta, motors=True, traction=True) -> float:
             s, total = shares(theta), 0.0
             per_body: dict[int, float] = {}
-            for contact, share in zip(found.contacts, s):
+            for contact, share in zip(found.contacts, s, strict=True):
                 if contact.role == "driven":
                     per_body[contact.body] = per_body.get(contact.body, 0.0) + \
                         contact.mu * share * math.cos(theta)

@@ -12,6 +12,7 @@ import math
 
 from .figures import Figure, Section
 from .slopes import first_failure, hull, least_tip, loads_of, slide_angle, tip_angle
+from .slopes import grip as grip_along
 
 AZIMUTH_STEP = 15       # deg between the tip polar's rays
 DIRECTIONS = {"forward": 0, "left": 90, "backward": 180, "right": 270}
@@ -131,9 +132,9 @@ class Statics:
             s, total = shares(theta), 0.0
             per_body: dict[int, float] = {}
             for contact, share in zip(found.contacts, s, strict=True):
-                if contact.role == "driven":
+                if contact.role == "driven":  # (a mecanum wheel grips along its rollers)
                     per_body[contact.body] = per_body.get(contact.body, 0.0) + \
-                        contact.mu * share * math.cos(theta)
+                        grip_along(contact, 1.0, 0.0) * share * math.cos(theta)
                 elif contact.hold == "held":
                     total -= contact.mu * share * math.cos(theta)  # a dragging castor
             for body, grip in per_body.items():

@@ -89,7 +89,12 @@ def stance(sim, described: dict[str, float], friction: float | None) -> Stance:
     driven = {w.body_id: w for w in drive.driven} if drive else {}
     free_wheels = {w.body_id: w for w in drive.free} if drive else {}
     contacts, notes = [], []
+    skip = set()
+    if drive is not None and drive.kind == "mecanum":
+        contacts, skip = _mecanum(sim, data, origin)
     for g in sim.support_geoms:
+        if int(model.geom_bodyid[g]) in skip:
+            continue
         points = _lowest_patch(model, data, g)
         if not points or min(p[2] for p in points) > GROUND_TOLERANCE:
             continue
@@ -113,6 +118,26 @@ def stance(sim, described: dict[str, float], friction: float | None) -> Stance:
     com = data.subtree_com[sim.root_body]
     return Stance(contacts, (float(com[0] - origin[0]), float(com[1] - origin[1]),
                              float(com[2])), float(sim.mass), notes)
+
+
+def _mecanum(sim, data, origin) -> tuple[list[Contact], set[int]]:
+    """A mecanum wheel touches below its hub (sim's capsule, :mod:`mobile_car.sim.rollers`)
+    and holds only along its rollers' grip axis, braked or not (they roll across it);
+    its own geometry and its rollers' are off the floor (the bodies to skip)."""
+    from ..sim.rollers import roller_bodies
+
+    drive, contacts = sim.drive, []
+    for wheel in drive.wheels:
+        x, y = data.xpos[wheel.body_id][:2]
+        gx, gy = wheel.grip if wheel.grip is not None else (1.0, 0.0)
+        norm = math.hypot(gx, gy) or 1.0
+        mu, _across, source = drive.grip_mu.get(wheel.joint, (1.0, 0.0, "MuJoCo's default"))
+        contacts.append(Contact(float(x - origin[0]), float(y - origin[1]), wheel.link,
+                                wheel.body_id, "driven" if wheel in drive.driven else
+                                "free wheel", "axle", float(mu), f"mecanum grip ({source})",
+                                (gx / norm, gy / norm)))
+    skip = {w.body_id for w in drive.wheels} | roller_bodies(sim.model, drive.wheels)
+    return contacts, skip
 
 
 def _lowest_patch(model, data, g) -> list[tuple[float, float, float]]:

@@ -6,7 +6,8 @@ Gravity turns instead of the floor (the same slope to the robot; the floor's con
 frame stays put). The slope rises at FAST_RATE to WINDOW below the computed angle, then
 at SLOW_RATE, quasi-static, until the event or WINDOW past it. Events: it tips when a
 part it stood on has risen LIFT (the angle taken is where that rise began: ONSET_LIFT);
-it slides when a part it stands on has moved SLIDE along the floor (the angle taken is
+it slides when a part it stands on that holds (no swivel castor) has moved SLIDE along
+the floor (the angle taken is
 where that part's speed last rose past SLIDE_SPEED: MuJoCo's soft friction creeps below
 it; a part, not the centre of mass, which barely moves when the robot starts to turn).
 Brakes are a damping on the driven wheels' joints that lets them creep BRAKE_CREEP
@@ -148,7 +149,10 @@ def tilt(sim, found, azimuth: float, expected: float) -> Tilt:
     run.step(SETTLE)
     bodies = sorted({c.body for c in found.contacts})
     start_heights = run.data.xpos[bodies, 2].copy()
-    start, last = None, run.data.xpos[bodies, :2].copy()
+    # What slides: the parts that hold (a castor wheel swivels round when pulled sideways,
+    # its wheel moving by its trail: MiR's 5 mm at 5°, its robot standing still)
+    holding = sorted({c.body for c in found.contacts if c.hold != "free"}) or bodies
+    start, last = None, run.data.xpos[holding, :2].copy()
     a = math.radians(azimuth)
     slow_from = max(0.0, math.radians(expected) - WINDOW)
     end = min(math.radians(expected) + WINDOW, math.radians(89.0))
@@ -169,7 +173,7 @@ def tilt(sim, found, azimuth: float, expected: float) -> Tilt:
             onset_lift = None
         if lift > LIFT:
             return Tilt(azimuth, "tips", math.degrees(onset_lift), elapsed)
-        where = run.data.xpos[bodies, :2]
+        where = run.data.xpos[holding, :2]
         speed = float(np.hypot(*(where - last).T).max()) / step
         last = where.copy()
         if speed <= SLIDE_SPEED:

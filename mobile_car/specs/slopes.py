@@ -3,18 +3,18 @@ polygon, the slope it tips at towards each azimuth, how its weight shares out be
 contacts, and the slope it slides at. Plain math, so that the figures are checked by
 hand: lengths in m, angles in rad, azimuths measured from forward (x) towards left (y).
 
-On a slope of angle θ whose downhill direction is u, gravity's line through the centre of
-mass (height h above the floor, projection c) meets the floor at p = c + h·tan θ·u: the
-robot stands while p is inside its support polygon and tips when p crosses its edge, at
-θ = atan(d / h), d the distance from c to the edge along u. The contacts carry the normal
-load as a rigid body on equally stiff contacts does (the load a plane through them,
-exact for three, over the contacts that touch at rest until the weight's line leaves
-them and the robot rocks onto a castor a few mm up). Friction holds while the contacts
-can resist the slope's pull m·g·sin θ along u at the centre of mass, forces and the
-moment about the vertical balanced, each contact within its friction: a held contact's
-μᵢ·Nᵢ in any direction, a free wheel's along its axle only, a swivel castor's none
-(:func:`holding`: the largest such pull, from the support function of the set of
-wrenches the contacts can make)."""
+On a slope of angle θ whose downhill direction is u, gravity's line through the centre
+of mass (height h above the floor, projection c) meets the floor at p = c + h·tan θ·u:
+the robot stands while p is inside its support polygon and tips when p crosses its edge,
+at θ = atan(d / h), d the distance from c to the edge along u. The contacts carry the
+normal load as a rigid body on springs does (each its stiffness times a plane through
+them, exact for three whatever the stiffness), over the contacts that touch at rest
+until the weight's line leaves them and the robot rocks onto a castor a few mm up.
+Friction holds while the contacts can resist the slope's pull m·g·sin θ along u at the
+centre of mass, forces and the moment about the vertical balanced, each contact within
+its friction: a held contact's μᵢ·Nᵢ in any direction, a free wheel's along its axle
+only, a swivel castor's none (:func:`holding`: the largest such pull, from the support
+function of the set of wrenches the contacts can make)."""
 
 from __future__ import annotations
 
@@ -101,13 +101,14 @@ def loads_of(contacts, p) -> list[float]:
     the castors a few mm up on that side, and the ones beyond the edge lift."""
     touching = [i for i, c in enumerate(contacts) if c.touching]
     if len(touching) == len(contacts) or not touching:
-        return loads([(c.x, c.y) for c in contacts], p)
+        return loads([(c.x, c.y) for c in contacts], p, [c.stiffness for c in contacts])
     polygon = hull([(contacts[i].x, contacts[i].y) for i in touching])
     if not inside(polygon, p):
         active = _rocked(contacts, touching, polygon, p)
     else:
         active = touching
-    shares = loads([(contacts[i].x, contacts[i].y) for i in active], p)
+    shares = loads([(contacts[i].x, contacts[i].y) for i in active], p,
+                   [contacts[i].stiffness for i in active])
     out = [0.0] * len(contacts)
     for i, share in zip(active, shares, strict=True):
         out[i] = share
@@ -137,20 +138,23 @@ def _rocked(contacts, touching, polygon, p) -> list[int]:
     return on_edge + past if past else list(range(len(contacts)))
 
 
-def loads(points, p) -> list[float]:
+def loads(points, p, stiffness=None) -> list[float]:
     """Each point's share of the normal load (summing to 1) when the weight's line meets
-    the floor at ``p``: a plane N = a + b·x + c·y through the points, as equally stiff
-    contacts under a rigid body share it; a point the plane gives less than nothing
-    lifts, and the others share the load again. Points on one line share by the lever."""
+    the floor at ``p``: as contacts of the given ``stiffness`` (equal where None) under a
+    rigid body share it, each its stiffness times a plane a + b·x + c·y; a point given
+    less than nothing lifts, and the others share the load again. Points on one line
+    share by the lever."""
     import numpy as np
 
     active = list(range(len(points)))
+    weights = np.ones(len(points)) if stiffness is None else np.asarray(stiffness, float)
     while active:
         xy = np.array([points[i] for i in active], dtype=float)
         a = np.column_stack([np.ones(len(active)), xy])
-        # Σ N = 1, Σ N x = p_x, Σ N y = p_y with N = A·k: (Aᵀ A) k = (1, p)
-        k = np.linalg.pinv(a.T @ a) @ np.array([1.0, p[0], p[1]])
-        shares = a @ k
+        w = weights[active][:, None]
+        # Σ N = 1, Σ N x = p_x, Σ N y = p_y with N = W·A·k: (Aᵀ W A) k = (1, p)
+        k = np.linalg.pinv(a.T @ (w * a)) @ np.array([1.0, p[0], p[1]])
+        shares = (w * a) @ k
         if shares.min() >= -1e-12 or len(active) == 1:
             out = [0.0] * len(points)
             total = float(shares.clip(min=0).sum()) or 1.0

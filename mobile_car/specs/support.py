@@ -43,6 +43,7 @@ class Contact:
     mu_from: str
     axis: tuple[float, float] = (0.0, 0.0)
     touching: bool = True  # at rest (not a castor a few mm up, which it rocks onto)
+    stiffness: float = 1.0  # its share of the load, where several share it, goes by it
 
 
 @dataclass
@@ -114,10 +115,22 @@ def stance(sim, described: dict[str, float], friction: float | None) -> Stance:
         touching = min(p[2] for p in points) <= TOUCHING
         for x, y, _z in points:
             contacts.append(Contact(float(x - origin[0]), float(y - origin[1]), link, body,
-                                    role, hold, mu, mu_from, axis, touching))
+                                    role, hold, mu, mu_from, axis, touching,
+                                    _stiffness(model, body)))
     com = data.subtree_com[sim.root_body]
     return Stance(contacts, (float(com[0] - origin[0]), float(com[1] - origin[1]),
                              float(com[2])), float(sim.mass), notes)
+
+
+def _stiffness(model, body: int) -> float:
+    """A contact's stiffness, as MuJoCo's soft contacts have it: in proportion to the
+    mass its body moves (1 / its translational inverse weight, ``body_invweight0``: the
+    constraint's regularisation goes by it). Where more contacts than three share the
+    load (MiR's two wheels and four castors) it decides their shares: its castor wheels,
+    light on their swivels, carry 9% each in MuJoCo, its wheels 31%; equally stiff
+    contacts would have put 17% on each."""
+    weight = float(model.body_invweight0[body][0])
+    return 1.0 / weight if weight > 0 else 1.0
 
 
 def _mecanum(sim, data, origin) -> tuple[list[Contact], set[int]]:
@@ -135,7 +148,8 @@ def _mecanum(sim, data, origin) -> tuple[list[Contact], set[int]]:
         contacts.append(Contact(float(x - origin[0]), float(y - origin[1]), wheel.link,
                                 wheel.body_id, "driven" if wheel in drive.driven else
                                 "free wheel", "axle", float(mu), f"mecanum grip ({source})",
-                                (gx / norm, gy / norm)))
+                                (gx / norm, gy / norm), True,
+                                _stiffness(sim.model, wheel.body_id)))
     skip = {w.body_id for w in drive.wheels} | roller_bodies(sim.model, drive.wheels)
     return contacts, skip
 

@@ -193,3 +193,18 @@ def test_a_proof_that_disagrees_is_w506_never_hidden():
     assert found.text() == ("robot.urdf: warning: statics.tip.left 20.0 deg but MuJoCo "
                             "measured 12.50 deg (±1°): tilted towards azimuth 90° it tips at "
                             "12.50° [W506]")
+
+
+def test_loads_share_by_the_lever_and_by_the_contacts_stiffness():
+    from mobile_car.specs.slopes import loads
+
+    # three contacts: exact, whatever their stiffness (the lever rule)
+    three = [(0.0, 0.1), (0.0, -0.1), (-0.2, 0.0)]
+    assert loads(three, (-0.05, 0.0)) == pytest.approx([0.375, 0.375, 0.25])
+    assert loads(three, (-0.05, 0.0), [5, 5, 1]) == pytest.approx([0.375, 0.375, 0.25])
+    # six, symmetric: by stiffness (MiR's wheels 31 % each in MuJoCo, its castors 9 %)
+    six = [(0, 0.2), (0, -0.2), (0.3, 0.2), (0.3, -0.2), (-0.3, 0.2), (-0.3, -0.2)]
+    assert loads(six, (0.0, 0.0), [30, 30, 5, 5, 5, 5]) == \
+        pytest.approx([0.375, 0.375, 0.0625, 0.0625, 0.0625, 0.0625])
+    # past a contact the plane would pull, it lifts and the others carry it all
+    assert loads(three, (0.05, 0.0)) == pytest.approx([0.5, 0.5, 0.0])

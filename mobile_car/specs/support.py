@@ -21,6 +21,9 @@ from dataclasses import dataclass, field
 FLAT = 0.00002
 # m: a geom whose lowest point is this close to the floor at rest touches it
 TOUCHING = 0.0001
+# A declared μ over this is no tyre's (rubber on concrete: ~1; MuJoCo went NaN in its
+# first step on 1e300): not used, as sim leaves out a spring no suspension has.
+MAX_FRICTION = 10.0
 # A castor (a cylinder standing upright, a puck) touches along its rim: so many points.
 RIM_POINTS = 16
 
@@ -102,7 +105,8 @@ def stance(sim, described: dict[str, float], friction: float | None) -> Stance:
         body = int(model.geom_bodyid[g])
         link = model.body(body).name
         mu, mu_from = _friction(model, sim.floor_geom, g, link, described,
-                                friction if (body in driven or body in free_wheels) else None)
+                                friction if (body in driven or body in free_wheels) else None,
+                                notes)
         if body in driven:
             role, hold, axis = "driven", "held", (0.0, 0.0)
         elif body in free_wheels:
@@ -200,12 +204,21 @@ def _lowest_patch(model, data, g) -> list[tuple[float, float, float]]:
             if p[2] <= lowest + FLAT]
 
 
-def _friction(model, floor: int, g: int, link: str, described: dict, friction):
+def _friction(model, floor: int, g: int, link: str, described: dict, friction,
+              notes: list):
     """(mu, its source) of geom ``g`` on the floor, as MuJoCo mixes them: the geom's own
     where its priority is higher (a declared ``<mu1>``, sim's castor friction), else the
-    larger of the two."""
-    if link in described:
+    larger of the two. A declared μ over MAX_FRICTION is no tyre's: not used."""
+    if link in described and described[link] <= MAX_FRICTION:
         return described[link], f"<gazebo reference=\"{link}\"> mu1"
+    if link in described:
+        note = (f"link {link}: <mu1> {described[link]:g} is no tyre's (over "
+                f"{MAX_FRICTION:g}): not used")
+        if note not in notes:
+            notes.append(note)
+        own = float(model.geom_friction[floor][0])
+        return (float(friction), "--friction") if friction is not None else \
+            (own, f"MuJoCo's default {own:g} (its <mu1> not used)")
     if friction is not None:
         return float(friction), "--friction"
     own = float(model.geom_friction[g][0])

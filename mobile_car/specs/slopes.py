@@ -22,7 +22,7 @@ import math
 
 STEP = math.radians(0.05)  # the slope search's step, then bisected
 STEEPEST = math.radians(89.0)
-BISECTIONS = 11  # of a 2° bracket: 0.001°
+BISECTIONS = 9  # of a 2° bracket: 0.004°
 
 
 def hull(points: list[tuple[float, float]]) -> list[tuple[float, float]]:
@@ -203,7 +203,7 @@ def slide_angle(contacts, polygon, com, azimuth: float, limit: float = STEEPEST)
 
 # Directions of the twists :func:`holding` searches first (a Fibonacci sphere), then
 # REFINE rounds about the best, each SHRINK times narrower.
-TWISTS = 600
+TWISTS = 300
 REFINE, SHRINK, AROUND = 8, 0.4, 40
 
 

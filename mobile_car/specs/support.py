@@ -113,9 +113,8 @@ def stance(sim, described: dict[str, float], friction: float | None) -> Stance:
             role, hold = "free wheel", "axle"
             axis = _axle(data, free_wheels[body].joint_id)
         else:
-            moving = _rolling_joints(sim, body)
             role = "castor" if link in sim.ground_parts else "part"
-            hold, axis = ("free", (0.0, 0.0)) if moving else ("held", (0.0, 0.0))
+            hold, axis = _how_it_holds(sim, data, body)
         touching = min(p[2] for p in points) <= TOUCHING
         for x, y, _z in points:
             contacts.append(Contact(float(x - origin[0]), float(y - origin[1]), link, body,
@@ -235,19 +234,29 @@ def _axle(data, joint_id: int) -> tuple[float, float]:
     return (float(axis[0] / norm), float(axis[1] / norm)) if norm > 1e-9 else (0.0, 0.0)
 
 
-def _rolling_joints(sim, body: int) -> list[int]:
-    """The hinge joints (castor swivels, castor wheels) between ``body`` and the root:
-    where there are any the part rolls or turns away from a slope's pull. Sprung
-    joints carry the weight and count as rigid."""
+def _how_it_holds(sim, data, body: int) -> tuple[str, tuple[float, float]]:
+    """(hold, axis) of a part that is no drive wheel, from the hinge joints between it and
+    the root: an axle (a horizontal hinge) lets it roll across the axle ("axle"), an axle
+    on a swivel (a vertical one) lets it roll every way ("free": a castor wheel); a
+    swivel alone only turns it (a ball on a swivel slides: "held"), as does no joint.
+    Sprung joints carry the weight and count as rigid."""
     from ..sim.engine import mujoco
 
     mj = mujoco()
     model = sim.model
     sprung = {s.joint for s in sim.springs}
-    found = []
+    axles, swivels = [], 0
     while body not in (0, sim.root_body):
         for j in range(model.body_jntadr[body], model.body_jntadr[body] + model.body_jntnum[body]):
-            if model.jnt_type[j] == mj.mjtJoint.mjJNT_HINGE and model.joint(j).name not in sprung:
-                found.append(j)
+            if model.jnt_type[j] != mj.mjtJoint.mjJNT_HINGE or model.joint(j).name in sprung:
+                continue
+            if abs(float(data.xaxis[j][2])) > 0.5:
+                swivels += 1
+            else:
+                axles.append(j)
         body = int(model.body_parentid[body])
-    return found
+    if axles and swivels:
+        return "free", (0.0, 0.0)
+    if axles:
+        return "axle", _axle(data, axles[0])
+    return "held", (0.0, 0.0)

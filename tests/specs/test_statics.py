@@ -208,3 +208,22 @@ def test_loads_share_by_the_lever_and_by_the_contacts_stiffness():
         pytest.approx([0.375, 0.375, 0.0625, 0.0625, 0.0625, 0.0625])
     # past a contact the plane would pull, it lifts and the others carry it all
     assert loads(three, (0.05, 0.0)) == pytest.approx([0.5, 0.5, 0.0])
+
+
+def test_the_entry_specs_calls_takes_its_context(tmp_path):
+    """section(context): specs-core's SpecsContext (checked, sim, body, options)."""
+    from types import SimpleNamespace
+
+    from mobile_car.specs.statics import section
+
+    path = tmp_path / "box.urdf"
+    path.write_text(box_on_wheels(lift=0.1, mu=0.6))
+    checked, sim = checked_and_sim(path)
+    context = SimpleNamespace(checked=checked, sim=sim, body=None, options={"proof": False})
+    result = section(context)
+    assert result.name == "statics"
+    assert [f.key for f in result.figures] == [
+        "statics.support", "statics.tip.polar", "statics.tip.forward", "statics.tip.left",
+        "statics.tip.backward", "statics.tip.right", "statics.tip.min", "statics.slide",
+        "statics.stand", "statics.climb", "statics.top_speed", "statics.turning_radius"]
+    assert all(f.proof is None for f in result.figures)

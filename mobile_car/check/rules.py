@@ -2,7 +2,8 @@
 
 ``E1xx`` are errors (the file is wrong: exit 1), ``W2xx`` are warnings (doubtful: exit 0,
 or 1 with ``--strict``), ``N4xx`` are notes (information: never a failure); ``W5xx`` and
-``E5xx`` are what ``mcar specs`` finds in what the robot can do. Ids never
+``E5xx`` are what ``mcar specs`` finds in what the robot can do (W501 joints, W502-W506
+and E503 statics, W51x the package's ROS YAML, W52x sensors, W530 inertia). Ids never
 change meaning; a retired rule keeps its number. The ``E15x``, ``W23x`` and ``N40x`` rules
 are what Gazebo's libsdformat changes in the robot, found by ``mcar check --gazebo``.
 ``urdfdom`` says what Debian's ``check_urdf`` (urdfdom 3.0) does with the same problem:
@@ -181,6 +182,22 @@ _TABLE = [
          "(MuJoCo's gravity load, the figures in the message; a suspension a spring carries "
          "is not judged)", "n/a"),
     # The package's own ROS configuration against the robot (mcar check, mcar specs)
+    # What the robot can do (mcar specs): statics
+    Rule("E503", "cannot-drive", "the drive motors cannot move the robot on flat ground: "
+         "their effort (less the wheel joints' declared friction) over the wheel radius "
+         "does not beat the castors' drag (mcar specs' statics.climb is 0)", "n/a"),
+    Rule("W502", "tips-climbing", "the motors climb a slope (statics.climb) on which the "
+         "robot tips over backward driving up it, or forward reversing up it (statics.tip."
+         "backward, statics.tip.forward)", "n/a"),
+    Rule("W503", "weak-climb", "the robot cannot climb a 5° ramp: its motors or its driven "
+         "wheels' grip give out first (statics.climb, which says which)", "n/a"),
+    Rule("W504", "tips-across", "the motors climb a slope on which the robot, turned across "
+         "it, tips over sideways (statics.tip.left or right under statics.climb): its track "
+         "is too narrow or its centre of mass too high", "n/a"),
+    Rule("W505", "no-static-stability", "the centre of mass is not inside the polygon the "
+         "robot stands on at rest (statics.tip.min 0°): it stands only balanced", "n/a"),
+    Rule("W506", "proof-disagrees", "MuJoCo's proof of a statics figure (the tilt and climb "
+         "runs) disagrees with the computed figure beyond its tolerance", "n/a"),
     Rule("W510", "stack-wheel-separation", "the control package's drive controller gives a "
          "`wheel_separation` (times its `wheel_separation_multiplier`: the effective "
          "figure) more than 1% off the drive wheels' spacing (a skid-steer robot's may "

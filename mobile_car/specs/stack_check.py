@@ -138,7 +138,7 @@ def resting_model(checked):
     from ..errors import McarError
     from ..sim.mecanum import yaml_declarations
     from ..sim.model import build_model
-    from ..sim.report import declarations
+    from ..sim.prepare import declarations
 
     loaded = checked.loaded
     try:

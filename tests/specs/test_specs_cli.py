@@ -78,17 +78,19 @@ def test_a_figure_its_proof_contradicts_fails_the_run(cli, car_file, monkeypatch
     proof beside the figure (the proofs are the statics and sensors sections')."""
     from mobile_car.specs import compute
 
-    real = compute.compute
+    real = compute.computed
 
     def with_proofs(checked, options):
+        context = real(checked, {**options, "proof": False})
         proved = Section("statics", figures=[
             Figure("statics.tip.left", "tip angle, left", 23.4, "deg", "support polygon",
                    proof=Proof(23.5, True, "1°")),
             Figure("statics.tip.forward", "tip angle, forward", 30.0, "deg",
                    "support polygon", proof=Proof(19.0, False, "1°", "tipped on a slope"))])
-        return [real(checked, options)[0], proved]
+        context.sections = [context.sections[0], proved]
+        return context
 
-    monkeypatch.setattr(compute, "compute", with_proofs)
+    monkeypatch.setattr(compute, "computed", with_proofs)
     result = _specs(cli, car_file)
     assert result.exit_code == 1
     assert result.stderr.splitlines() == [

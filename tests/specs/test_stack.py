@@ -244,7 +244,8 @@ def test_the_stack_section_says_the_effective_separation_and_compares_the_packag
     robot = write_package(tmp_path, two_wheeler(), {"bot_control/config/control.yaml": control})
     checked, sim = checked_and_model(robot, tmp_path)
     sim.control = None  # (sim reads the multiplier of a skid-steer robot only: specs reads it)
-    result = section(SimpleNamespace(checked=checked, sim=sim, body=body(), options={}))
+    result = section(SimpleNamespace(checked=checked, sim=sim, body=body(), options={},
+                                     sections=[body()]))
     (figure,) = result.figures
     assert (figure.key, figure.value, figure.unit) == ("stack.wheel_separation", 0.2, "m")
     assert figure.source == ("the drive wheels' spacing (wheels.track) x "

@@ -1,0 +1,84 @@
+"""The climb proof: MuJoCo drives the robot straight up a slope MARGIN under its computed
+climb angle, where it must climb, and MARGIN over it, where it must not
+(docs/specs-proofs.md). As in the tilt proof gravity is turned, not the floor, and the
+contacts are the proof model's (:func:`.proof_tilt.proof_model`), as soft as sim drives
+on (on the tilt's stiff resting contacts Husky's tyres chattered and slid back 1° under
+its limit). The wheels are sim's motors: their velocity servos, limited to their
+effort, commanded a crawl (CRAWL at the rim, sim's speed where that is slower) after
+sim's ramp; the robot climbs when, over the last
+MEASURE s of DRIVE s, it goes up the slope at PROGRESS of r·ω or more. A crawl, because
+1° under its limit a robot has ~0.17 m/s² to spare: at sim's speed it was still
+catching up after its ramp (a 10 kg box at 0.25 m/s: 64%), which says nothing of the
+slope. The servos are SERVO_STIFFER times sim's gain: at sim's, Husky's wheels lagged
+their command by a third under the torque a 39° slope asks (kv·Δω = τ), which is the
+servo's droop, not the slope; their effort limits are sim's."""
+
+from __future__ import annotations
+
+import math
+
+from .figures import Proof
+
+MARGIN = 1.0        # deg
+CRAWL = 0.05        # m/s
+DRIVE = 2.5         # s after the settle
+MEASURE = 0.5       # s: the speed is averaged over the run's last
+PROGRESS = 0.8      # of r·ω·t
+STEEPEST = 88.0     # deg: no slope over it is tried
+SERVO_STIFFER = 20.0
+GRAVITY = 9.81
+
+
+def prove_climb(sim, found, section) -> None:
+    """Fill statics.climb's proof (nothing to prove without a figure; a robot that tips
+    backward first cannot show it: a note says so, the tilt proved the tip)."""
+    figure = section.figure("statics.climb")
+    if figure is None or figure.value is None:
+        return
+    angle = figure.value
+    back = section.figure("statics.tip.backward")
+    if back is not None and back.value is not None and angle + MARGIN >= back.value:
+        section.notes.append(f"statics.climb not proven: the robot tips over backward at "
+                             f"{back.value:.1f}° (W502), before the {angle:.1f}° its motors "
+                             "climb")
+        return
+    lines, agrees = [], True
+    under = angle - MARGIN
+    if under > 0:
+        ratio = climb(sim, found, under)
+        agrees &= ratio >= PROGRESS
+        lines.append(f"at {under:.1f}° it went up at {100 * ratio:.0f}% of r·ω")
+    if angle + MARGIN < STEEPEST:
+        ratio = climb(sim, found, angle + MARGIN)
+        agrees &= ratio < PROGRESS
+        lines.append(f"at {angle + MARGIN:.1f}° {100 * ratio:.0f}%")
+    if not lines:
+        return
+    figure.proof = Proof(under if agrees and under > 0 else None, bool(agrees),
+                         f"climbs {MARGIN:g}° under, not {MARGIN:g}° over "
+                         f"(≥ {100 * PROGRESS:.0f}% of r·ω up it after {DRIVE:g} s)",
+                         "; ".join(lines))
+
+
+def climb(sim, found, slope_deg: float) -> float:
+    """The robot's speed up a slope of ``slope_deg`` at the end of the drive, as a share
+    of r·ω (negative: it went down)."""
+    from ..sim.run import SETTLE_TIME, Run, command_speed, forward_sign, ramped
+    from .proof_tilt import proof_model
+
+    model, copied = proof_model(sim, found, resting=False)
+    theta = math.radians(slope_deg)
+    model.opt.gravity[:] = [-GRAVITY * math.sin(theta), 0.0, -GRAVITY * math.cos(theta)]
+    for wheel in sim.drive.driven:
+        model.actuator_gainprm[wheel.actuator_id][0] *= SERVO_STIFFER
+        model.actuator_biasprm[wheel.actuator_id][2] *= SERVO_STIFFER
+    run = Run(copied)
+    omega = min(command_speed(sim), CRAWL / sim.drive.radius)
+    commands = [(w.actuator_id, forward_sign(run, w) * omega) for w in sim.drive.driven]
+    control = ramped(run, commands)
+    run.step(SETTLE_TIME + DRIVE - MEASURE, control)
+    start = float(run.position[0])
+    run.step(MEASURE, control)
+    expected = sim.drive.radius * omega * MEASURE
+    gone = float(run.position[0]) - start
+    return gone / expected if expected > 0 and math.isfinite(gone) else 0.0

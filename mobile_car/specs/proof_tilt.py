@@ -1,0 +1,187 @@
+"""The tilt proof: MuJoCo stands the robot on a floor that tilts slowly about a horizontal
+axis, so that the slope falls towards an azimuth, its drive wheels braked, until it slides
+or tips; the angle is compared with the computed one (docs/specs-proofs.md).
+
+Gravity turns instead of the floor (the same slope to the robot; the floor's contact
+frame stays put). The slope rises at FAST_RATE to WINDOW below the computed angle, then
+at SLOW_RATE, quasi-static, until the event or WINDOW past it. Events: it tips when a
+part it stood on has risen LIFT (the angle taken is where that rise began: ONSET_LIFT);
+it slides when a part it stands on that holds (no swivel castor) has moved SLIDE along
+the floor (the angle taken is
+where that part's speed last rose past SLIDE_SPEED: MuJoCo's soft friction creeps below
+it; a part, not the centre of mass, which barely moves when the robot starts to turn).
+Brakes are a damping on the driven wheels' joints that lets them creep BRAKE_CREEP
+(m/s at the rim under the whole weight). Each contact gets the friction the figure
+assumed, and the friction cone is elliptic (Coulomb's: MuJoCo's default pyramid holds
+less across its axes, and creeps 5 times as fast), with IMPRATIO; the contacts as stiff
+as sim's drop makes them (RESTING_SOLREF: at MuJoCo's default a wheel sinks ~3 mm under
+its load, and rises as much as the slope unloads it, long before it tips)."""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import math
+
+from .figures import Proof
+
+FAST_RATE = math.radians(10.0)   # rad/s
+SLOW_RATE = math.radians(2.0)    # rad/s
+WINDOW = math.radians(4.0)
+SETTLE = 0.5                     # s on the level floor first
+LIFT = 0.002                     # m
+ONSET_LIFT = 0.0005              # m
+SLIDE = 0.005                    # m
+SLIDE_SPEED = 0.005              # m/s
+BRAKE_CREEP = 1e-5               # m/s
+ # MuJoCo's friction constraint this much stiffer than the normal one: at 1 a box held by
+# its four braked wheels on μ 0.6 crept 8 mm/s at 30° of its 31° slide angle, at 10 0.9
+IMPRATIO = 10.0
+TOLERANCE = 1.0                  # deg
+GRAVITY = 9.81
+RUNS = {"forward": 0, "left": 90, "backward": 180, "right": 270}
+
+
+@dataclasses.dataclass
+class Tilt:
+    azimuth: float         # deg
+    event: str | None      # "tips", "slides", or None (neither by the run's end)
+    angle: float | None    # deg
+    seconds: float         # simulated
+
+
+def prove_tilt(sim, found, section, statics) -> list[Tilt]:
+    """Tilt the robot towards forward, left, backward, right and the azimuths of its
+    statics.stand and statics.slide figures; fill the figures' proofs. ``statics``: the
+    computed angles (rad) by azimuth (deg), ``.tip(a)`` and ``.slide(a)``."""
+    value = {f.key: f for f in section.figures}
+    stand_at = _azimuth(value["statics.stand"].source)
+    slide_at = _azimuth(value["statics.slide"].source)
+    azimuths = dict.fromkeys([*RUNS.values(), stand_at, slide_at])
+    runs = {}
+    for azimuth in azimuths:
+        tip, slide = statics.tip(azimuth), statics.slide(azimuth)
+        runs[azimuth] = tilt(sim, found, azimuth, math.degrees(min(tip, slide)))
+    for name, azimuth in RUNS.items():
+        figure = value[f"statics.tip.{name}"]
+        figure.proof = _tip_proof(runs[azimuth], figure.value,
+                                  math.degrees(statics.slide(azimuth)))
+    stand = value["statics.stand"]
+    run = runs[stand_at]
+    stand.proof = Proof(run.angle, run.angle is not None and
+                        abs(run.angle - stand.value) <= TOLERANCE, f"±{TOLERANCE:g}°",
+                        _said(run))
+    slide = value["statics.slide"]
+    slide.proof = _slide_proof(runs[slide_at], slide.value,
+                               math.degrees(statics.tip(slide_at)))
+    return list(runs.values())
+
+
+def _tip_proof(run: Tilt, tip: float, slide: float) -> Proof:
+    if run.event == "tips":
+        return Proof(run.angle, abs(run.angle - tip) <= TOLERANCE, f"±{TOLERANCE:g}°",
+                     _said(run))
+    if run.event == "slides":  # it never got to tip: right if the figures said so
+        agrees = slide < tip and abs(run.angle - slide) <= TOLERANCE
+        return Proof(None, agrees, f"±{TOLERANCE:g}°",
+                     f"{_said(run)}, before it could tip (slide computed {slide:.2f}°)")
+    return Proof(None, False, f"±{TOLERANCE:g}°", _said(run))
+
+
+def _slide_proof(run: Tilt, slide: float, tip: float) -> Proof:
+    if run.event == "slides":
+        return Proof(run.angle, abs(run.angle - slide) <= TOLERANCE, f"±{TOLERANCE:g}°",
+                     _said(run))
+    if run.event == "tips":
+        agrees = tip < slide and abs(run.angle - tip) <= TOLERANCE
+        return Proof(None, agrees, f"±{TOLERANCE:g}°",
+                     f"{_said(run)}, before it could slide (tip computed {tip:.2f}°)")
+    return Proof(None, False, f"±{TOLERANCE:g}°", _said(run))
+
+
+def _said(run: Tilt) -> str:
+    if run.event is None:
+        return (f"tilted towards azimuth {run.azimuth:g}°: neither slid nor tipped by "
+                f"{run.angle:.2f}°" if run.angle is not None else "the run went astray")
+    return (f"tilted towards azimuth {run.azimuth:g}° it {run.event} at {run.angle:.2f}° "
+            f"({run.seconds:.1f} s simulated)")
+
+
+def _azimuth(source: str) -> float:
+    """The azimuth a figure's source names ("... towards azimuth 90°")."""
+    text = source.split("towards azimuth ", 1)[1]
+    return float(text.split("°", 1)[0])
+
+
+def proof_model(sim, found, resting: bool = True):
+    """A copy of sim's model for a proof: each contact's friction as the figures assume
+    it (above the floor's priority), Coulomb's elliptic cone, and the SimModel over it;
+    ``resting``: the contacts as stiff as sim's drop makes them (a driving proof keeps
+    sim's driving contacts)."""
+    from ..sim.engine import mujoco
+    from ..sim.model import RESTING_SOLREF
+
+    mj = mujoco()
+    model = copy.copy(sim.model)
+    for contact in found.contacts:
+        for g in range(model.ngeom):
+            if model.geom_bodyid[g] == contact.body and g in sim.support_geoms:
+                model.geom_friction[g][0] = max(contact.mu, 1e-5)
+                model.geom_priority[g] = 2
+                if resting:
+                    model.geom_solref[g] = RESTING_SOLREF
+    model.opt.cone, model.opt.impratio = mj.mjtCone.mjCONE_ELLIPTIC, IMPRATIO
+    return model, dataclasses.replace(sim, model=model)
+
+
+def tilt(sim, found, azimuth: float, expected: float) -> Tilt:
+    """One tilt towards ``azimuth`` (deg), slowing near ``expected`` (deg)."""
+    import numpy as np
+
+    from ..sim.run import Run
+
+    model, copied = proof_model(sim, found)
+    weight = found.mass * GRAVITY
+    for wheel in sim.drive.driven:  # braked
+        dof = model.jnt_dofadr[wheel.joint_id]
+        model.dof_damping[dof] = weight * wheel.radius ** 2 / BRAKE_CREEP
+    run = Run(copied)
+    run.step(SETTLE)
+    bodies = sorted({c.body for c in found.contacts})
+    start_heights = run.data.xpos[bodies, 2].copy()
+    # What slides: the parts that hold (a castor wheel swivels round when pulled sideways,
+    # its wheel moving by its trail: MiR's 5 mm at 5°, its robot standing still)
+    holding = sorted({c.body for c in found.contacts if c.hold != "free"}) or bodies
+    start, last = None, run.data.xpos[holding, :2].copy()
+    a = math.radians(azimuth)
+    slow_from = max(0.0, math.radians(expected) - WINDOW)
+    end = min(math.radians(expected) + WINDOW, math.radians(89.0))
+    theta, elapsed = 0.0, 0.0
+    onset_lift = onset_slide = None
+    step = model.opt.timestep
+    while theta < end:
+        theta += (FAST_RATE if theta < slow_from else SLOW_RATE) * step
+        elapsed += step
+        model.opt.gravity[:] = [GRAVITY * math.sin(theta) * math.cos(a),
+                                GRAVITY * math.sin(theta) * math.sin(a),
+                                -GRAVITY * math.cos(theta)]
+        run.step(step)
+        lift = float((run.data.xpos[bodies, 2] - start_heights).max())
+        if lift > ONSET_LIFT:
+            onset_lift = theta if onset_lift is None else onset_lift
+        else:
+            onset_lift = None
+        if lift > LIFT:
+            return Tilt(azimuth, "tips", math.degrees(onset_lift), elapsed)
+        where = run.data.xpos[holding, :2]
+        speed = float(np.hypot(*(where - last).T).max()) / step
+        last = where.copy()
+        if speed <= SLIDE_SPEED:
+            onset_slide = None
+        elif onset_slide is None:  # (what crept before does not count)
+            onset_slide, start = theta, where.copy()
+        elif float(np.hypot(*(where - start).T).max()) > SLIDE:
+            return Tilt(azimuth, "slides", math.degrees(onset_slide), elapsed)
+        if not math.isfinite(lift):
+            return Tilt(azimuth, None, None, elapsed)
+    return Tilt(azimuth, None, math.degrees(theta), elapsed)

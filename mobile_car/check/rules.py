@@ -173,6 +173,10 @@ _TABLE = [
     Rule("W232", "gazebo-plugin-joint", "a `<gazebo>` plugin naming a joint Gazebo does not "
          "have, in `<joint>`, `<joint_name>`, `<left_joint>`, `<leftJoint>`, `<jointName>` "
          "and the like", "n/a"),
+    # What mcar specs finds (W520-W529: its sensors)
+    Rule("W520", "lidar-blocked", "the robot's own geometry (visual or collision) blocks a "
+         "lidar over more than 10 % of its samples (`mcar specs`; the message names the "
+         "sectors)", "n/a"),
     # Notes
     Rule("N401", "gazebo-lumped", "a link Gazebo lumps into its parent by a fixed joint: "
          "one body with the parent's mass, collisions and visuals", "n/a"),

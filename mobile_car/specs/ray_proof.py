@@ -1,0 +1,114 @@
+"""MuJoCo's proof of what the sensors see of the robot: the same URDF made into a MuJoCo
+model by sim's own code (:func:`mobile_car.sim.model.prepare_urdf`: meshes MuJoCo reads,
+in metres), with every ``<visual>`` made a geom beside the collisions (sim's model drops
+them, and a visual-only standoff still stops a laser), the root welded where it is, the
+joints at rest. MuJoCo's own kinematics place the sensor; ``mj_multiRay`` casts its rays,
+its housing (its own link's body, the bodies with a geom that holds its origin) left out as
+:mod:`.self_view` leaves it out.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from lxml import etree
+
+from ..errors import McarError
+from ..sim.engine import mujoco
+from ..sim.model import as_urdfdom_reads, prepare_urdf
+from .self_view import sensor_offset
+
+# Every moving body gets at least this much mass: the proof only poses the robot, and
+# MuJoCo refuses to compile a massless moving link (a frame on a continuous joint).
+BOUND_MASS = 1e-6
+BOUND_INERTIA = 1e-9
+# The geom group a sensor's housing is moved to while its rays are cast (the rays skip it).
+SKIPPED_GROUP = 5
+
+
+class ProofUnavailable(Exception):
+    """MuJoCo could not make the proof's model (said in a note; the figures stand)."""
+
+
+class RayProof:
+    """The robot in MuJoCo, geometry visual and collision, ready to cast rays."""
+
+    def __init__(self, loaded, start: dict[str, float]):
+        mj = self.mj = mujoco()
+        parser = etree.XMLParser(resolve_entities=False, no_network=True)
+        root = etree.fromstring(loaded.urdf, parser)
+        as_urdfdom_reads(root)
+        for link in root.iterchildren("link"):
+            for visual in list(link.iterchildren("visual")):
+                visual.tag = "collision"
+                for material in visual.findall("material"):
+                    visual.remove(material)
+        try:
+            self.notes = prepare_urdf(root, loaded.base, loaded.search)
+            spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
+            spec.compiler.boundmass = BOUND_MASS
+            spec.compiler.boundinertia = BOUND_INERTIA
+            self.model = spec.compile()
+        except (ValueError, McarError) as error:
+            text = str(getattr(error, "message", error)).strip().splitlines()
+            raise ProofUnavailable(text[0] if text else type(error).__name__) from None
+        self.data = mj.MjData(self.model)
+        for name, position in start.items():
+            try:
+                joint = self.model.joint(name)
+            except KeyError:
+                continue
+            self.data.qpos[self.model.jnt_qposadr[joint.id]] = position
+        mj.mj_kinematics(self.model, self.data)
+
+    def frame(self, sensor) -> np.ndarray:
+        """The sensor's frame (4x4, root frame) as MuJoCo's kinematics place its link."""
+        body = self._body(sensor.link)
+        link = np.eye(4)
+        if body >= 0:
+            link[:3, :3] = self.data.xmat[body].reshape(3, 3)
+            link[:3, 3] = self.data.xpos[body]
+        return link @ sensor_offset(sensor)
+
+    def blocked(self, sensor, origin: np.ndarray, directions: np.ndarray) -> np.ndarray:
+        """(N,) bool: MuJoCo's ray meets a geom within the sensor's range max, the
+        sensor's housing aside (its link's body, and every body with a geom that holds its
+        origin, put for the cast in a group the rays skip)."""
+        model, count = self.model, len(directions)
+        origin = np.asarray(origin, dtype=float)
+        bodies = {int(model.geom_bodyid[g]) for g in range(model.ngeom)
+                  if self._holds(g, origin)}
+        housing = [g for g in range(model.ngeom) if model.geom_bodyid[g] in bodies]
+        kept = model.geom_group[housing].copy()
+        model.geom_group[housing] = SKIPPED_GROUP
+        groups = np.ones(6, dtype=np.uint8)
+        groups[SKIPPED_GROUP] = 0
+        geoms = np.full(count, -1, dtype=np.int32)
+        distance = np.full(count, -1.0)
+        try:
+            self.mj.mj_multiRay(model, self.data, origin,
+                                np.ascontiguousarray(directions, dtype=float).ravel(), groups,
+                                1, self._body(sensor.link), geoms, distance, None, count,
+                                float(sensor.range_max))
+        finally:
+            model.geom_group[housing] = kept
+        return (geoms >= 0) & (distance >= 0) & (distance <= sensor.range_max)
+
+    def _holds(self, geom: int, point: np.ndarray) -> bool:
+        """The point lies in the geom (a primitive exactly, a mesh within its box)."""
+        mj, model = self.mj, self.model
+        local = self.data.geom_xmat[geom].reshape(3, 3).T @ (point - self.data.geom_xpos[geom])
+        size, kind = model.geom_size[geom], mj.mjtGeom(int(model.geom_type[geom]))
+        if kind == mj.mjtGeom.mjGEOM_BOX:
+            return bool((np.abs(local) <= size).all())
+        if kind == mj.mjtGeom.mjGEOM_SPHERE:
+            return bool(local @ local <= size[0] ** 2)
+        if kind == mj.mjtGeom.mjGEOM_CYLINDER:
+            return bool(local[:2] @ local[:2] <= size[0] ** 2 and abs(local[2]) <= size[1])
+        centre, half = model.geom_aabb[geom][:3], model.geom_aabb[geom][3:]
+        return bool((np.abs(local - centre) <= half).all())
+
+    def _body(self, link: str) -> int:
+        try:
+            return int(self.model.body(link).id)
+        except KeyError:
+            return -1

@@ -1,0 +1,203 @@
+"""mcar specs' sensors section on robots written here: a lidar and a post of known size at a
+known place blocks the sector its edges subtend (atan), whether the post collides or is
+only drawn; gz's <lidar> and Gazebo classic's <ray> are read with their samples, angles,
+range and pose; a link named like a lidar takes the stated defaults; a camera facing a
+wall sees it over the share of its image the closed form gives; MuJoCo's own rays agree;
+W520 names the sectors of a lidar blocked over 10 %."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+import yaml
+from specs.sensor_robots import (
+    LIDAR_Z,
+    box,
+    camera_sensor,
+    lidar_link,
+    link,
+    post,
+    ray_sensor,
+    robot,
+    sensors_of,
+    square,
+    subtended,
+    values,
+)
+
+from mobile_car.specs.sensors import laser_filters_fragment
+
+STEP = 1.0  # degrees between the samples of ray_sensor's default scan
+POST = ((0.20, 0.10), 0.02)  # centre (x, y), side: ahead and left of the lidar
+
+
+def _one_sector(section, key="sensors.scanner.blocked"):
+    sectors = values(section)[key]
+    assert len(sectors) == 1, sectors
+    return sectors[0]
+
+
+def test_a_post_blocks_the_sector_its_edges_subtend(tmp_path):
+    centre, side = POST
+    _, section = sensors_of(tmp_path / "post.urdf",
+                            robot(lidar_link(), post("post", centre, side),
+                                  ray_sensor("lidar_link")))
+    low, high = subtended(square(centre, side))
+    start, end = _one_sector(section)
+    # Each sample stands for half a step either side: the edges within half a step.
+    assert abs(start - low) <= STEP / 2 and abs(end - high) <= STEP / 2, (start, end, low, high)
+    found = values(section)
+    assert found["sensors.scanner.pose"] == [0.0, 0.0, LIDAR_Z, 0.0]
+    assert found["sensors.scanner.range"] == [0.1, 10.0]
+    assert found["sensors.scanner.fov"] == [-180.0, 179.0]
+    blocked_samples = round(end - start)
+    assert found["sensors.scanner.blocked_share"] == pytest.approx(blocked_samples / 360,
+                                                                 abs=1e-4)
+    # MuJoCo casts the same rays on the same geometry: the same sector, within a sample.
+    proof = section.figure("sensors.scanner.blocked").proof
+    assert proof.agrees, proof.detail
+    ((mj_start, mj_end),) = proof.measured
+    assert abs(mj_start - start) <= STEP and abs(mj_end - end) <= STEP
+    assert section.diagnostics == []
+
+
+def test_a_post_that_is_only_drawn_still_blocks_the_laser(tmp_path):
+    centre, side = POST
+    drawn = post("post", centre, side, collision=False)
+    _, section = sensors_of(tmp_path / "drawn.urdf",
+                            robot(lidar_link(), drawn, ray_sensor("lidar_link")))
+    low, high = subtended(square(centre, side))
+    start, end = _one_sector(section)
+    assert abs(start - low) <= STEP / 2 and abs(end - high) <= STEP / 2
+    proof = section.figure("sensors.scanner.blocked").proof
+    assert proof.agrees and proof.measured == [[start, end]], proof.detail
+    # Control: without the post nothing blocks the scan.
+    _, clear = sensors_of(tmp_path / "clear.urdf", robot(lidar_link(), ray_sensor("lidar_link")))
+    assert values(clear)["sensors.scanner.blocked"] == []
+
+
+def test_a_gz_lidar_block_is_read_with_its_samples_angles_range_and_pose(tmp_path):
+    centre, side = POST
+    # 181 samples from -90 to 90 degrees, the sensor turned 90 degrees left on its link.
+    sensor = ray_sensor("lidar_link", samples=181, min_angle=-math.pi / 2,
+                        max_angle=math.pi / 2, near=0.2, far=8.0, kind="gpu_lidar",
+                        block="lidar", pose=f"0 0 0.01 0 0 {math.pi / 2!r}")
+    _, section = sensors_of(tmp_path / "gz.urdf",
+                            robot(lidar_link(), post("post", centre, side), sensor))
+    found = values(section)
+    assert found["sensors.scanner.pose"] == pytest.approx([0.0, 0.0, LIDAR_Z + 0.01, 90.0])
+    assert found["sensors.scanner.range"] == [0.2, 8.0]
+    assert found["sensors.scanner.fov"] == [-90.0, 90.0]
+    assert section.figure("sensors.scanner.fov").source == \
+        f"<sensor type=\"gpu_lidar\"> on link lidar_link ({tmp_path / 'gz.urdf'}:2)"
+    # In the sensor's frame the post lies 90 degrees to the right of where the body sees it.
+    low, high = subtended(square(centre, side))
+    start, end = _one_sector(section)
+    assert abs(start - (low - 90)) <= STEP / 2 and abs(end - (high - 90)) <= STEP / 2
+    assert section.figure("sensors.scanner.blocked").proof.agrees
+
+
+def test_a_link_named_like_a_lidar_takes_the_stated_defaults(tmp_path):
+    centre, side = POST
+    _, section = sensors_of(tmp_path / "named.urdf",
+                            robot(lidar_link("hokuyo_link"), post("post", centre, side)))
+    found = values(section)
+    assert found["sensors.hokuyo_link.range"] == [0.12, 12.0]
+    assert found["sensors.hokuyo_link.fov"] == [-180.0, 179.0]
+    source = section.figure("sensors.hokuyo_link.blocked_share").source
+    assert source.startswith("360 rays cast")
+    assert "named like a lidar, no <sensor>: default 360 samples from -180° to 179°, " \
+           "range 0.12..12 m" in section.figure("sensors.hokuyo_link.range").source
+    low, high = subtended(square(centre, side))
+    start, end = _one_sector(section, "sensors.hokuyo_link.blocked")
+    assert abs(start - low) <= STEP / 2 and abs(end - high) <= STEP / 2
+
+
+def test_a_camera_facing_a_wall_sees_it_over_the_share_the_closed_form_gives(tmp_path):
+    # The camera at 0.3 m looks along x; a wall 0.5 m ahead covers y >= 0.05 (its left),
+    # from the floor to far above: the columns left of atan(0.05 / 0.5) are covered.
+    hfov = math.radians(80)
+    wall = link("wall", "base_link", (0.55, 0.05 + 1.0, 0.5), box((0.1, 2.0, 4.0)),
+                mass=500)
+    camera = link("camera_link", "base_link", (0, 0, 0.3), box((0.02, 0.05, 0.02)))
+    _, section = sensors_of(tmp_path / "camera.urdf",
+                            robot(camera, wall, camera_sensor("camera_link", hfov)))
+    expected = (1 - (0.05 / 0.5) / math.tan(hfov / 2)) / 2
+    covered = values(section)["sensors.eye.covered"]
+    # 64 columns: within one column of the closed form.
+    assert covered == pytest.approx(expected, abs=1 / 64)
+    assert values(section)["sensors.eye.fov"] == [-40.0, 40.0]
+    figure = section.figure("sensors.eye.covered")
+    assert "64x48 grid" in figure.source
+    assert figure.proof.agrees and figure.proof.measured == pytest.approx(covered, abs=0.02)
+
+
+def test_a_lidar_blocked_over_ten_percent_is_w520_with_its_sectors(tmp_path):
+    # A 0.2 m wide plate 0.1 m behind the lidar hides 90 degrees of the scan.
+    plate = link("plate", "base_link", (-0.15, 0, 0.35), box((0.02, 0.2, 0.3)))
+    text = robot(lidar_link(), plate, ray_sensor("lidar_link"))
+    checked, section = sensors_of(tmp_path / "hidden.urdf", text)
+    (diagnostic,) = section.diagnostics
+    sectors = values(section)["sensors.scanner.blocked"]
+    assert diagnostic.rule == "W520"
+    assert diagnostic.file == str(checked.file) == str(tmp_path / "hidden.urdf")
+    assert diagnostic.line == 2
+    share = values(section)["sensors.scanner.blocked_share"]
+    assert diagnostic.text().startswith(f"{tmp_path / 'hidden.urdf'}:2: warning: ")
+    assert "[W520]" in diagnostic.text()
+    shown = ", ".join(f"{a:g}..{b:g}°" for a, b in sectors)
+    assert diagnostic.message == (f"lidar scanner: the robot blocks {share:.0%} of its "
+                                  f"samples, over 10% of its field of view: sectors {shown}")
+    # Behind the lidar: from 180 - atan(0.1/0.14) around through the scan's ends.
+    edge = 180 - math.degrees(math.atan2(0.1, 0.14))
+    assert sectors[0][0] == -180.5 and sectors[-1][1] == 179.5
+    assert abs(sectors[0][1] + edge) <= STEP / 2 and abs(sectors[-1][0] - edge) <= STEP / 2
+    # Control: a threshold of 50 % lets the same robot pass.
+    _, lenient = sensors_of(tmp_path / "hidden.urdf", None, {"sensor_blocked_share": 0.5})
+    assert lenient.diagnostics == []
+
+
+def test_the_laser_filters_fragment_removes_exactly_the_blocked_samples(tmp_path):
+    centre, side = POST
+    plate = link("plate", "base_link", (-0.15, 0, 0.35), box((0.02, 0.2, 0.3)))
+    _, section = sensors_of(tmp_path / "two.urdf",
+                            robot(lidar_link(), post("post", centre, side), plate,
+                                  ray_sensor("lidar_link")))
+    sectors = values(section)["sensors.scanner.blocked"]
+    assert len(sectors) == 3  # the post; behind, on either end of the scan
+    fragment = laser_filters_fragment([section])
+    read = yaml.safe_load(yaml.safe_dump(fragment))
+    assert read == fragment
+    chain = read["scan_to_scan_filter_chain"]["ros__parameters"]
+    assert list(chain) == ["filter1", "filter2", "filter3"]
+    for (low, high), entry in zip(sectors, chain.values(), strict=True):
+        assert entry["type"] == "laser_filters/LaserScanAngularBoundsFilterInPlace"
+        assert entry["params"] == {"lower_angle": round(math.radians(low), 6),
+                                   "upper_angle": round(math.radians(high), 6)}
+    # The filter removes a reading strictly between its bounds (laser_filters'
+    # angular_bounds_filter_in_place): applied to the scan, exactly the blocked samples go.
+    angle_min, increment = math.radians(-180), math.radians(1)
+    removed = {i for i in range(360) for entry in chain.values()
+               if entry["params"]["lower_angle"] < angle_min + i * increment
+               < entry["params"]["upper_angle"]}
+    blocked = {i for i in range(360) if any(low < -180 + i < high for low, high in sectors)}
+    assert removed == blocked and len(blocked) == round(
+        values(section)["sensors.scanner.blocked_share"] * 360)
+    ros1 = yaml.safe_load(yaml.safe_dump(laser_filters_fragment([section], ros=1)))
+    assert ros1 == {"scan_filter_chain": list(chain.values())}
+
+
+def test_no_proof_when_asked_for_none_and_nothing_blocked_gives_no_filter(tmp_path):
+    _, section = sensors_of(tmp_path / "bare.urdf", robot(lidar_link(), ray_sensor("lidar_link")),
+                            {"proof": False})
+    assert all(figure.proof is None for figure in section.figures)
+    assert values(section)["sensors.scanner.blocked"] == []
+    assert laser_filters_fragment([section]) == {}
+
+
+def test_a_robot_without_sensors_says_so(tmp_path):
+    _, section = sensors_of(tmp_path / "blind.urdf", robot())
+    assert section.figures == []
+    assert section.notes == ["no lidar or camera: none declared by a <gazebo><sensor>, no "
+                             "link named like one"]

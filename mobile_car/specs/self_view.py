@@ -22,8 +22,10 @@ import numpy as np
 
 from ..check.colours import without_unusable_colours
 
-# The camera's rays: a coarse grid through pixel centres, its aspect the image's.
+# The camera's rays: a coarse grid through pixel centres, its aspect the image's, its
+# rows bounded (the image's size comes from the description: 1 x 10^9 is a number too).
 CAMERA_COLUMNS = 64
+CAMERA_MAX_ROWS = 4 * CAMERA_COLUMNS
 
 
 @dataclass
@@ -195,7 +197,7 @@ def lidar_rays(sensor, frame: np.ndarray) -> np.ndarray:
 def camera_grid(sensor) -> tuple[int, int]:
     """(columns, rows) of the coarse grid a camera's image is sampled on."""
     width, height = sensor.image
-    return CAMERA_COLUMNS, max(1, round(CAMERA_COLUMNS * height / width))
+    return CAMERA_COLUMNS, min(CAMERA_MAX_ROWS, max(1, round(CAMERA_COLUMNS * height / width)))
 
 
 def camera_rays(sensor, frame: np.ndarray) -> np.ndarray:

@@ -61,6 +61,7 @@ class Sensor:
     range_max: float = DEFAULT_RANGE[1]
     hfov: float = DEFAULT_HFOV
     image: tuple = DEFAULT_IMAGE
+    layers: int = 1  # a 3D lidar's <vertical><samples>: its horizontal plane is cast
     defaults: list[str] = field(default_factory=list)  # what the description left out
 
     def azimuths(self) -> list[float]:
@@ -85,13 +86,14 @@ def find_sensors(robot, where) -> tuple[list[Sensor], list[str]]:
     """(the lidars and cameras of ``robot`` (check's Robot), notes on those left out);
     ``where``: element -> (file, line, note), check's source map."""
     links = {link.name for link in robot.links}
-    found, notes = [], []
+    found, notes, declared = [], [], set()
     for gazebo in robot.element.iterchildren("gazebo"):
         link = gazebo.get("reference")
         for element in gazebo.iterchildren("sensor"):
             kind = _kind(element.get("type"))
             if kind is None:
                 continue
+            declared.add(kind)
             file, line, _ = where(element)
             name = element.get("name") or link or "sensor"
             at = f"{file}:{line}" if line else file
@@ -107,8 +109,10 @@ def find_sensors(robot, where) -> tuple[list[Sensor], list[str]]:
             sensor.file, sensor.line, sensor.element = file, line, element
             sensor.source = f"<sensor type=\"{element.get('type')}\"> on link {link} ({at})"
             found.append(sensor)
+    # Names are a guess where the description declares no sensor of the kind: one it
+    # declares, even one left out, says where its sensors are.
     for kind, words in (("lidar", LIDAR_WORDS), ("camera", CAMERA_WORDS)):
-        if not any(s.kind == kind for s in found):
+        if kind not in declared:
             found += _named(robot, kind, words, where)
     return _unique(found), notes
 
@@ -146,6 +150,8 @@ def _declared(element, kind: str, name: str, link: str) -> Sensor:
                 sensor.defaults.append(f"range {tag} {getattr(sensor, attribute):g} m")
             else:
                 setattr(sensor, attribute, value)
+        layers = _number(_path(block, "scan", "vertical"), "samples")
+        sensor.layers = round(layers) if layers and 1 <= layers <= MAX_SAMPLES else 1
         if sensor.max_angle < sensor.min_angle:
             raise SensorProblem("max_angle below min_angle")
         if not 0 <= sensor.range_min < sensor.range_max:

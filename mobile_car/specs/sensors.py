@@ -31,6 +31,9 @@ DEFAULT_BLOCKED_SHARE = 0.10
 COVERED_TOLERANCE = 0.02
 FILTER_TYPE = "laser_filters/LaserScanAngularBoundsFilterInPlace"
 DIGITS = 4  # degrees and shares are given to this many decimals
+# Rays cast for one robot, every sensor's together (twice: trimesh, then MuJoCo): the
+# sensors and their samples come from the description, so their sum is bounded too.
+MAX_RAYS = 200_000
 
 
 def section(context) -> Section:
@@ -46,8 +49,9 @@ def sensors_section(checked, sim, options: dict | None = None) -> Section:
     result = Section("sensors")
     sensors, result.notes = find_sensors(checked.robot, checked.where)
     if not sensors:
-        result.notes.append("no lidar or camera: none declared by a <gazebo><sensor>, no "
-                            "link named like one")
+        if not result.notes:  # (else they say which sensors were left out, and why)
+            result.notes.append("no lidar or camera: none declared by a <gazebo><sensor>, "
+                                "no link named like one")
         return result
     from .self_view import robot_surface
 
@@ -61,10 +65,19 @@ def sensors_section(checked, sim, options: dict | None = None) -> Section:
     result.notes += surface.notes
     proof = _proof(checked, start, options, result.notes)
     threshold = float(options.get("sensor_blocked_share", DEFAULT_BLOCKED_SHARE))
+    from .self_view import camera_grid
+
+    rays = 0
     for sensor in sensors:
         if sensor.link not in surface.poses:
             result.notes.append(f"sensor {sensor.name}: link {sensor.link} is not placed")
             continue
+        count = sensor.samples if sensor.kind == "lidar" else math.prod(camera_grid(sensor))
+        if rays + count > MAX_RAYS:
+            result.notes.append(f"sensor {sensor.name}: left out, its {count:,} rays past "
+                                f"the {MAX_RAYS:,} cast for one robot")
+            continue
+        rays += count
         if sensor.kind == "lidar":
             result.figures += _lidar(sensor, surface, proof, threshold, checked, result)
         else:
@@ -107,6 +120,8 @@ def _lidar(sensor, surface, proof, threshold, checked, result) -> list[Figure]:
     method = (f"{sensor.samples} rays cast in the scan plane against the robot's visual and "
               f"collision geometry ({_housing(surface, sensor, frame)})")
     seen = "a part nearer than range min blocks too: the laser cannot see through it"
+    if sensor.layers > 1:
+        seen += f"; a 3D lidar of {sensor.layers} layers: its horizontal plane only"
     figures = [
         _pose_figure(sensor, frame),
         Figure(f"{key}.range", f"{sensor.name} range", [sensor.range_min, sensor.range_max],

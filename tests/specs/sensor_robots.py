@@ -63,15 +63,15 @@ def ray_sensor(link_name: str, samples=360, min_angle=-math.pi,
     pose = f"<pose>{pose}</pose>" if pose else ""
     return (f'<gazebo reference="{link_name}"><sensor name="scanner" type="{kind}">{pose}'
             f"<{block}><scan><horizontal><samples>{samples}</samples>"
-            f"<resolution>1</resolution><min_angle>{min_angle!r}</min_angle>"
-            f"<max_angle>{max_angle!r}</max_angle></horizontal></scan>"
+            f"<resolution>1</resolution><min_angle>{min_angle}</min_angle>"
+            f"<max_angle>{max_angle}</max_angle></horizontal></scan>"
             f"<range><min>{near}</min><max>{far}</max></range></{block}>"
             "</sensor></gazebo>")
 
 
 def camera_sensor(link_name: str, hfov: float, width=640, height=480, far=20.0) -> str:
     return (f'<gazebo reference="{link_name}"><sensor name="eye" type="camera">'
-            f"<camera><horizontal_fov>{hfov!r}</horizontal_fov><image><width>{width}</width>"
+            f"<camera><horizontal_fov>{hfov}</horizontal_fov><image><width>{width}</width>"
             f"<height>{height}</height></image><clip><near>0.02</near><far>{far}</far></clip>"
             "</camera></sensor></gazebo>")
 

@@ -9,6 +9,8 @@ its housing (its own link's body, the bodies with a geom that holds its origin) 
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 from lxml import etree
 
@@ -45,12 +47,11 @@ class RayProof:
         try:
             self.notes = prepare_urdf(root, loaded.base, loaded.search)
             spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
-            spec.compiler.boundmass = BOUND_MASS
-            spec.compiler.boundinertia = BOUND_INERTIA
-            self.model = spec.compile()
         except (ValueError, McarError) as error:
-            text = str(getattr(error, "message", error)).strip().splitlines()
-            raise ProofUnavailable(text[0] if text else type(error).__name__) from None
+            raise ProofUnavailable(_first_line(error)) from None
+        spec.compiler.boundmass = BOUND_MASS
+        spec.compiler.boundinertia = BOUND_INERTIA
+        self.model = self._compile(spec)
         self.data = mj.MjData(self.model)
         for name, position in start.items():
             try:
@@ -59,6 +60,26 @@ class RayProof:
                 continue
             self.data.qpos[self.model.jnt_qposadr[joint.id]] = position
         mj.mj_kinematics(self.model, self.data)
+
+    def _compile(self, spec):
+        """The compiled model; a mesh MuJoCo refuses (a flat decal: "coplanar vertices,
+        cannot compute convex hull") is left out of the proof with a note, and the rest
+        compiled again: the proof then differs where that mesh blocks, and says why."""
+        for _ in range(len(spec.meshes) + 1):
+            try:
+                return spec.compile()
+            except ValueError as error:
+                found = re.search(r"mesh '([^']*)'", str(error))
+                mesh = spec.mesh(found.group(1)) if found else None
+                if mesh is None:
+                    raise ProofUnavailable(_first_line(error)) from None
+                for geom in list(spec.geoms):
+                    if geom.meshname == mesh.name:
+                        self.notes.append(f"link {geom.parent.name}: mesh {mesh.file} left "
+                                          f"out of the proof: {_first_line(error)}")
+                        spec.delete(geom)
+                spec.delete(mesh)
+        raise ProofUnavailable("MuJoCo refuses every mesh")
 
     def frame(self, sensor) -> np.ndarray:
         """The sensor's frame (4x4, root frame) as MuJoCo's kinematics place its link."""
@@ -112,3 +133,8 @@ class RayProof:
             return int(self.model.body(link).id)
         except KeyError:
             return -1
+
+
+def _first_line(error) -> str:
+    text = str(getattr(error, "message", error)).strip().splitlines()
+    return text[0].removeprefix("Error: ") if text else type(error).__name__

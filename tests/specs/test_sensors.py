@@ -201,3 +201,55 @@ def test_a_robot_without_sensors_says_so(tmp_path):
     assert section.figures == []
     assert section.notes == ["no lidar or camera: none declared by a <gazebo><sensor>, no "
                              "link named like one"]
+
+
+def _mesh_link(tmp_path, name: str, mesh) -> str:
+    """A link holding ``mesh`` (a trimesh, written as STL beside the robot) as a visual
+    0.2 m ahead of the lidar, centred in its scan plane."""
+    mesh.export(tmp_path / f"{name}.stl")
+    visual = (f'<visual><origin xyz="0.2 0 {LIDAR_Z}"/><geometry>'
+              f'<mesh filename="{name}.stl"/></geometry></visual>')
+    return link(name, "base_link", (0, 0, 0), visual)
+
+
+def test_a_mesh_of_two_posts_blocks_two_sectors_and_the_gap_between_stays_open(tmp_path):
+    import trimesh
+
+    posts = []
+    for y in (0.05, -0.05):
+        post_mesh = trimesh.creation.box((0.02, 0.02, 0.2))
+        post_mesh.apply_translation((0, y, 0))
+        posts.append(post_mesh)
+    two = _mesh_link(tmp_path, "two", trimesh.util.concatenate(posts))
+    _, section = sensors_of(tmp_path / "two.urdf",
+                            robot(lidar_link(), two, ray_sensor("lidar_link")))
+    (right, left) = values(section)["sensors.scanner.blocked"]
+    low, high = subtended(square((0.2, 0.05), 0.02))
+    assert abs(left[0] - low) <= STEP / 2 and abs(left[1] - high) <= STEP / 2
+    assert right == [-left[1], -left[0]]
+    # MuJoCo casts on the mesh's triangles, not its convex hull: the gap is open there too.
+    proof = section.figure("sensors.scanner.blocked").proof
+    assert proof.agrees and proof.measured == [right, left], proof.detail
+
+
+def test_a_flat_mesh_mujoco_refuses_is_left_out_of_the_proof_which_says_so(tmp_path):
+    import trimesh
+
+    flat = trimesh.Trimesh(vertices=[[0, -0.05, -0.05], [0, 0.05, -0.05], [0, -0.05, 0.05],
+                                     [0, 0.05, 0.05]], faces=[[0, 1, 2], [1, 3, 2]])
+    decal = _mesh_link(tmp_path, "decal", flat)
+    _, section = sensors_of(tmp_path / "decal.urdf",
+                            robot(lidar_link(), decal, ray_sensor("lidar_link")))
+    # trimesh sees the decal, +-atan(0.05 / 0.2) ahead...
+    ((start, end),) = values(section)["sensors.scanner.blocked"]
+    edge = math.degrees(math.atan2(0.05, 0.2))
+    assert abs(start + edge) <= STEP / 2 and abs(end - edge) <= STEP / 2
+    # ... MuJoCo cannot make a hull of it: the proof leaves it out, disagrees, and says why.
+    proof = section.figure("sensors.scanner.blocked").proof
+    assert not proof.agrees and proof.measured == []
+    assert proof.detail == "MuJoCo mj_multiRay from the same origin and azimuths: 29 of 360 " \
+                           "samples differ"
+    assert section.notes == [f"sensors' proof: link decal: mesh {tmp_path / 'decal.stl'} left "
+                             "out of the proof: mesh 'decal' has coplanar vertices, cannot "
+                             "compute convex hull. Consider using a primitive geom type "
+                             "(plane or thin box) instead"]

@@ -108,6 +108,8 @@ def find_sensors(robot, where) -> tuple[list[Sensor], list[str]]:
                 continue
             sensor.file, sensor.line, sensor.element = file, line, element
             sensor.source = f"<sensor type=\"{element.get('type')}\"> on link {link} ({at})"
+            if sensor.defaults:
+                sensor.source += f"; not given, taken as {', '.join(sensor.defaults)}"
             found.append(sensor)
     # Names are a guess where the description declares no sensor of the kind: one it
     # declares, even one left out, says where its sensors are.
@@ -208,7 +210,6 @@ def _named(robot, kind: str, words, where) -> list[Sensor]:
                              f"default horizontal_fov {DEFAULT_HFOV} rad, image "
                              "{}x{}, looking along the link's x".format(*DEFAULT_IMAGE))
             sensor.range_min, sensor.range_max = 0.0, DEFAULT_FAR
-        sensor.defaults.append("all (known by its link's name)")
         found.append(sensor)
     return found
 

@@ -53,7 +53,7 @@ def sensors_section(checked, sim, options: dict | None = None) -> Section:
             result.notes.append("no lidar or camera: none declared by a <gazebo><sensor>, "
                                 "no link named like one")
         return result
-    from .self_view import robot_surface
+    from .self_view import camera_grid, robot_surface
 
     start = dict(getattr(sim, "start", None) or {})
     try:
@@ -65,8 +65,6 @@ def sensors_section(checked, sim, options: dict | None = None) -> Section:
     result.notes += surface.notes
     proof = _proof(checked, start, options, result.notes)
     threshold = float(options.get("sensor_blocked_share", DEFAULT_BLOCKED_SHARE))
-    from .self_view import camera_grid
-
     rays = 0
     for sensor in sensors:
         if sensor.link not in surface.poses:

@@ -253,3 +253,29 @@ def test_a_flat_mesh_mujoco_refuses_is_left_out_of_the_proof_which_says_so(tmp_p
                              "out of the proof: mesh 'decal' has coplanar vertices, cannot "
                              "compute convex hull. Consider using a primitive geom type "
                              "(plane or thin box) instead"]
+
+
+def test_what_a_declared_lidar_leaves_out_is_taken_by_default_and_said(tmp_path):
+    sensor = ('<gazebo reference="lidar_link"><sensor name="scanner" type="gpu_lidar"><lidar>'
+              "<scan><horizontal><samples>90</samples></horizontal></scan></lidar></sensor>"
+              "</gazebo>")
+    path = tmp_path / "sparse.urdf"
+    _, section = sensors_of(path, robot(lidar_link(), sensor))
+    assert values(section)["sensors.scanner.range"] == [0.12, 12.0]
+    assert values(section)["sensors.scanner.fov"] == [-180.0, 179.0]
+    assert section.figure("sensors.scanner.range").source == (
+        f'<sensor type="gpu_lidar"> on link lidar_link ({path}:2); not given, taken as '
+        "min_angle -180°, max_angle 179°, range min 0.12 m, range max 12 m")
+    assert section.figure("sensors.scanner.blocked").source.startswith("90 rays cast")
+
+
+def test_without_embree_trimesh_own_ray_test_finds_the_same_sector(tmp_path, monkeypatch):
+    import trimesh
+
+    centre, side = POST
+    text = robot(lidar_link(), post("post", centre, side), ray_sensor("lidar_link"))
+    _, with_embree = sensors_of(tmp_path / "post.urdf", text, {"proof": False})
+    monkeypatch.setattr(trimesh.ray, "has_embree", False)
+    _, without = sensors_of(tmp_path / "post.urdf", None, {"proof": False})
+    assert values(without)["sensors.scanner.blocked"] == \
+        values(with_embree)["sensors.scanner.blocked"] != []

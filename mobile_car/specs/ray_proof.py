@@ -3,8 +3,7 @@ model by sim's own code (:func:`mobile_car.sim.model.prepare_urdf`: meshes MuJoC
 in metres), with every ``<visual>`` made a geom beside the collisions (sim's model drops
 them, and a visual-only standoff still stops a laser), the root welded where it is, the
 joints at rest. MuJoCo's own kinematics place the sensor; ``mj_multiRay`` casts its rays,
-its housing (its own link's body, the bodies with a geom that holds its origin) left out as
-:mod:`.self_view` leaves it out.
+its housing (the links :mod:`.self_view` finds) left out.
 """
 
 from __future__ import annotations
@@ -90,43 +89,37 @@ class RayProof:
             link[:3, 3] = self.data.xpos[body]
         return link @ sensor_offset(sensor)
 
-    def blocked(self, sensor, origin: np.ndarray, directions: np.ndarray) -> np.ndarray:
-        """(N,) bool: MuJoCo's ray meets a geom within the sensor's range max, the
-        sensor's housing aside (its link's body, and every body with a geom that holds its
-        origin, put for the cast in a group the rays skip)."""
+    def blocked(self, sensor, origin: np.ndarray, directions: np.ndarray,
+                housing: list[str]) -> np.ndarray:
+        """(N,) bool: MuJoCo's ray from range min meets a geom within the range, the
+        sensor's ``housing`` aside (:meth:`.self_view.RobotSurface.housing`: the links'
+        geoms put, for the cast, in a group the rays skip)."""
         model, count = self.model, len(directions)
-        origin = np.asarray(origin, dtype=float)
-        bodies = {int(model.geom_bodyid[g]) for g in range(model.ngeom)
-                  if self._holds(g, origin)}
-        housing = [g for g in range(model.ngeom) if model.geom_bodyid[g] in bodies]
-        kept = model.geom_group[housing].copy()
-        model.geom_group[housing] = SKIPPED_GROUP
+        bodies = {self._body(link) for link in housing} - {-1}
+        skipped = [g for g in range(model.ngeom) if model.geom_bodyid[g] in bodies]
+        kept = model.geom_group[skipped].copy()
+        model.geom_group[skipped] = SKIPPED_GROUP
         groups = np.ones(6, dtype=np.uint8)
         groups[SKIPPED_GROUP] = 0
         geoms = np.full(count, -1, dtype=np.int32)
         distance = np.full(count, -1.0)
+        reach = float(sensor.range_max - sensor.range_min)
+        directions = np.ascontiguousarray(directions, dtype=float)
         try:
-            self.mj.mj_multiRay(model, self.data, origin,
-                                np.ascontiguousarray(directions, dtype=float).ravel(), groups,
-                                1, self._body(sensor.link), geoms, distance, None, count,
-                                float(sensor.range_max))
+            if sensor.range_min == 0:
+                self.mj.mj_multiRay(model, self.data, np.asarray(origin, dtype=float),
+                                    directions.ravel(), groups, 1, -1, geoms, distance, None,
+                                    count, reach)
+            else:  # each ray starts at range min, as Gazebo's: one point each
+                found = np.zeros(1, dtype=np.int32)
+                for index, direction in enumerate(directions):
+                    start = origin + direction * sensor.range_min
+                    distance[index] = self.mj.mj_ray(model, self.data, start, direction,
+                                                     groups, 1, -1, found)
+                    geoms[index] = found[0]
         finally:
-            model.geom_group[housing] = kept
-        return (geoms >= 0) & (distance >= 0) & (distance <= sensor.range_max)
-
-    def _holds(self, geom: int, point: np.ndarray) -> bool:
-        """The point lies in the geom (a primitive exactly, a mesh within its box)."""
-        mj, model = self.mj, self.model
-        local = self.data.geom_xmat[geom].reshape(3, 3).T @ (point - self.data.geom_xpos[geom])
-        size, kind = model.geom_size[geom], mj.mjtGeom(int(model.geom_type[geom]))
-        if kind == mj.mjtGeom.mjGEOM_BOX:
-            return bool((np.abs(local) <= size).all())
-        if kind == mj.mjtGeom.mjGEOM_SPHERE:
-            return bool(local @ local <= size[0] ** 2)
-        if kind == mj.mjtGeom.mjGEOM_CYLINDER:
-            return bool(local[:2] @ local[:2] <= size[0] ** 2 and abs(local[2]) <= size[1])
-        centre, half = model.geom_aabb[geom][:3], model.geom_aabb[geom][3:]
-        return bool((np.abs(local - centre) <= half).all())
+            model.geom_group[skipped] = kept
+        return (geoms >= 0) & (distance >= 0) & (distance <= reach)
 
     def _body(self, link: str) -> int:
         try:

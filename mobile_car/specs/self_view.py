@@ -5,7 +5,7 @@ where it is installed, else trimesh's own ray-triangle test).
 
 Visual geometry counts as much as collision geometry: a standoff drawn but never made to
 collide still stops a real laser. The sensor's housing is left out: its own link's
-geometry, and that of any link with a geometry that holds the sensor's origin (TurtleBot3
+geometry, and that of any link whose geometry encloses the sensor's origin (TurtleBot3
 waffle's camera frames sit inside camera_link's body, behind its lens): a ray cast from
 inside would hit its inner face.
 Frames: the root link's at rest (every joint at 0, sim's springs at their rest).
@@ -22,6 +22,9 @@ import numpy as np
 
 from ..check.colours import without_unusable_colours
 
+# A housing meets every ray cast from the sensor along the 6 axes and the 8 diagonals
+# (ENCLOSING, :func:`_enclosing`).
+ENCLOSING = 14
 # The camera's rays: a coarse grid through pixel centres, its aspect the image's, its
 # rows bounded (the image's size comes from the description: 1 x 10^9 is a number too).
 CAMERA_COLUMNS = 64
@@ -66,20 +69,42 @@ class RobotSurface:
 
     def housing(self, link: str, origin: np.ndarray) -> list[str]:
         """The links a sensor on ``link`` at ``origin`` looks out of: its own, and any
-        other with a geometry that holds its origin (a camera frame inside the camera
-        link's body, behind its lens): their geometry is left out of its view."""
-        held = {piece.link for piece in self.pieces if piece.holds(origin)}
-        return [link] + sorted(held - {link})
+        other whose geometry encloses its origin (a camera frame inside the camera link's
+        body, behind its lens): their geometry is left out of its view. A link's geometry
+        encloses a point it holds in a shape's box and meets every one of ENCLOSING's rays
+        from (a chassis whose box holds a lidar in a recess, open above, does not)."""
+        near = {piece.link for piece in self.pieces if piece.holds(origin)} - {link}
+        return [link] + sorted(other for other in near if self._encloses(other, origin))
+
+    def _encloses(self, link: str, origin: np.ndarray) -> bool:
+        caster = self._cached(("only", link), [i for i, piece in enumerate(self.pieces)
+                                               if piece.link != link])
+        directions = _enclosing()
+        if caster is None:
+            return False
+        _, rays, _ = caster.intersects_location(np.broadcast_to(origin, directions.shape),
+                                                directions, multiple_hits=False)
+        return len(set(rays.tolist())) == len(directions)
 
     def without(self, links: list[str]):
         """A ray intersector on every triangle but those of ``links`` (None when nothing
         is left), made once for each such set."""
-        key = tuple(links)
+        return self._cached(tuple(links), [i for i, piece in enumerate(self.pieces)
+                                           if piece.link in links])
+
+    def _cached(self, key, dropped: list[int]):
         if key not in self._casters:
-            dropped = [i for i, piece in enumerate(self.pieces) if piece.link in links]
             self._casters[key] = _intersector(self.triangles[~np.isin(self.piece_of,
                                                                       dropped)])
         return self._casters[key]
+
+
+def _enclosing() -> np.ndarray:
+    """ENCLOSING's directions: the 6 axes and the 8 diagonals, unit length."""
+    axes = np.vstack([np.eye(3), -np.eye(3)])
+    diagonals = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)],
+                         dtype=float) / math.sqrt(3)
+    return np.vstack([axes, diagonals])
 
 
 def robot_surface(loaded, positions: dict[str, float]) -> RobotSurface:
@@ -217,15 +242,15 @@ def camera_rays(sensor, frame: np.ndarray) -> np.ndarray:
 def blocked(surface: RobotSurface, sensor, origin: np.ndarray,
             directions: np.ndarray) -> np.ndarray:
     """(N,) bool: the ray meets the robot (the sensor's housing aside) within the
-    sensor's range max. A part nearer than range min blocks too: a real scanner cannot
-    see through it (Gazebo's ray, which starts at min, would)."""
+    sensor's range. As Gazebo casts it, the ray starts at range min: a part nearer is not
+    seen (a real scanner reports no range there either)."""
     caster = surface.without(surface.housing(sensor.link, origin))
     hit = np.zeros(len(directions), dtype=bool)
     if caster is None or not len(directions):
         return hit
-    origins = np.broadcast_to(origin, directions.shape)
-    locations, rays, _ = caster.intersects_location(origins, directions, multiple_hits=False)
+    starts = origin + directions * sensor.range_min
+    locations, rays, _ = caster.intersects_location(starts, directions, multiple_hits=False)
     if len(rays):
-        distance = np.linalg.norm(locations - origin, axis=1)
-        hit[rays[distance <= sensor.range_max]] = True
+        distance = np.linalg.norm(locations - starts[rays], axis=1)
+        hit[rays[distance <= sensor.range_max - sensor.range_min]] = True
     return hit

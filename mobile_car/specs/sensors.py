@@ -117,7 +117,8 @@ def _lidar(sensor, surface, proof, threshold, checked, result) -> list[Figure]:
     key = f"sensors.{sensor.name}"
     method = (f"{sensor.samples} rays cast in the scan plane against the robot's visual and "
               f"collision geometry ({_housing(surface, sensor, frame)})")
-    seen = "a part nearer than range min blocks too: the laser cannot see through it"
+    seen = ("each ray starts at range min, as Gazebo's: a part nearer is not seen (a real "
+            "scanner reports no range there)")
     if sensor.layers > 1:
         seen += f"; a 3D lidar of {sensor.layers} layers: its horizontal plane only"
     figures = [
@@ -134,7 +135,8 @@ def _lidar(sensor, surface, proof, threshold, checked, result) -> list[Figure]:
     ]
     if proof is not None:
         mj_frame = proof.frame(sensor)
-        mj_hits = proof.blocked(sensor, mj_frame[:3, 3], lidar_rays(sensor, mj_frame))
+        mj_hits = proof.blocked(sensor, mj_frame[:3, 3], lidar_rays(sensor, mj_frame),
+                                surface.housing(sensor.link, frame[:3, 3]))
         agrees = within_one_sample(hits, mj_hits)
         differ = int((hits != mj_hits).sum())
         detail = (f"MuJoCo mj_multiRay from the same origin and azimuths: {differ} of "
@@ -165,12 +167,12 @@ def _camera(sensor, surface, proof) -> list[Figure]:
                     f"{sensor.source}; a {columns}x{rows} grid of rays through the image "
                     f"cast against the robot's visual and collision geometry "
                     f"({_housing(surface, sensor, frame)})",
-                    f"up to the far clip, {sensor.range_max:g} m; the camera looks along "
-                    "its frame's x")
+                    f"between the clips, {sensor.range_min:g}..{sensor.range_max:g} m; the "
+                    "camera looks along its frame's x")
     if proof is not None:
         mj_frame = proof.frame(sensor)
-        measured = float(proof.blocked(sensor, mj_frame[:3, 3],
-                                       camera_rays(sensor, mj_frame)).mean())
+        measured = float(proof.blocked(sensor, mj_frame[:3, 3], camera_rays(sensor, mj_frame),
+                                       surface.housing(sensor.link, frame[:3, 3])).mean())
         figure.proof = Proof(round(measured, DIGITS),
                              abs(measured - figure.value) <= COVERED_TOLERANCE,
                              f"{COVERED_TOLERANCE:g} of the image",

@@ -279,3 +279,20 @@ def test_without_embree_trimesh_own_ray_test_finds_the_same_sector(tmp_path, mon
     _, without = sensors_of(tmp_path / "post.urdf", None, {"proof": False})
     assert values(without)["sensors.scanner.blocked"] == \
         values(with_embree)["sensors.scanner.blocked"] != []
+
+
+def test_a_part_nearer_than_range_min_is_not_seen_as_gazebo_starts_its_rays_there(tmp_path):
+    centre, side = POST  # 0.2 m ahead, 0.22 m away at most
+    _, section = sensors_of(tmp_path / "near.urdf",
+                            robot(lidar_link(), post("post", centre, side),
+                                  ray_sensor("lidar_link", near=0.25)))
+    assert values(section)["sensors.scanner.blocked"] == []
+    proof = section.figure("sensors.scanner.blocked").proof
+    assert proof.agrees and proof.measured == []
+    assert "each ray starts at range min" in section.figure("sensors.scanner.blocked").assumption
+    # Control: from 0.1 m the post is seen, in both engines.
+    _, seen = sensors_of(tmp_path / "near.urdf", robot(lidar_link(), post("post", centre, side),
+                                                       ray_sensor("lidar_link", near=0.1)))
+    assert len(values(seen)["sensors.scanner.blocked"]) == 1
+    assert seen.figure("sensors.scanner.blocked").proof.measured == \
+        values(seen)["sensors.scanner.blocked"]

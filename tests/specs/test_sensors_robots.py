@@ -5,7 +5,9 @@ it sees, and MuJoCo's rays agreeing.
 
 The bundled car's laser scans 41 mm above its top plate: its standoffs, between the two
 plates, are out of its plane and it sees nothing of the car. Lowered into the standoffs'
-plane (the control), it sees the four of them, each over the sector its radius subtends.
+plane, its range from 5 cm (the control: they are 0.108 m away, nearer than its 0.15 m
+range min, where its rays start), it sees the four of them, each over the sector its
+radius subtends.
 """
 
 from __future__ import annotations
@@ -58,6 +60,9 @@ def test_the_car_laser_lowered_into_the_standoffs_plane_sees_the_four(tmp_path):
     x, y, _ = (float(v) for v in laser.find("origin").get("xyz").split())
     # Halfway up the standoffs: body_link at 0.015, standoffs from 0.003 above it, 0.03 long.
     laser.find("origin").set("xyz", f"{x} {y} {0.015 + 0.003 + 0.015}")
+    # ... and its range from 5 cm: the standoffs are 0.108 m away, nearer than its 0.15.
+    scanner = next(s for s in root.iter("sensor") if s.get("name") == "laser")
+    scanner.find("lidar/range/min").text = "0.05"
     lowered = tmp_path / "lowered.urdf"
     lowered.write_bytes(etree.tostring(root))
     _, section = sensors_of(lowered, package_paths=[REPO])

@@ -31,7 +31,7 @@ DEFAULT_RANGE = (0.12, 12.0)
 # Gazebo's own defaults for a camera (sdformat camera.sdf): 60 degrees, 320 x 240.
 DEFAULT_HFOV = 1.047
 DEFAULT_IMAGE = (320, 240)
-DEFAULT_CLIP = (0.1, 100.0)
+DEFAULT_FAR = 100.0
 # More rays than this in one scan is no scanner (the bundled car's config allows 100,000):
 # the count comes from the description and sizes the arrays cast, so it is bounded.
 MAX_SAMPLES = 100_000
@@ -174,10 +174,10 @@ def _declared(element, kind: str, name: str, link: str) -> Sensor:
             sensor.image = (width, height)
         else:
             sensor.defaults.append("image {}x{}".format(*DEFAULT_IMAGE))
-        clip = _path(camera, "clip")
-        near, far = _number(clip, "near"), _number(clip, "far")
-        sensor.range_min = near if near is not None and near >= 0 else DEFAULT_CLIP[0]
-        sensor.range_max = far if far and far > sensor.range_min else DEFAULT_CLIP[1]
+        # From the lens: a near clip is where Gazebo starts drawing, not what the lens
+        # sees (Husky's Blackfly clips at 0.5 m, its front laser 0.19 m ahead).
+        far = _number(_path(camera, "clip"), "far")
+        sensor.range_min, sensor.range_max = 0.0, far if far and far > 0 else DEFAULT_FAR
     return sensor
 
 
@@ -211,7 +211,7 @@ def _named(robot, kind: str, words, where) -> list[Sensor]:
             sensor.source = (f"link {link.name} ({at}), named like a camera, no <sensor>: "
                              f"default horizontal_fov {DEFAULT_HFOV} rad, image "
                              "{}x{}, looking along the link's x".format(*DEFAULT_IMAGE))
-            sensor.range_min, sensor.range_max = DEFAULT_CLIP
+            sensor.range_min, sensor.range_max = 0.0, DEFAULT_FAR
         found.append(sensor)
     return found
 

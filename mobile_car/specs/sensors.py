@@ -167,8 +167,9 @@ def _camera(sensor, surface, proof) -> list[Figure]:
                     f"{sensor.source}; a {columns}x{rows} grid of rays through the image "
                     f"cast against the robot's visual and collision geometry "
                     f"({_housing(surface, sensor, frame)})",
-                    f"between the clips, {sensor.range_min:g}..{sensor.range_max:g} m; the "
-                    "camera looks along its frame's x")
+                    f"from the lens to the far clip, {sensor.range_max:g} m (a near clip "
+                    "bounds Gazebo's drawing, not the lens); the camera looks along its "
+                    "frame's x")
     if proof is not None:
         mj_frame = proof.frame(sensor)
         measured = float(proof.blocked(sensor, mj_frame[:3, 3], camera_rays(sensor, mj_frame),

@@ -80,23 +80,31 @@ def test_the_car_laser_lowered_into_the_standoffs_plane_sees_the_four(tmp_path):
     assert proof.agrees, proof.detail
 
 
-# robot -> (main file, xacro arguments, environment, lidar, its pose, samples)
+# robot -> (main file, xacro arguments, environment, lidar, its pose, samples, {camera:
+# (share of its image the robot covers, its housing)})
 REAL = {
     "burger": ("turtlebot3_description/urdf/turtlebot3_burger.urdf", {}, {}, "base_scan",
-               [-0.032, 0.0, 0.182, 0.0], 360),
+               [-0.032, 0.0, 0.182, 0.0], 360, {}),
+    # The camera frames sit in camera_link's body (its housing) and look out of it.
     "waffle": ("turtlebot3_description/urdf/turtlebot3_waffle.urdf", {}, {}, "base_scan",
-               [-0.064, 0.0, 0.132, 0.0], 360),
-    "husky": ("husky_description/urdf/husky.urdf.xacro", {"laser_enabled": "1"}, {},
-              "front_laser", [0.337, 0.0, 0.30795, 0.0], 720),
+               [-0.064, 0.0, 0.132, 0.0], 360,
+               {"camera_rgb_frame": (0.0, "links camera_rgb_frame, camera_link"),
+                "camera_depth_frame": (0.0, "links camera_depth_frame, camera_link")}),
+    # Husky's Blackfly, at its default place, looks into the back of the front laser's
+    # mount 0.10 m ahead (Gazebo, clipping at 0.5 m, draws past it).
+    "husky": ("husky_description/urdf/husky.urdf.xacro",
+              {"laser_enabled": "1", "blackfly_enabled": "1"}, {}, "front_laser",
+              [0.337, 0.0, 0.30795, 0.0], 720,
+              {"camera": (0.9336, "links blackfly_optical, blackfly_lens")}),
     "jackal": ("jackal_description/urdf/jackal.urdf.xacro", {}, {"JACKAL_LASER": "1"},
-               "front_laser", [0.12, 0.0, 0.333, 0.0], 720),
+               "front_laser", [0.12, 0.0, 0.333, 0.0], 720, {}),
 }
 
 
 @needs_folder
 @pytest.mark.parametrize("name", sorted(REAL))
-def test_a_shipped_robot_lidar_sees_past_the_robot_and_mujoco_agrees(name, monkeypatch):
-    main, arguments, environment, lidar, pose, samples = REAL[name]
+def test_what_a_shipped_robots_sensors_see_of_it_mujoco_agreeing(name, monkeypatch):
+    main, arguments, environment, lidar, pose, samples, cameras = REAL[name]
     for key, value in environment.items():
         monkeypatch.setenv(key, value)
     _, section = sensors_of(FOLDER / main, package_paths=[FOLDER], mappings=arguments)
@@ -109,3 +117,10 @@ def test_a_shipped_robot_lidar_sees_past_the_robot_and_mujoco_agrees(name, monke
     proof = section.figure(f"sensors.{lidar}.blocked").proof
     assert proof.agrees and proof.measured == [], proof.detail
     assert section.diagnostics == []
+    assert sorted(key for key in found if key.endswith(".covered")) == \
+        sorted(f"sensors.{camera}.covered" for camera in cameras)
+    for camera, (covered, housing) in cameras.items():
+        figure = section.figure(f"sensors.{camera}.covered")
+        assert figure.value == pytest.approx(covered, abs=1e-4)
+        assert f"(its housing left out: {housing})" in figure.source
+        assert figure.proof.agrees, figure.proof.detail

@@ -1,7 +1,8 @@
 """The rules ``mcar check`` applies, each with a stable id, like a linter's.
 
 ``E1xx`` are errors (the file is wrong: exit 1), ``W2xx`` are warnings (doubtful: exit 0,
-or 1 with ``--strict``), ``N4xx`` are notes (information: never a failure). Ids never
+or 1 with ``--strict``), ``N4xx`` are notes (information: never a failure); ``W5xx`` are
+what ``mcar specs`` finds in what the robot can do (its sensors: W520-W529). Ids never
 change meaning; a retired rule keeps its number. The ``E15x``, ``W23x`` and ``N40x`` rules
 are what Gazebo's libsdformat changes in the robot, found by ``mcar check --gazebo``.
 ``urdfdom`` says what Debian's ``check_urdf`` (urdfdom 3.0) does with the same problem:

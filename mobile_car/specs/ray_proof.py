@@ -44,7 +44,9 @@ class RayProof:
                 for material in visual.findall("material"):
                     visual.remove(material)
         try:
-            self.notes = prepare_urdf(root, loaded.base, loaded.search)
+            # (prepare_urdf calls every mesh it is given a collision mesh: here it is any)
+            self.notes = [note.replace(": collision mesh ", ": mesh ", 1)
+                          for note in prepare_urdf(root, loaded.base, loaded.search)]
             spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
         except (ValueError, McarError) as error:
             raise ProofUnavailable(_first_line(error)) from None

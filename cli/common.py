@@ -11,7 +11,7 @@ from pathlib import Path
 
 import click
 
-from mobile_car.errors import EXIT_OK, EXIT_USAGE, McarError, Terminated, UsageError
+from mobile_car.errors import EXIT_OK, EXIT_PROBLEMS, EXIT_USAGE, McarError, Terminated, UsageError
 from mobile_car.names import shown
 
 from . import streams
@@ -229,6 +229,28 @@ def chosen_robot(selection, command: str):
         click.echo(f"mcar: {shown(inp.label)}, the one complete robot here "
                    "(an INPUT names another)", err=True)
     return inp
+
+
+def checked_robots(selection, options, codes: list, inputs=None):
+    """(input, CheckResult) of each input of ``selection`` (or of ``inputs``, some of
+    them) that passes ``mcar check``, checked as it does; one whose load or check fails
+    is reported here (check's own diagnostics) and its exit code added to ``codes``: what
+    sim and specs do first."""
+    from mobile_car.check.checker import check_input
+
+    stdin = stdin_for(selection)
+    for inp in selection.inputs if inputs is None else inputs:
+        checked = check_input(inp, options, stdin=stdin)
+        if checked.failure is not None:
+            report(checked.failure)
+            codes.append(checked.failure.exit_code)
+            continue
+        if checked.errors or not checked.tree_is_drawable:
+            for diagnostic in checked.diagnostics:
+                print_diagnostic(diagnostic)
+            codes.append(EXIT_PROBLEMS)
+            continue
+        yield inp, checked
 
 
 def report(error: McarError) -> None:

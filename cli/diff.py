@@ -46,6 +46,10 @@ links that changed (or were added, removed or renamed) in magenta and the others
 it draws one robot pair, so with a revision name one robot file. The renderer is chosen
 as for mcar render.
 
+--specs also compares what mcar specs computes of both robots (tip-over angles, footprint,
+mass, sensors' blocked sectors...), figure by figure: "tip-over left 24.1° → 19.3°", and
+the specs warnings (W5xx) that appear or go; a changed figure counts as a change.
+
 OLD and NEW are files, or git revisions of the repository you stand in: each
 revision is built from its own sources, unpacked into a temporary folder (nothing in
 the working tree is touched); a single revision is compared with the working tree.
@@ -77,23 +81,32 @@ WORKING_TREE = "working tree"
               help="Also draw OLD and NEW side by side, the changed links highlighted.")
 @click.option("--renderer", type=click.Choice(RENDERERS), default="auto", show_default=True,
               envvar=RENDERER_ENV, show_envvar=True, help="For --picture: as for mcar render.")
+@click.option("--specs", "with_specs", is_flag=True,
+              help="Also compare the figures mcar specs computes (tip-over, footprint...).")
 @robot_options
 @handle_errors
-def command(words, fmt, tolerance, picture, renderer, package_paths, sets, config_files):
+def command(words, fmt, tolerance, picture, renderer, with_specs, package_paths, sets,
+            config_files):
     if picture:
         _refuse_other_formats(picture)
     try:
         diffs, only_old, only_new = _compare(words, tolerance, package_paths, sets,
-                                             config_files, picture, renderer)
+                                             config_files, picture, renderer, with_specs)
     except McarError as error:
         error.exit_code = EXIT_USAGE  # 1 means "the robots differ": any failure is 2
         raise
     if fmt == "json":
         from mobile_car.diff.report import as_json
 
-        document = {"changed": bool(only_old or only_new or any(d.changed for d in diffs)),
-                    "robots": [as_json(d) for d in diffs],
-                    "removed_files": only_old, "added_files": only_new}
+        robots = []
+        for d in diffs:
+            robots.append(as_json(d))
+            if d.specs is not None:
+                from mobile_car.diff.specs import as_json as specs_json
+
+                robots[-1]["specs"] = specs_json(d.specs)
+        document = {"changed": bool(only_old or only_new or any(_changed(d) for d in diffs)),
+                    "robots": robots, "removed_files": only_old, "added_files": only_new}
         streams.echo(json.dumps(document, indent=2))
     else:
         from mobile_car.diff import report
@@ -103,6 +116,10 @@ def command(words, fmt, tolerance, picture, renderer, package_paths, sets, confi
         for d in diffs:
             key = [(c.field, c.old, c.new) for c in d.dimensions or ()] if d.changed else None
             parts.append(write(d, dimensions=key not in listed))
+            if d.specs is not None:
+                from mobile_car.diff import specs
+
+                parts.append((specs.markdown if fmt == "markdown" else specs.text)(d.specs))
             if key:
                 listed.append(key)
         parts += [f"robot file removed: {name}\n" for name in only_old]
@@ -110,8 +127,13 @@ def command(words, fmt, tolerance, picture, renderer, package_paths, sets, confi
         if fmt == "markdown":
             parts.insert(0, "## mcar diff\n")
         streams.echo(shown_lines("\n".join(parts)), nl=False)  # names: mobile_car.names
-    if only_old or only_new or any(d.changed for d in diffs):
+    if only_old or only_new or any(_changed(d) for d in diffs):
         sys.exit(EXIT_PROBLEMS)
+
+
+def _changed(diff) -> bool:
+    """The robot changed, or (with --specs) one of its figures did."""
+    return diff.changed or (diff.specs is not None and diff.specs.changed)
 
 
 def _refuse_other_formats(picture: str) -> None:
@@ -123,7 +145,7 @@ def _refuse_other_formats(picture: str) -> None:
 
 
 def _compare(words, tolerance, package_paths, sets, config_files, picture=None,
-             renderer="auto"):
+             renderer="auto", with_specs=False):
     from mobile_car.diff import compare, describe
     from mobile_car.diff.revisions import is_revision
     from mobile_car.load.inputs import split_words
@@ -162,11 +184,21 @@ def _compare(words, tolerance, package_paths, sets, config_files, picture=None,
                 facts = [describe(robot, label, dimension_args) for robot, (_, label)
                          in zip(loaded, (old_side[key], new_side[key]), strict=True)]
                 diffs.append(compare(*facts, tolerance))
+                if with_specs:
+                    diffs[-1].specs = _specs_diff(loaded, facts, tolerance)
                 if picture:
                     _draw(picture, loaded, diffs[-1], renderer, probe)
     only_old = [str(k) for k in old_side if k not in new_side]
     only_new = [str(k) for k in new_side if k not in old_side]
     return diffs, only_old, only_new
+
+
+def _specs_diff(loaded, facts, tolerance):
+    """Both robots' specs figures compared (mcar specs' computation, default options)."""
+    from mobile_car.diff.specs import compare_specs, specs_sections
+
+    old, new = (specs_sections(robot) for robot in loaded)
+    return compare_specs(old, new, tolerance, facts[0].label, facts[1].label)
 
 
 def _start_probe(stack, renderer: str):

@@ -24,6 +24,7 @@ COMMANDS = {
     "render": ("render", "Draw robot descriptions as PNG pictures, headless."),
     "check": ("check", "Check URDF/xacro files: check_urdf's tree, stricter, located."),
     "sim": ("sim", "Simulate the robot in MuJoCo: it stands, drives and turns."),
+    "specs": ("specs", "What the robot can do, each figure with its source and proof."),
     "ci": ("ci", "Build, check --strict and render a whole package: the CI job."),
     "export": ("export", "Export a robot as a folder MuJoCo loads, meshes and all."),
     "diff": ("diff", "Show what a change does to the robot: kinematics, masses, dimensions."),

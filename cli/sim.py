@@ -13,14 +13,13 @@ from mobile_car.names import json_safe, shown
 from . import streams
 from .common import (
     INPUT_HELP,
+    checked_robots,
     chosen_robot,
     handle_errors,
     load_inputs,
     print_diagnostic,
-    report,
     robot_options,
     severity_label,
-    stdin_for,
     use_color,
 )
 
@@ -105,6 +104,37 @@ Exit codes:
 """
 
 
+def drive_options(func):
+    """The options that make sim's model of the robot, which mcar specs takes too:
+    --left, --right, --drive, --effort, --speed, --fix-inertia."""
+    options = [
+        click.option("--left", metavar="JOINT[,JOINT]", help="The left driven wheels' joints."),
+        click.option("--right", metavar="JOINT[,JOINT]",
+                     help="The right driven wheels' joints."),
+        click.option("--drive", "kind", type=click.Choice(DRIVE_KINDS), default=None,
+                     help="The drive kind (default: declared by the package, else found "
+                          "from the tree)."),
+        click.option("--effort", type=click.FloatRange(min=0), metavar="N·M",
+                     help="The drive motors' effort limit where the description gives "
+                          "none."),
+        click.option("--speed", type=click.FloatRange(min=0, min_open=True), metavar="RAD/S",
+                     help="The drive motors' speed limit, over any the description gives."),
+        click.option("--fix-inertia", is_flag=True,
+                     help="Make the inertias MuJoCo refuses physical (the nearest tensor that "
+                          "satisfies the triangle inequality; a token mass for a moving link "
+                          "without one), saying what changed, instead of failing (E305, "
+                          "E310)."),
+    ]
+    for option in reversed(options):
+        func = option(func)
+    return func
+
+
+def require_both_sides(left, right) -> None:
+    if bool(left) != bool(right):
+        raise UsageError("--left and --right go together: name both drive joints")
+
+
 def scenario_list(ctx, param, value):
     """--scenario LIST: known names, in the order drop, drive, spin, turn; None: the
     drive kind's."""
@@ -132,23 +162,11 @@ def scenario_list(ctx, param, value):
 @click.option("--record-size", metavar="WxH", default="640x480", show_default=True,
               help="The animation's size in pixels; the camera follows the robot, an "
                    "arrow over each driven wheel shows its command.")
-@click.option("--left", metavar="JOINT[,JOINT]", help="The left driven wheels' joints.")
-@click.option("--right", metavar="JOINT[,JOINT]", help="The right driven wheels' joints.")
-@click.option("--drive", "kind", type=click.Choice(DRIVE_KINDS), default=None,
-              help="The drive kind (default: declared by the package, else found from the "
-                   "tree).")
 @click.option("--steering-angle", type=click.FloatRange(min=0, max=80, min_open=True,
                                                         max_open=True), metavar="DEG",
               help="turn: the Ackermann steering angle (default 15, less where the joints' "
                    "limits say so).")
-@click.option("--effort", type=click.FloatRange(min=0), metavar="N·M",
-              help="The drive motors' effort limit where the description gives none.")
-@click.option("--speed", type=click.FloatRange(min=0, min_open=True), metavar="RAD/S",
-              help="The drive motors' speed limit, over any the description gives.")
-@click.option("--fix-inertia", is_flag=True,
-              help="Make the inertias MuJoCo refuses physical (the nearest tensor that "
-                   "satisfies the triangle inequality; a token mass for a moving link "
-                   "without one), saying what changed, instead of failing (E305, E310).")
+@drive_options
 @robot_options
 @handle_errors
 def command(words, scenarios, output_format, record, record_size, left, right, kind,
@@ -159,41 +177,28 @@ def command(words, scenarios, output_format, record, record_size, left, right, k
 
         require_format(record)
         size = parse_size(record_size)
-    if bool(left) != bool(right):
-        raise UsageError("--left and --right go together: name both drive joints")
+    require_both_sides(left, right)
     steering = None if steering_angle is None else math.radians(steering_angle)
     reports, codes, skipped = [], [], []
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
         # --record writes one animation: of the one robot named, or the complete robot
         inputs = [chosen_robot(selection, "mcar sim --record")] if record else selection.inputs
         explicit = selection.kind == "files"
-        stdin = stdin_for(selection)
-        from mobile_car.check.checker import check_input
         from mobile_car.sim.report import simulate
 
-        unchecked = 0  # files whose load or check failed: reported above, not simulated
-        for inp in inputs:
-            checked = check_input(inp, options, stdin=stdin)
-            if checked.failure is not None:
-                report(checked.failure)
-                codes.append(checked.failure.exit_code)
-                unchecked += 1
-                continue
-            if checked.errors or not checked.tree_is_drawable:
-                for diagnostic in checked.diagnostics:
-                    print_diagnostic(diagnostic)
-                codes.append(EXIT_PROBLEMS)
-                unchecked += 1
-                continue
+        passed = 0
+        for inp, checked in checked_robots(selection, options, codes, inputs):
+            passed += 1
             result = simulate(checked, scenarios, left, right, record=size,
                               only_if_drives=not explicit, effort=effort, speed=speed,
                               kind=kind, steering=steering, fix_inertia=fix_inertia,
-                              setting=_drive_setting(inp))
+                              setting=drive_setting(inp))
             if not result.simulated:
                 skipped.append((result.file, result.not_a_vehicle))
                 continue
             reports.append(result)
             codes.append(result.exit_code)
+        unchecked = len(inputs) - passed  # their load or check failed: reported above
     say_not_simulated(skipped)
     if record:
         _write_recording(record, reports, codes)
@@ -201,7 +206,7 @@ def command(words, scenarios, output_format, record, record_size, left, right, k
     raise SystemExit(combine_exit_codes(codes))
 
 
-def _drive_setting(inp):
+def drive_setting(inp):
     """The package's mcar.yaml ``sim.drive`` for the input, or None (stdin, no package)."""
     from mobile_car.packages.package_config import load_package_config
     from mobile_car.packages.search import enclosing_package

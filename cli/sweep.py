@@ -40,6 +40,10 @@ speed_ratio (distance / r·ω·t), speed_m_s, lateral_drift_m, heading_change_de
 yaw_ratio (yaw rate / 2·r·ω/track), yaw_rate_rad_s, centre_moved_m, the times
 validate_s, build_s, check_s, sim_s, total_s, attempts and worker.
 
+--specs KEY,...  adds figures of mcar specs as columns (statics.tip.left, body.mass...:
+one number each), computed once the point's check passed; a point that cannot compute
+one has an empty cell, and its specs_notes column says why. --colour takes their keys.
+
 The points run on --jobs local processes (default: every core), or on the workers of
 the Dask scheduler --scheduler names (each worker needs this mcar, with the sweep
 extra, and the package at the same path; docs/sweep.md says how to start them). The
@@ -90,14 +94,19 @@ def _positive(ctx, param, value):
 @click.option("--plot-y", metavar="NAME", help="The plot's y axis  [default: the second --vary]")
 @click.option("--colour", "colour", default="speed_m_s", show_default=True, metavar="FIGURE",
               help="The figure that colours the valid points.")
+@click.option("--specs", "specs", metavar="KEY,...",
+              help="mcar specs figures to add as columns (e.g. statics.tip.left,body.mass).")
 @click.option("--left", metavar="JOINT", help="The left drive wheel's joint.")
 @click.option("--right", metavar="JOINT", help="The right drive wheel's joint.")
 @robot_options
 @handle_errors
 def command(words, varies, samples, seed, scenarios, jobs, scheduler, output, resume, plot,
-            plot_x, plot_y, colour, left, right, package_paths, sets, config_files):
+            plot_x, plot_y, colour, specs, left, right, package_paths, sets, config_files):
     from mobile_car import extras
     from mobile_car.sweep.results import results_format
+    from mobile_car.sweep.specs import parse_keys
+
+    specs = parse_keys(specs)
 
     # The results table needs pandas (and pyarrow for Parquet); Dask and the plot only
     # when asked for.
@@ -120,7 +129,7 @@ def command(words, varies, samples, seed, scenarios, jobs, scheduler, output, re
     results_format(output)
     with load_inputs(words, package_paths, sets, config_files) as (selection, options):
         session = _session(selection, options, varies, samples, seed, scenarios, left,
-                           right, output)
+                           right, output, specs)
     axes = _plot_axes(session, plot_x, plot_y, colour) if plot else None
     from pathlib import Path
 
@@ -150,7 +159,8 @@ def command(words, varies, samples, seed, scenarios, jobs, scheduler, output, re
     raise SystemExit(session.exit_code())
 
 
-def _session(selection, options, varies, samples, seed, scenarios, left, right, output):
+def _session(selection, options, varies, samples, seed, scenarios, left, right, output,
+             specs=()):
     from pathlib import Path
 
     from mobile_car.config.spec import config_file, load_spec
@@ -177,7 +187,7 @@ def _session(selection, options, varies, samples, seed, scenarios, left, right, 
                    tuple(str(Path(p).resolve()) for p in options.package_paths),
                    tuple(sorted(options.mappings.items())), tuple(sorted(fixed.items())),
                    tuple(scenarios), left, right, is_trusted(),
-                   tuple(str(p) for p in chosen_asset_paths()))
+                   tuple(str(p) for p in chosen_asset_paths()), specs)
     return Session(job, [axis.name for axis in axes], points,
                    output if output != "-" else None, {axis.name: axis.unit for axis in axes})
 

@@ -139,6 +139,7 @@ DOC_PAGES = {
     "docs/render.md": 6,
     "docs/security.md": 1,
     "docs/sim.md": 6,
+    "docs/specs.md": 4,
     "docs/sweep.md": 3,
     "docs/view.md": 1,
 }

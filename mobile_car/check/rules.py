@@ -1,8 +1,8 @@
 """The rules ``mcar check`` applies, each with a stable id, like a linter's.
 
 ``E1xx`` are errors (the file is wrong: exit 1), ``W2xx`` are warnings (doubtful: exit 0,
-or 1 with ``--strict``), ``N4xx`` are notes (information: never a failure); ``W5xx`` are
-what ``mcar specs`` finds in what the robot can do (its sensors: W520-W529). Ids never
+or 1 with ``--strict``), ``N4xx`` are notes (information: never a failure); ``W5xx`` and
+``E5xx`` are what ``mcar specs`` finds in what the robot can do. Ids never
 change meaning; a retired rule keeps its number. The ``E15x``, ``W23x`` and ``N40x`` rules
 are what Gazebo's libsdformat changes in the robot, found by ``mcar check --gazebo``.
 ``urdfdom`` says what Debian's ``check_urdf`` (urdfdom 3.0) does with the same problem:
@@ -174,10 +174,19 @@ _TABLE = [
     Rule("W232", "gazebo-plugin-joint", "a `<gazebo>` plugin naming a joint Gazebo does not "
          "have, in `<joint>`, `<joint_name>`, `<left_joint>`, `<leftJoint>`, `<jointName>` "
          "and the like", "n/a"),
-    # What mcar specs finds (W520-W529: its sensors)
-    Rule("W520", "lidar-blocked", "the robot's own geometry (visual or collision) blocks a "
-         "lidar over more than 10 % of its samples (`mcar specs`; the message names the "
-         "sectors)", "n/a"),
+    # What mcar specs finds in what the robot can do
+    Rule("W501", "effort-under-gravity", "`mcar specs`: a joint whose `<limit effort>` is under "
+         "the torque (revolute) or force (prismatic) gravity asks of it in its worst pose "
+         "within its limits and those of the joints beyond it, an effort of 0 included "
+         "(MuJoCo's gravity load, the figures in the message; a suspension a spring carries "
+         "is not judged)", "n/a"),
+    Rule("W520", "lidar-blocked", "`mcar specs`: the robot's own geometry (visual or "
+         "collision) blocks a lidar over more than 10 % of its samples; the message names "
+         "the sectors", "n/a"),
+    Rule("W530", "inertia-implausible", "`mcar specs`: a declared inertia MuJoCo refuses, or "
+         "over 3 times or under 1/3 what the link's geometry (collision, else visual) gives "
+         "with its mass about a principal axis; the message gives the `<inertial>` to write "
+         "instead", "n/a"),
     # Notes
     Rule("N401", "gazebo-lumped", "a link Gazebo lumps into its parent by a fixed joint: "
          "one body with the parent's mass, collisions and visuals", "n/a"),

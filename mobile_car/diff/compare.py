@@ -72,6 +72,7 @@ class RobotDiff:
     changes: list[Change] = field(default_factory=list)  # joints, links, frames
     totals: list[Change] = field(default_factory=list)  # every total, changed or not
     dimensions: list[Change] | None = None  # None: not both robots have a config.xacro
+    specs: object = None  # with mcar diff --specs: the figures compared (diff/specs.py)
 
     @property
     def changed_totals(self) -> list[Change]:

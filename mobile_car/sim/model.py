@@ -115,6 +115,9 @@ class SimModel:
     rest: RestPose | None = None  # how the geometry rests (leaning on a low castor)
     control: object = None  # skid-steer: its control package's ControlConfig, if found
     rollers: object = None  # mecanum: .rollers.Rollers, to align before every step
+    # wheel link -> (radius, half length) of each collision cylinder its tyre sphere stands
+    # for (round tyres, above): the shape the wheel has, for what is measured of it at rest
+    tyres: dict[str, list] = field(default_factory=dict)
 
     @property
     def kind(self) -> str | None:
@@ -134,7 +137,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
                 kind: str | None = None, declared=None, mecanum=()) -> SimModel:
     """``left``, ``right``: the driven joints of each side (a name, comma-separated names
     or a list), ``kind``: a drive kind (:mod:`.drives`), else declared or found from the
-    tree; ``declared``: the package's drive declarations (:func:`.report.declarations`),
+    tree; ``declared``: the package's drive declarations (:func:`.prepare.declarations`),
     None for the URDF's plugins alone;
     ``effort`` (N·m), ``speed`` (rad/s): the drive motors' figures where the description
     gives none (:mod:`.motors`); ``mecanum``: the mecanum declarations of the
@@ -200,6 +203,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     _ground, parts, clearance = resting_parts(shape, lowest, wheels, data)
     supports = support_geoms(shape, ground_geoms, set(parts.values()))
     rest = rest_pose(mj, shape, data, root_body_id(shape), supports, lowest_points)
+    tyres = _tyre_cylinders(mj, shape, drive)
     rolling_contacts(mj, spec, drive, parts, friction)
     add_rollers(mj, spec, shape, drive, sources)
     add_motors(mj, spec, drive, mass)
@@ -221,7 +225,20 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
                     clearance=clearance,
                     floor_geom=model.geom("mcar_floor").id, notes=notes, mass=mass, held=held,
                     springs=springs, start=start, ground_geoms=ground_geoms,
-                    support_geoms=supports, rest=rest, rollers=aligned)
+                    support_geoms=supports, rest=rest, rollers=aligned, tyres=tyres)
+
+
+def _tyre_cylinders(mj, shape, drive) -> dict[str, list]:
+    """Wheel link -> (radius, half length) of its colliding cylinders, which
+    :func:`rolling_contacts` rounds into spheres (a bicycle's stay cylinders)."""
+    if drive is None or drive.kind == "bicycle":
+        return {}
+    found = {}
+    for wheel in drive.wheels:
+        found[wheel.link] = [(float(shape.geom_size[g][0]), float(shape.geom_size[g][1]))
+                             for g in wheel.geom_ids
+                             if shape.geom_type[g] == mj.mjtGeom.mjGEOM_CYLINDER]
+    return found
 
 
 def root_body_id(model) -> int:
@@ -387,10 +404,50 @@ def prepare_urdf(root, base: Path, search) -> list[str]:
             link = collision.getparent()
             notes.append(f"link {link.get('name')}: collision mesh {filename} left out: {why}")
             link.remove(collision)
+    _compiler_options(root)
+    return notes
+
+
+def _compiler_options(root) -> None:
+    """The description's own masses and every link a body: no inertia from geometry, no
+    fixed link fused into its parent, no tensor balanced behind the user's back."""
     extension = etree.SubElement(root, "mujoco")
     etree.SubElement(extension, "compiler", discardvisual="true", fusestatic="false",
                      inertiafromgeom="false", balanceinertia="false", strippath="false")
-    return notes
+
+
+def jointed_model(urdf: bytes, label: str) -> tuple[object, list[str]]:
+    """(the robot's masses on their joints as MuJoCo reads them, notes): every joint free,
+    the root fixed to the world, no geometry. What gravity asks of a joint (``mcar specs``,
+    :mod:`mobile_car.specs.joints`) depends on masses, centres of mass and the joints'
+    kinematics only, where sim's model holds the joints that are not the drive's still
+    (:func:`_hold_the_rest`). A tensor MuJoCo refuses is made physical
+    (:func:`~mobile_car.check.mujoco_inertia.make_physical`: a tensor changes no gravity
+    load), a moving link without mass gets a token one (the notes say which). Each hinge
+    and slide joint has an equality ``mcar_hold_<joint>``, off: switched on
+    (``data.eq_active``) it holds the joint where its ``eq_data[0]`` says, a lock the
+    proof of a figure puts on the joints it does not measure."""
+    from ..check.mujoco_inertia import make_physical, refusals
+
+    mj = mujoco()
+    root = etree.fromstring(urdf, etree.XMLParser(resolve_entities=False, no_network=True))
+    notes = as_urdfdom_reads(root)
+    for element in list(root.iter("visual", "collision", "gazebo", "transmission",
+                                  "ros2_control")):
+        element.getparent().remove(element)
+    notes += make_physical(root, refusals(root))
+    _compiler_options(root)
+    try:
+        spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
+    except ValueError as error:
+        raise SimModelError(f"MuJoCo cannot read the robot: {_engine_message(error)}",
+                            file=label) from None
+    for joint in list(spec.joints):
+        if joint.type in (mj.mjtJoint.mjJNT_HINGE, mj.mjtJoint.mjJNT_SLIDE):
+            hold = spec.add_equality(name=f"mcar_hold_{joint.name}", type=mj.mjtEq.mjEQ_JOINT,
+                                     objtype=mj.mjtObj.mjOBJ_JOINT, name1=joint.name)
+            hold.active = False
+    return _compile(spec, label), notes
 
 
 def add_floor(spec, mj) -> None:

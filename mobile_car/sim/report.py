@@ -8,16 +8,10 @@ import time
 from dataclasses import dataclass, field
 from xml.etree import ElementTree as ET
 
-from ..errors import EXIT_OK, EXIT_PROBLEMS, UsageError
+from ..errors import EXIT_OK, EXIT_PROBLEMS
 from .junit import junit_case, junit_document
-from .lint import (
-    SimDiagnostic,
-    lint,
-    moving_links_without_mass,
-    physical_urdf,
-    refused_error,
-    refused_inertias,
-)
+from .lint import SimDiagnostic, lint
+from .prepare import prepare
 from .rollers import mecanum_lines, mecanum_summary
 from .scenarios import (
     ScenarioResult,
@@ -76,8 +70,6 @@ def simulate(checked, names=None, left=None, right=None,
     mcar.yaml ``sim.drive``
     (:meth:`~mobile_car.packages.package_config.PackageConfig.sim_drive_for`), which the
     options override."""
-    from .model import SimModelError, build_model
-
     started = time.perf_counter()
     loaded = checked.loaded
     report = SimReport(checked.file, checked.robot.name)
@@ -93,42 +85,15 @@ def simulate(checked, names=None, left=None, right=None,
                             ScenarioResult(name, skipped=report.why_no_drive)
                             for name in (names or ("drop", "drive", "spin"))]
         return report
-    urdf, fixed = loaded.urdf, []
-    massless = moving_links_without_mass(checked)
-    if fix_inertia:  # (a robot whose root has no mass is not one a token mass mends)
-        report.diagnostics = [d for d in massless if d.message.startswith("root link")]
-        if not report.diagnostics:
-            urdf, fixed = physical_urdf(urdf)
-    else:
-        report.diagnostics = refused_inertias(checked) + massless
-    if report.diagnostics:
-        report.error = refused_error(report.diagnostics)
+    prepared = prepare(checked, left, right, kind, effort, speed, fix_inertia, setting)
+    report.diagnostics, report.reads = prepared.diagnostics, prepared.reads
+    if prepared.sim is None:
+        report.error = prepared.error
         return report
-    declared, unread, report.reads = declarations(checked)
-    chosen_in = None  # where the package's mcar.yaml chose the drive
-    if setting is not None and not (left or right or kind):
-        (drive_set, chosen_in) = setting
-        left, right, kind = drive_set.get("left"), drive_set.get("right"), drive_set.get("kind")
-    from .mecanum import yaml_declarations
-
-    mecanum, unread_mecanum = yaml_declarations(loaded)
-    unread = list(dict.fromkeys(unread + unread_mecanum))
-    try:
-        sim = build_model(urdf, checked.file, loaded.base, loaded.search, left, right,
-                          effort, speed, kind, declared, mecanum)
-    except SimModelError as error:
-        report.error = error.message
-        return report
-    except UsageError as error:
-        if chosen_in is None:
-            raise
-        raise UsageError(f"sim.drive: {error.message}", file=chosen_in) from None
-    if chosen_in is not None and sim.drive is not None:
-        sim.drive.chosen = f"{chosen_in} sim.drive"
-        sim.drive.sources = {joint: sim.drive.chosen for joint in sim.drive.sources}
-    report.notes = [f"--fix-inertia: {line}" for line in fixed] + list(sim.notes) + unread
+    sim = prepared.sim
+    report.notes = prepared.notes
     report.held = list(sim.held)
-    report.diagnostics = lint(checked, sim, declared)
+    report.diagnostics = lint(checked, sim, prepared.declared)
     report.why_no_drive = str(why_not) if why_not else sim.why_no_drive
     delta = None
     if sim.drives:
@@ -162,20 +127,6 @@ def simulate(checked, names=None, left=None, right=None,
             recorder.close()
     report.seconds = time.perf_counter() - started
     return report
-
-
-def declarations(checked) -> tuple[list, list[str], list]:
-    """(what the package declares drives the robot: its URDF's drive plugins, located in
-    the sources, then its control package's controllers; the control files that could not
-    be read; the control files looked at)."""
-    from .control_config import find_controllers
-    from .declared import in_urdf
-    from .lint import Locator
-
-    locate = Locator(checked)
-    plugins = in_urdf(list(checked.robot.element), lambda e: locate(e))
-    controllers, unread, read = find_controllers(checked.loaded)
-    return plugins + controllers, unread, read
 
 
 def undriven(scenarios) -> None:

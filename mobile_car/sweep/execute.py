@@ -30,8 +30,8 @@ def default_jobs() -> int:
         return os.cpu_count() or 1
 
 
-def crashed_row(point: Point, why: str) -> dict:
-    row = empty_row(point.index, point.values)
+def crashed_row(point: Point, why: str, specs=()) -> dict:
+    row = empty_row(point.index, point.values, specs)
     row.update({"status": "crashed", "reason": why, "attempts": 2, "worker": ""})
     return row
 
@@ -162,7 +162,7 @@ def _alone(job: SweepJob, point: Point, scratch: str) -> dict:
         row = pool.submit(evaluate_point, job, point.index, point.values).result()
     except BrokenProcessPool:
         return crashed_row(point, "its worker process died twice (killed, or crashed in "
-                                  "native code): the point was retried once, alone")
+                                  "native code): the point was retried once, alone", job.specs)
     finally:
         _stop(pool)
     row["attempts"] = 2
@@ -255,7 +255,8 @@ def run_dask(job: SweepJob, points: list[Point], address: str,
                 row = future.result()
             except KilledWorker:
                 row = crashed_row(point, "the Dask workers running it died; the scheduler "
-                                         "retried it and gave up (allowed-failures)")
+                                         "retried it and gave up (allowed-failures)",
+                                  job.specs)
             except McarError:  # the sweep's own error (see evaluate_point)
                 raise
             except Exception as error:  # noqa: BLE001 - the cluster, not the point, failed

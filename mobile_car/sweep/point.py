@@ -37,21 +37,28 @@ class SweepJob:
     right: str | None = None
     trusted: bool = False                   # --no-sandbox
     asset_paths: tuple[str, ...] = ()       # --asset-path
+    specs: tuple[str, ...] = ()             # --specs: figure keys, columns of each row
 
     def fingerprint(self, names) -> str:
         """Identifies the sweep a results file belongs to (what --resume compares)."""
         import hashlib
         import json
 
-        text = json.dumps([Path(self.input).name, sorted(self.mappings), sorted(self.fixed),
-                           list(self.scenarios), self.left, self.right, list(names)])
+        fields = [Path(self.input).name, sorted(self.mappings), sorted(self.fixed),
+                  list(self.scenarios), self.left, self.right, list(names)]
+        if self.specs:  # (a sweep without them keeps the fingerprint it had before)
+            fields.append(list(self.specs))
+        text = json.dumps(fields)
         return hashlib.sha256(text.encode()).hexdigest()[:12]
 
 
-def empty_row(index: int, values: dict[str, float]) -> dict:
+def empty_row(index: int, values: dict[str, float], specs=()) -> dict:
+    from .specs import empty_cells
+
     row = {"point": index, **values, "valid": False, "constraint": "", "status": "error",
            "reason": "", "check_errors": 0, "check_warnings": 0, "failed_scenarios": ""}
     row.update({name: math.nan for name in FIGURES + TIMINGS})
+    row.update(empty_cells(specs))
     row.update({"attempts": 1, "worker": f"{socket.gethostname()}:{os.getpid()}"})
     return row
 
@@ -63,7 +70,7 @@ def evaluate_point(job: SweepJob, index: int, values: dict[str, float]) -> dict:
     from ..errors import InputError, McarError, UsageError
 
     started = time.perf_counter()
-    row = empty_row(index, values)
+    row = empty_row(index, values, job.specs)
     if job.trusted:
         from ..expand.sandbox import trust_inputs
 
@@ -115,6 +122,25 @@ def _evaluate(job: SweepJob, values: dict[str, float], row: dict) -> None:
         _build_check_sim(job, applied, row)
 
 
+def _specs_cells(job: SweepJob, checked, row: dict) -> None:
+    """The --specs columns of a point that passed its check; a figure that cannot be
+    computed is an empty cell and a note, never the point's failure."""
+    from ..errors import InputError, McarError, UsageError
+    from . import specs
+
+    try:
+        sections = specs.specs_sections(checked)
+    except (UsageError, InputError):
+        raise  # the sweep's error (see evaluate_point)
+    except McarError as error:
+        row.update(specs.not_computed(job.specs, str(error)))
+        return
+    except Exception as error:  # noqa: BLE001 - one point's fault must not end the sweep
+        row.update(specs.not_computed(job.specs, f"{type(error).__name__}: {error}"))
+        return
+    row.update(specs.cells(sections, job.specs))
+
+
 def out_of_range(spec, values: dict[str, float]) -> tuple[str, str] | None:
     """(constraint, message) for the first value outside its dimension's range, or None."""
     from ..config.ranges import outside_message
@@ -160,7 +186,13 @@ def _build_check_sim(job: SweepJob, overrides, row: dict) -> None:
     if errors or warnings or not checked.tree_is_drawable:  # --strict: warnings fail too
         row["status"] = "check failed"
         row["reason"] = "; ".join(d.text() for d in (errors or warnings)[:3])
+        if job.specs:
+            from .specs import not_computed
+
+            row.update(not_computed(job.specs, "the check failed"))
         return
+    if job.specs:
+        _specs_cells(job, checked, row)
     from ..sim.lint import link_mass
     from ..sim.report import simulate
 

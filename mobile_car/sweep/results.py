@@ -9,6 +9,8 @@ from pathlib import Path
 from ..errors import InputError, UsageError
 from .plan import Point
 from .point import FIGURES, TIMINGS
+from .specs import NOTES as SPECS_NOTES
+from .specs import empty_cells
 
 FORMATS = (".parquet", ".csv")
 TEXT_COLUMNS = ("constraint", "status", "reason", "failed_scenarios", "worker", "sweep")
@@ -24,23 +26,28 @@ def results_format(path: str) -> str:
     return suffix
 
 
-def columns(names) -> list[str]:
+def columns(names, specs=()) -> list[str]:
+    """The table's columns; ``specs`` (--specs keys) after the figures, with their notes."""
+    figures = [*FIGURES, *specs, SPECS_NOTES] if specs else list(FIGURES)
     return ["point", *names, "valid", "constraint", "status", "reason", "check_errors",
-            "check_warnings", "failed_scenarios", *FIGURES, *TIMINGS, "attempts", "worker",
+            "check_warnings", "failed_scenarios", *figures, *TIMINGS, "attempts", "worker",
             "sweep"]
 
 
-def table(rows: list[dict], names, fingerprint: str):
+def table(rows: list[dict], names, fingerprint: str, specs=()):
     """The rows as a DataFrame in plan order, columns in a fixed order."""
     import pandas as pd
 
-    frame = pd.DataFrame([{**row, "sweep": fingerprint} for row in rows],
-                         columns=columns(names))
+    defaults = empty_cells(specs)  # (a crashed row has no cells of its own)
+    frame = pd.DataFrame([{**defaults, **row, "sweep": fingerprint} for row in rows],
+                         columns=columns(names, specs))
     frame = frame.sort_values("point", kind="stable").reset_index(drop=True)
     frame = frame.astype({"point": "int64", "valid": "bool", "check_errors": "int64",
                           "check_warnings": "int64", "attempts": "int64",
-                          **{name: "float64" for name in [*names, *FIGURES, *TIMINGS]}})
-    return frame.astype({name: "string" for name in TEXT_COLUMNS})
+                          **{name: "float64" for name in [*names, *FIGURES, *specs,
+                                                          *TIMINGS]}})
+    texts = [*TEXT_COLUMNS, SPECS_NOTES] if specs else TEXT_COLUMNS
+    return frame.astype({name: "string" for name in texts})
 
 
 def encode(frame, suffix: str) -> bytes:
@@ -68,25 +75,27 @@ def read(path: str):
             frame = pd.read_parquet(path)
         else:
             frame = pd.read_csv(path, keep_default_na=False, na_values=[""],
-                                dtype={name: "string" for name in TEXT_COLUMNS})
+                                dtype={name: "string" for name in
+                                       (*TEXT_COLUMNS, SPECS_NOTES)})
     except FileNotFoundError:
         raise InputError("no such file", file=path) from None
     except (OSError, ValueError, UnicodeDecodeError) as error:
         first = str(error).splitlines()[0] if str(error) else type(error).__name__
         raise InputError(f"not a results file mcar sweep wrote: {first}", file=path) from None
-    for name in TEXT_COLUMNS:
+    for name in (*TEXT_COLUMNS, SPECS_NOTES):
         if name in frame:
             frame[name] = frame[name].fillna("").astype("string")
     return frame
 
 
-def resumed_rows(path: str, points: list[Point], names, fingerprint: str) -> list[dict]:
+def resumed_rows(path: str, points: list[Point], names, fingerprint: str,
+                 specs=()) -> list[dict]:
     """The rows of an earlier run of this same sweep that need not run again: those whose
     point is in the plan with the same values, and did not crash."""
     import math
 
     frame = read(path)
-    missing = [name for name in columns(names) if name not in frame]
+    missing = [name for name in columns(names, specs) if name not in frame]
     if missing:
         raise UsageError(f"cannot resume: it has no column {missing[0]} (another sweep's "
                          "dimensions, or not mcar sweep's results)", file=path)

@@ -56,7 +56,8 @@ class Session:
         """The rows an earlier run of this sweep left in the output, kept; the points left."""
         from .results import resumed_rows
 
-        self.rows = resumed_rows(self.output, self.points, self.names, self.fingerprint)
+        self.rows = resumed_rows(self.output, self.points, self.names, self.fingerprint,
+                                 self.job.specs)
         self.resumed = len(self.rows)
         done = {int(row["point"]) for row in self.rows}
         return [point for point in self.points if point.index not in done]
@@ -73,7 +74,7 @@ class Session:
     def table(self):
         from .results import table
 
-        return table(self.rows, self.names, self.fingerprint)
+        return table(self.rows, self.names, self.fingerprint, self.job.specs)
 
     def save(self, table=None) -> None:
         """Write the rows so far (``table``: them, already made), replacing the file at

@@ -30,7 +30,7 @@ def test_every_rule_has_a_test_that_expects_it():
     # attacked in tests/untrusted/test_gazebo_includes.py.
     includes = (TESTS / "untrusted" / "test_gazebo_includes.py").read_text()
     expected |= {"E152"} if "[E152]" in includes else set()
-    # What mcar specs finds (W5xx) is tested on robots its tests write: tests/specs/.
+    # What mcar specs finds (W5xx, E5xx): its tests in tests/specs/ expect them by id.
     for case in (TESTS / "specs").glob("test_*.py"):
         expected |= set(re.findall(r"\[([EW]5\d\d)\]", case.read_text()))
     assert expected == set(RULES)

@@ -48,10 +48,7 @@ def sensors_section(checked, sim, options: dict | None = None) -> Section:
     options = options or {}
     result = Section("sensors")
     sensors, result.notes = find_sensors(checked.robot, checked.where)
-    if not sensors:
-        if not result.notes:  # (else they say which sensors were left out, and why)
-            result.notes.append("no lidar or camera: none declared by a <gazebo><sensor>, "
-                                "no link named like one")
+    if not sensors:  # (an empty section: a robot without sensors is nothing to note)
         return result
     from .self_view import camera_grid, robot_surface
 

@@ -145,4 +145,4 @@ def test_help_explains_frames_sections_and_sources(cli):
                   "joints ", "sensors ", "stack ", "inertia ", "Sources, in the order",
                   "--no-proof", "--friction MU", "--fix-inertia", "docs/specs.md"):
         assert words in text, words
-    assert "--picture" not in text  # the pictures part adds it
+    assert "--picture FILE.png" in text

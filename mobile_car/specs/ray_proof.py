@@ -18,8 +18,9 @@ from ..sim.engine import mujoco
 from ..sim.model import as_urdfdom_reads, prepare_urdf
 from .self_view import sensor_offset
 
-# Every moving body gets at least this much mass: the proof only poses the robot, and
-# MuJoCo refuses to compile a massless moving link (a frame on a continuous joint).
+# Every body gets this much mass (the <inertial>s are taken out: the proof only poses the
+# robot), as MuJoCo refuses to compile a massless moving link (a frame on a continuous
+# joint).
 BOUND_MASS = 1e-6
 BOUND_INERTIA = 1e-9
 # The geom group a sensor's housing is moved to while its rays are cast (the rays skip it).
@@ -39,6 +40,10 @@ class RayProof:
         root = etree.fromstring(loaded.urdf, parser)
         as_urdfdom_reads(root)
         for link in root.iterchildren("link"):
+            # The proof only poses the robot: no mass is needed, and an inertia MuJoCo
+            # refuses (E310) would cost every sensor its proof. Each body gets BOUND_MASS.
+            for inertial in list(link.iterchildren("inertial")):
+                link.remove(inertial)
             for visual in list(link.iterchildren("visual")):
                 visual.tag = "collision"
                 for material in visual.findall("material"):

@@ -97,6 +97,10 @@ def find_sensors(robot, where) -> tuple[list[Sensor], list[str]]:
             file, line, _ = where(element)
             name = element.get("name") or link or "sensor"
             at = f"{file}:{line}" if line else file
+            if link is None:
+                notes.append(f"sensor {name} ({at}): in a <gazebo> block without a "
+                             "reference, on no link: left out")
+                continue
             if link not in links:
                 notes.append(f"sensor {name} ({at}): <gazebo reference=\"{link}\"> names no "
                              "link of the robot: left out")

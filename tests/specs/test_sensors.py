@@ -295,3 +295,25 @@ def test_a_part_nearer_than_range_min_is_not_seen_as_gazebo_starts_its_rays_ther
     assert len(values(seen)["sensors.scanner.blocked"]) == 1
     assert seen.figure("sensors.scanner.blocked").proof.measured == \
         values(seen)["sensors.scanner.blocked"]
+
+
+def test_an_inertia_mujoco_refuses_does_not_cost_the_sensors_their_proof(tmp_path):
+    # izz over ixx + iyy: MuJoCo refuses the tensor (sim's E310); the proof needs no mass.
+    text = robot(lidar_link(), post("post", *POST), ray_sensor("lidar_link")).replace(
+        'iyy="0.01" iyz="0" izz="0.01"', 'iyy="0.01" iyz="0" izz="0.05"', 1)
+    assert 'izz="0.05"' in text
+    _, section = sensors_of(tmp_path / "refused.urdf", text)
+    proof = section.figure("sensors.scanner.blocked").proof
+    assert proof is not None and proof.agrees
+    assert proof.measured == values(section)["sensors.scanner.blocked"] != []
+    assert section.notes == []
+
+
+def test_a_sensor_on_no_link_is_left_out_with_a_note(tmp_path):
+    path = tmp_path / "floating.urdf"
+    text = robot(lidar_link(), ray_sensor("lidar_link").replace(
+        '<gazebo reference="lidar_link">', "<gazebo>"))
+    _, section = sensors_of(path, text)
+    assert section.figures == []
+    assert section.notes == [f"sensor scanner ({path}:2): in a <gazebo> block without a "
+                             "reference, on no link: left out"]

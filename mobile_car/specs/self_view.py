@@ -22,9 +22,6 @@ import numpy as np
 
 from ..check.colours import without_unusable_colours
 
-# A housing meets every ray cast from the sensor along the 6 axes and the 8 diagonals
-# (ENCLOSING, :func:`_enclosing`).
-ENCLOSING = 14
 # The camera's rays: a coarse grid through pixel centres, its aspect the image's, its
 # rows bounded (the image's size comes from the description: 1 x 10^9 is a number too).
 CAMERA_COLUMNS = 64
@@ -44,6 +41,8 @@ class Extent:
     high: np.ndarray | None = None
 
     def holds(self, point: np.ndarray) -> bool:
+        if not np.isfinite(self.inverse).all():
+            return False
         x, y, z = self.inverse[:3, :3] @ point + self.inverse[:3, 3]
         if self.kind == "box":
             return max(abs(x), abs(y), abs(z)) <= 0.5
@@ -71,8 +70,9 @@ class RobotSurface:
         """The links a sensor on ``link`` at ``origin`` looks out of: its own, and any
         other whose geometry encloses its origin (a camera frame inside the camera link's
         body, behind its lens): their geometry is left out of its view. A link's geometry
-        encloses a point it holds in a shape's box and meets every one of ENCLOSING's rays
-        from (a chassis whose box holds a lidar in a recess, open above, does not)."""
+        encloses a point one of its shapes' box holds where every ray from the point along
+        the 6 axes and the 8 diagonals meets it (a chassis whose box holds a lidar in a
+        recess open above does not)."""
         near = {piece.link for piece in self.pieces if piece.holds(origin)} - {link}
         return [link] + sorted(other for other in near if self._encloses(other, origin))
 
@@ -100,7 +100,7 @@ class RobotSurface:
 
 
 def _enclosing() -> np.ndarray:
-    """ENCLOSING's directions: the 6 axes and the 8 diagonals, unit length."""
+    """The directions a housing meets: the 6 axes and the 8 diagonals, unit length."""
     axes = np.vstack([np.eye(3), -np.eye(3)])
     diagonals = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)],
                          dtype=float) / math.sqrt(3)
@@ -125,7 +125,7 @@ def robot_surface(loaded, positions: dict[str, float]) -> RobotSurface:
                                filename_handler=resolve, build_scene_graph=False,
                                load_meshes=False, build_collision_scene_graph=False,
                                load_collision_meshes=False)
-    triangles, owners, housings, notes = [], [], [], []
+    triangles, owners, extents, notes = [], [], [], []
     units = {}
     for collision in (True, False):
         with np.errstate(all="ignore"):
@@ -139,31 +139,32 @@ def robot_surface(loaded, positions: dict[str, float]) -> RobotSurface:
                         unit = unit_primitive(piece.primitive)
                         units[piece.primitive] = np.asarray(unit.vertices)[unit.faces]
                     corners = units[piece.primitive]
-                    housing = Extent(piece.link, piece.primitive, _inverse(piece.transform))
+                    extent = Extent(piece.link, piece.primitive, _inverse(piece.transform))
                 else:
                     vertices = np.asarray(piece.mesh.vertices, dtype=float)
                     corners = vertices[piece.mesh.faces]
-                    housing = Extent(piece.link, "mesh", _inverse(piece.transform),
-                                      vertices.min(axis=0), vertices.max(axis=0))
+                    extent = Extent(piece.link, "mesh", _inverse(piece.transform),
+                                    vertices.min(axis=0), vertices.max(axis=0))
                 placed = corners @ piece.transform[:3, :3].T + piece.transform[:3, 3]
-                if not np.isfinite(placed).all() or not np.isfinite(housing.inverse).all():
+                if not np.isfinite(placed).all():
                     notes.append(f"link {piece.link}: geometry without finite coordinates "
                                  "left out of what its sensors see")
                     continue
                 triangles.append(placed)
-                owners.append(np.full(len(placed), len(housings)))
-                housings.append(housing)
+                owners.append(np.full(len(placed), len(extents)))
+                extents.append(extent)
     poses = link_poses(model.robot, positions)
     if triangles:
         soup, piece_of = np.concatenate(triangles), np.concatenate(owners)
     else:
         soup, piece_of = np.zeros((0, 3, 3)), np.zeros(0, dtype=int)
-    return RobotSurface(soup, piece_of, housings, poses, list(dict.fromkeys(notes)))
+    return RobotSurface(soup, piece_of, extents, poses, list(dict.fromkeys(notes)))
 
 
 def _inverse(transform: np.ndarray) -> np.ndarray:
     """The inverse of a placed piece's transform (its scale included); a flat one (a
-    box of zero size) has none: NaN, and the piece is left out."""
+    box of zero thickness) has none: NaN, and holds no sensor (its triangles still
+    block rays)."""
     try:
         return np.linalg.inv(transform)
     except np.linalg.LinAlgError:

@@ -317,3 +317,33 @@ def test_a_sensor_on_no_link_is_left_out_with_a_note(tmp_path):
     assert section.figures == []
     assert section.notes == [f"sensor scanner ({path}:2): in a <gazebo> block without a "
                              "reference, on no link: left out"]
+
+
+def test_a_shape_around_the_lidar_is_its_housing_one_that_only_boxes_it_in_is_not(tmp_path):
+    import trimesh
+
+    # A closed shell around the scanner, on a link of its own: its housing, left out.
+    shell = _mesh_link(tmp_path, "shell", trimesh.creation.box((0.1, 0.1, 0.1)))
+    shell = shell.replace('<origin xyz="0.2 0 ', '<origin xyz="0 0 ')
+    _, housed = sensors_of(tmp_path / "housed.urdf",
+                           robot(lidar_link(), shell, ray_sensor("lidar_link")))
+    assert values(housed)["sensors.scanner.blocked"] == []
+    assert "(its housing left out: links lidar_link, shell)" in \
+        housed.figure("sensors.scanner.blocked").source
+    # Two rails either side of it, one mesh: its box holds the scanner, but rays ahead and
+    # behind leave it; each rail blocks the sector its edges subtend, in both engines.
+    posts = []
+    for y in (0.1, -0.1):
+        rail = trimesh.creation.box((0.02, 0.02, 0.2))
+        rail.apply_translation((-0.2, y, 0))  # (_mesh_link puts it 0.2 m ahead)
+        posts.append(rail)
+    rails = _mesh_link(tmp_path, "rails", trimesh.util.concatenate(posts))
+    _, boxed = sensors_of(tmp_path / "boxed.urdf",  # (its range from 1 cm: the rails are near)
+                          robot(lidar_link(), rails, ray_sensor("lidar_link", near=0.01)))
+    right, left = values(boxed)["sensors.scanner.blocked"]
+    low, high = subtended(square((0.0, 0.1), 0.02))
+    assert abs(left[0] - low) <= STEP / 2 and abs(left[1] - high) <= STEP / 2
+    assert right == [-left[1], -left[0]]
+    assert "(its housing left out: link lidar_link)" in \
+        boxed.figure("sensors.scanner.blocked").source
+    assert boxed.figure("sensors.scanner.blocked").proof.agrees

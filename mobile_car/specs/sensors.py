@@ -29,6 +29,8 @@ from .sensor_list import find_sensors
 DEFAULT_BLOCKED_SHARE = 0.10
 # The camera's covered share agrees with MuJoCo's within this (grid cells on an edge).
 COVERED_TOLERANCE = 0.02
+# The pose agrees with MuJoCo's kinematics within this, in m and in degrees.
+POSE_TOLERANCE = 1e-4
 FILTER_TYPE = "laser_filters/LaserScanAngularBoundsFilterInPlace"
 DIGITS = 4  # degrees and shares are given to this many decimals
 # Rays cast for one robot, every sensor's together (twice: trimesh, then MuJoCo): the
@@ -95,12 +97,22 @@ def _proof(checked, start, options, notes):
     return proof
 
 
-def _pose_figure(sensor, frame) -> Figure:
+def _pose_figure(sensor, frame, proof) -> Figure:
+    figure = Figure(f"sensors.{sensor.name}.pose", f"{sensor.name} pose (x, y, z, yaw)",
+                    _pose(frame), "m, deg", sensor.source,
+                    "root frame at rest: every joint at 0, springs at their rest")
+    if proof is not None:
+        measured = _pose(proof.frame(sensor))
+        agrees = all(abs(a - b) <= POSE_TOLERANCE for a, b in zip(measured, figure.value,
+                                                                   strict=True))
+        figure.proof = Proof(measured, agrees, f"{POSE_TOLERANCE:g} m and degree",
+                             "MuJoCo's kinematics of the same URDF place the sensor's link")
+    return figure
+
+
+def _pose(frame) -> list[float]:
     yaw = math.degrees(math.atan2(frame[1, 0], frame[0, 0]))
-    value = [round(float(v), 6) for v in frame[:3, 3]] + [round(yaw, DIGITS)]
-    return Figure(f"sensors.{sensor.name}.pose", f"{sensor.name} pose (x, y, z, yaw)",
-                  value, "m, deg", sensor.source,
-                  "root frame at rest: every joint at 0, springs at their rest")
+    return [round(float(v), 6) for v in frame[:3, 3]] + [round(yaw, DIGITS)]
 
 
 def _lidar(sensor, surface, proof, threshold, checked, result) -> list[Figure]:
@@ -119,7 +131,7 @@ def _lidar(sensor, surface, proof, threshold, checked, result) -> list[Figure]:
     if sensor.layers > 1:
         seen += f"; a 3D lidar of {sensor.layers} layers: its horizontal plane only"
     figures = [
-        _pose_figure(sensor, frame),
+        _pose_figure(sensor, frame, proof),
         Figure(f"{key}.range", f"{sensor.name} range", [sensor.range_min, sensor.range_max],
                "m", sensor.source),
         Figure(f"{key}.fov", f"{sensor.name} field of view",
@@ -175,7 +187,7 @@ def _camera(sensor, surface, proof) -> list[Figure]:
                              abs(measured - figure.value) <= COVERED_TOLERANCE,
                              f"{COVERED_TOLERANCE:g} of the image",
                              "MuJoCo mj_multiRay through the same grid")
-    return [_pose_figure(sensor, frame),
+    return [_pose_figure(sensor, frame, proof),
             Figure(f"sensors.{sensor.name}.fov", f"{sensor.name} horizontal field of view",
                    [-half, half], "deg", sensor.source), figure]
 

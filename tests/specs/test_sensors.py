@@ -87,6 +87,10 @@ def test_a_gz_lidar_block_is_read_with_its_samples_angles_range_and_pose(tmp_pat
                             robot(lidar_link(), post("post", centre, side), sensor))
     found = values(section)
     assert found["sensors.scanner.pose"] == pytest.approx([0.0, 0.0, LIDAR_Z + 0.01, 90.0])
+    # MuJoCo's kinematics place the sensor where the <pose> on its link does.
+    pose_proof = section.figure("sensors.scanner.pose").proof
+    assert pose_proof.agrees and pose_proof.measured == pytest.approx(
+        [0.0, 0.0, LIDAR_Z + 0.01, 90.0])
     assert found["sensors.scanner.range"] == [0.2, 8.0]
     assert found["sensors.scanner.fov"] == [-90.0, 90.0]
     assert section.figure("sensors.scanner.fov").source == \

@@ -110,6 +110,7 @@ def test_what_a_shipped_robots_sensors_see_of_it_mujoco_agreeing(name, monkeypat
     _, section = sensors_of(FOLDER / main, package_paths=[FOLDER], mappings=arguments)
     found = values(section)
     assert found[f"sensors.{lidar}.pose"] == pytest.approx(pose, abs=1e-6)
+    assert section.figure(f"sensors.{lidar}.pose").proof.agrees
     assert f"{samples} rays cast" in section.figure(f"sensors.{lidar}.blocked").source
     # Each lidar stands clear of its robot: on TurtleBot3's top, on Husky's and Jackal's
     # sensor towers.

@@ -146,7 +146,8 @@ def _lidar(sensor, surface, proof, threshold, checked, result) -> list[Figure]:
         mj_frame = proof.frame(sensor)
         mj_hits = proof.blocked(sensor, mj_frame[:3, 3], lidar_rays(sensor, mj_frame),
                                 surface.housing(sensor.link, frame[:3, 3]))
-        agrees = within_one_sample(hits, mj_hits)
+        around = sensor.max_angle - sensor.min_angle + 1.5 * sensor.step >= 2 * math.pi
+        agrees = within_one_sample(hits, mj_hits, around)
         differ = int((hits != mj_hits).sum())
         detail = (f"MuJoCo mj_multiRay from the same origin and azimuths: {differ} of "
                   f"{sensor.samples} samples differ")
@@ -212,13 +213,15 @@ def blocked_sectors(hits, azimuths, step: float) -> list[list[float]]:
     return sectors
 
 
-def within_one_sample(ours, theirs) -> bool:
+def within_one_sample(ours, theirs, around: bool = False) -> bool:
     """Every sample blocked in one is blocked in the other or next to one that is: the
-    sectors' edges agree within one sample."""
+    sectors' edges agree within one sample. ``around``: the scan goes all the way round,
+    its last sample next to its first."""
     import numpy as np
 
     def grown(hits):
-        hits = np.asarray(hits, dtype=bool)
+        if around:
+            return hits | np.roll(hits, 1) | np.roll(hits, -1)
         out = hits.copy()
         out[1:] |= hits[:-1]
         out[:-1] |= hits[1:]

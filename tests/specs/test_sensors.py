@@ -351,3 +351,16 @@ def test_a_shape_around_the_lidar_is_its_housing_one_that_only_boxes_it_in_is_no
     assert "(its housing left out: link lidar_link)" in \
         boxed.figure("sensors.scanner.blocked").source
     assert boxed.figure("sensors.scanner.blocked").proof.agrees
+
+
+def test_sectors_agree_within_one_sample_and_across_the_ends_of_a_full_turn():
+    from mobile_car.specs.sensors import within_one_sample
+
+    ours = [False, True, True, True, False, False]
+    assert within_one_sample(ours, [False, False, True, True, True, False])  # shifted by one
+    assert not within_one_sample(ours, [False, True, True, True, False, True])  # one apart
+    assert not within_one_sample(ours, [False] * 6)
+    # The first and last samples of a full turn are neighbours; of a part scan they are not.
+    first, last = [True] + [False] * 5, [False] * 5 + [True]
+    assert within_one_sample(first, last, around=True)
+    assert not within_one_sample(first, last)

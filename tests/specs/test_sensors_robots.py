@@ -24,7 +24,7 @@ CAR = REPO / "urdf" / "mobile_robot.xacro"
 STEP = 1.0  # the car's laser: 360 samples, one a degree from -180
 
 
-def test_the_bundled_car_laser_sees_nothing_of_the_car(tmp_path):
+def test_the_bundled_car_laser_sees_nothing_of_the_car():
     _, section = sensors_of(CAR, package_paths=[REPO])
     found = values(section)
     assert found["sensors.laser.blocked"] == [] and found["sensors.laser.blocked_share"] == 0

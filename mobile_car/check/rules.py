@@ -218,6 +218,9 @@ _TABLE = [
     Rule("W514", "stack-laser-filter", "a laser_filters chain whose angular bounds filters "
          "leave part of a sector the robot's own body blocks in the scan (mcar specs, "
          "with the sensors section)", "n/a"),
+    Rule("W520", "lidar-blocked", "`mcar specs`: the robot's own geometry (visual or "
+         "collision) blocks a lidar over more than 10 % of its samples; the message names "
+         "the sectors", "n/a"),
     Rule("W530", "inertia-implausible", "`mcar specs`: a declared inertia MuJoCo refuses, or "
          "over 3 times or under 1/3 what the link's geometry (collision, else visual) gives "
          "with its mass about a principal axis; the message gives the `<inertial>` to write "

@@ -149,12 +149,12 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     joints = {j.get("name"): j for j in root if j.tag == "joint"}
     friction = gazebo_friction(root)
     colours = _link_colours(root)
-    # The motor figures' other sources, kept before _prepare takes them out of the tree.
+    # The motor figures' other sources, kept before prepare_urdf takes them out of the tree.
     root_figures = [e for e in root if e.tag in ("gazebo", "ros2_control")]
     actuated = actuated_joints(root)
     joint_blocks = gazebo_joint_blocks(root)
     mecanum = urdf_declarations(root) + list(mecanum)
-    notes = read_as + _prepare(root, base, search)
+    notes = read_as + prepare_urdf(root, base, search)
     try:
         spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
     except ValueError as error:
@@ -381,10 +381,11 @@ def _link_colours(root) -> dict[str, list[float]]:
     return found
 
 
-def _prepare(root, base: Path, search) -> list[str]:
+def prepare_urdf(root, base: Path, search) -> list[str]:
     """Strip what MuJoCo must not read (visuals, Gazebo and ros2_control extras), point
     collision meshes at files MuJoCo reads (:mod:`.meshes`: converted where needed, in
-    metres); the notes say what was left out."""
+    metres); the notes say what was left out. (mcar specs' ray proof calls it on a tree
+    whose visuals it made collisions, to cast against both.)"""
     from .meshes import mujoco_mesh
 
     notes = []

@@ -4,6 +4,7 @@ modules that record what they were given)."""
 
 from __future__ import annotations
 
+import importlib
 import json
 import sys
 import types
@@ -18,10 +19,14 @@ from mobile_car.specs.figures import Section
 @pytest.fixture
 def recording_parts(monkeypatch) -> list:
     """Each part a module whose section() records (its name, the context) and returns an
-    empty Section of its name."""
+    empty Section of its name; the rest of the module is the real one's (the command
+    imports its constants)."""
     calls = []
     for name in PARTS:
         module = types.ModuleType(f"mobile_car.specs.{name}")
+        module.__dict__.update(
+            {k: v for k, v in vars(importlib.import_module(module.__name__)).items()
+             if not k.startswith("__")})
 
         def section(context, name=name):
             calls.append((name, context))

@@ -1,0 +1,58 @@
+"""mcar specs' sensors section reads the robot's visual meshes too (render's assembly for
+the trimesh cast, sim's mesh preparation for MuJoCo's proof, which before this read only
+collision meshes). A description names a "visual" outside its folders
+(``../outside/secret.stl``, ``file:///``...): it is refused by the one resolver
+(PackageSearch.resolve_uri) before trimesh or MuJoCo opens it, left out with a note, and
+never shapes a figure. The planted file is a cube that would block the lidar: the control
+puts the same cube inside the robot's folder, and the sector appears in both engines."""
+
+from __future__ import annotations
+
+import shutil
+import struct
+
+from specs.sensor_robots import LIDAR_Z, lidar_link, link, ray_sensor, robot, sensors_of, values
+
+
+def _cube_stl(side: float) -> bytes:
+    """A binary STL cube of side ``side``, centred on its origin."""
+    s = side / 2
+    corners = [(x, y, z) for x in (-s, s) for y in (-s, s) for z in (-s, s)]
+    faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1),
+             (2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
+    data = b"MCAR-SECRET".ljust(80, b" ") + struct.pack("<I", len(faces))
+    for face in faces:
+        data += struct.pack("<3f", 0, 0, 0)
+        for index in face:
+            data += struct.pack("<3f", *corners[index])
+        data += b"\0\0"
+    return data
+
+
+def _robot(filename: str) -> str:
+    visual = (f'<visual><origin xyz="0.2 0 {LIDAR_Z}"/><geometry><mesh filename="{filename}"/>'
+              "</geometry></visual>")
+    return robot(lidar_link(), link("cube", "base_link", (0, 0, 0), visual),
+                 ray_sensor("lidar_link"))
+
+
+def test_a_visual_mesh_outside_the_robot_folders_is_never_read_for_its_sensors(tmp_path):
+    outside, package = tmp_path / "outside", tmp_path / "robot"
+    outside.mkdir()
+    package.mkdir()
+    (outside / "secret.stl").write_bytes(_cube_stl(0.1))
+    for name in ("../outside/secret.stl", f"file://{outside}/secret.stl"):
+        _, section = sensors_of(package / "robot.urdf", _robot(name))
+        assert values(section)["sensors.scanner.blocked"] == [], name
+        proof = section.figure("sensors.scanner.blocked").proof
+        assert proof.agrees and proof.measured == []
+        assert "link cube: a visual mesh not read is left out of what its sensors see" in \
+            section.notes
+        refused = f"sensors' proof: link cube: mesh {name} left out:"
+        assert any(note.startswith(refused) for note in section.notes), section.notes
+    # Control: the same cube inside the robot's folder blocks the scan in both engines.
+    shutil.copy(outside / "secret.stl", package / "cube.stl")
+    _, control = sensors_of(package / "robot.urdf", _robot("cube.stl"))
+    sectors = values(control)["sensors.scanner.blocked"]
+    assert len(sectors) == 1 and control.figure("sensors.scanner.blocked").proof.measured == \
+        sectors

@@ -22,11 +22,12 @@ import math
 from pathlib import Path
 
 from .figures import Figure, Section
-from .lookup import blocked_sectors, figure_value
+from .lookup import figure_value
+from .sensors import laser_filters_fragment
 
 DISTROS = ("jazzy", "humble")  # jazzy: also Kilted and Rolling
 FILES = ("nav2.yaml", "controllers.yaml", "laser_filters.yaml")
-BOUNDS_FILTER = "laser_filters/LaserScanAngularBoundsFilterInPlace"
+
 
 
 def _out(value: float, step: float = 0.001) -> float:
@@ -175,25 +176,6 @@ def _mecanum(drive, radius):
             params)
 
 
-def laser_filters_fragment(sections) -> dict:
-    """One laser_filters chain per lidar with a blocked sector (sensors.<name>.blocked):
-    a LaserScanAngularBoundsFilterInPlace per sector, which marks its readings invalid
-    (range_max + 1). One lidar: node ``scan_to_scan_filter_chain``, as laser_filters'
-    examples; several: ``<sensor>_filter_chain`` each. {} when nothing blocks a lidar."""
-    sectors = blocked_sectors(sections)
-    document = {}
-    for sensor, pieces in sectors.items():
-        filters = {}
-        for number, (lower, upper) in enumerate(pieces, 1):
-            filters[f"filter{number}"] = {
-                "name": f"{sensor}_body_{number}", "type": BOUNDS_FILTER,
-                "params": {"lower_angle": math.floor(round(lower * 1e4, 6)) / 1e4,
-                           "upper_angle": math.ceil(round(upper * 1e4, 6)) / 1e4}}
-        node = "scan_to_scan_filter_chain" if len(sectors) == 1 else f"{sensor}_filter_chain"
-        document[node] = {"ros__parameters": filters}
-    return document
-
-
 def stack_documents(sections, sim, distro: str = "jazzy", control=None) -> dict[str, tuple]:
     """file name -> (header comment lines, document) for each fragment that has content."""
     documents = {}
@@ -207,7 +189,7 @@ def stack_documents(sections, sim, distro: str = "jazzy", control=None) -> dict[
     if controllers:
         documents["controllers.yaml"] = (_controller_header(sections, sim, distro, control),
                                          controllers)
-    filters = laser_filters_fragment(sections)
+    filters = laser_filters_fragment(sections)  # (the sensors part's: the scan's own angles)
     if filters:
         documents["laser_filters.yaml"] = (["laser_filters chains from mcar specs: the "
                                             "sectors the robot's own body blocks "

@@ -6,8 +6,6 @@ here); the drive is sim's, of robots written in tmp_path."""
 
 from __future__ import annotations
 
-import math
-
 import click
 import pytest
 import yaml
@@ -132,19 +130,18 @@ def test_no_drive_no_controller():
     assert controller_fragment([body()], Undriven()) == {}
 
 
-def test_laser_filters_mark_each_blocked_sector_split_at_the_rear():
+def test_laser_filters_keep_the_scans_own_angles():
+    """A 0..360° scan (TurtleBot3's LDS) blocked across its rear keeps its angles: the
+    filter compares the reading's own angle, so a bound at -170° would remove nothing."""
     sensors = Section("sensors", [
-        Figure("sensors.lidar.blocked", "blocked", [[30, 40], [170, -170]], "deg", "rays"),
+        Figure("sensors.lidar.blocked", "blocked", [[30, 40], [170, 190]], "deg", "rays"),
         Figure("sensors.lidar.range", "range", [0.1, 8], "m", "")])
     fragment = laser_filters_fragment([sensors])
     chain = fragment["scan_to_scan_filter_chain"]["ros__parameters"]
     bounds = [(f["params"]["lower_angle"], f["params"]["upper_angle"]) for f in chain.values()]
     assert [f["type"] for f in chain.values()] == \
-        ["laser_filters/LaserScanAngularBoundsFilterInPlace"] * 3
-    assert bounds == [(0.5235, 0.6982), (2.967, 3.1416), (-3.1416, -2.967)]
-    for (lower, upper), (a, b) in zip(bounds, [(30, 40), (170, 180), (-180, -170)],
-                                      strict=True):
-        assert lower <= math.radians(a) and upper >= math.radians(b)  # outward
+        ["laser_filters/LaserScanAngularBoundsFilterInPlace"] * 2
+    assert bounds == [(0.523599, 0.698132), (2.96706, 3.316126)]
     assert yaml.safe_load(yaml_text([], fragment)) == fragment
 
 

@@ -1,6 +1,6 @@
 """The climb proof: MuJoCo drives the robot straight up a slope MARGIN under its computed
 climb angle, where it must climb, and MARGIN over it, where it must not
-(docs/specs-proofs.md). As in the tilt proof gravity is turned, not the floor, and the
+(docs/specs.md, "Statics, and their proofs"). As in the tilt proof gravity is turned, not the floor, and the
 contacts are the proof model's (:func:`.proof_tilt.proof_model`), as soft as sim drives
 on (on the tilt's stiff resting contacts Husky's tyres chattered and slid back 1° under
 its limit). The wheels are sim's motors: their velocity servos, limited to their

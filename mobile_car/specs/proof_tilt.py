@@ -1,6 +1,6 @@
 """The tilt proof: MuJoCo stands the robot on a floor that tilts slowly about a horizontal
 axis, so that the slope falls towards an azimuth, its drive wheels braked, until it slides
-or tips; the angle is compared with the computed one (docs/specs-proofs.md).
+or tips; the angle is compared with the computed one (docs/specs.md, "Statics, and their proofs").
 
 Gravity turns instead of the floor (the same slope to the robot; the floor's contact
 frame stays put). The slope rises at FAST_RATE to WINDOW below the computed angle, then

@@ -3,7 +3,7 @@ castors (and any other part resting on the floor) touch it, each with the fricti
 holds with and the way it may roll, and its centre of mass above the floor. The statics
 (:mod:`.statics`) and their proofs (:mod:`.proof_tilt`) start from this.
 
-Frames: the floor frame of docs/specs-proofs.md (x forward, y left, origin below the root's
+Frames: the floor frame of docs/specs.md (x forward, y left, origin below the root's
 origin at rest). Lengths in m. A geom counts as resting when its lowest point is within
 sim's GROUND_TOLERANCE of the floor (a castor a few mm up: the robot rocks onto it before
 it tips); it touches along the patch within FLAT of its own lowest point (a wheel's one

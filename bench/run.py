@@ -55,6 +55,13 @@ def section_export(rows: list[str], work: Path, quick: bool) -> None:
     export_bench.section(rows, work, quick, measure)
 
 
+def section_specs(rows: list[str], work: Path, quick: bool) -> None:
+    import measure
+    import specs_bench
+
+    specs_bench.section(rows, work, quick, measure)
+
+
 def section_meshes(rows: list[str], work: Path, quick: bool) -> None:
     import measure
     import mesh_check_bench
@@ -66,7 +73,8 @@ SECTIONS = {"check": section_check, "build": section_build, "startup": section_s
             "batch": section_batch, "folder": section_folder, "render": section_render,
             "noop": section_noop, "sim": section_sim, "robots": section_robots,
             "sweep": section_sweep, "gazebo": section_gazebo, "meshes": section_meshes,
-            "export": section_export, "floor": section_floor}
+            "export": section_export, "floor": section_floor,
+            "specs": section_specs}
 NEEDS_CHECK_URDF = {"check", "startup", "batch", "floor"}
 
 

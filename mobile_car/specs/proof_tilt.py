@@ -164,7 +164,7 @@ def tilt(sim, found, azimuth: float, expected: float) -> Tilt:
     run.step(SETTLE)
     bodies = sorted({c.body for c in found.contacts})
     start_heights = run.data.xpos[bodies, 2].copy()
-    slip = Slip(model, sim.floor_geom, found.contacts, bodies)
+    slip = Slip(model, sim.floor_geom, sim.root_body, found.contacts, bodies)
     a = math.radians(azimuth)
     slow_from = max(0.0, math.radians(expected) - BEFORE)
     end = min(math.radians(expected) + WINDOW, math.radians(89.0))
@@ -213,7 +213,7 @@ class Slip:
     roll across it). Not a castor wheel on a swivel: pulled sideways it swivels round,
     its wheel moving by its trail (MiR's 5 mm at 5°, its robot standing still)."""
 
-    def __init__(self, model, floor: int, contacts, bodies):
+    def __init__(self, model, floor: int, root: int, contacts, bodies):
         import numpy as np
 
         holds = {c.body: c.axis if c.hold == "axle" else (0.0, 0.0)
@@ -226,7 +226,7 @@ class Slip:
             if body in holds:
                 self.holds[g], self.axis[g] = True, holds[body]
         self.along = self.axis.any(axis=1)
-        self.root = int(model.body_rootid[next(iter(holds))])
+        self.root = int(model.body_rootid[root])
         self.body = model.geom_bodyid
 
     def speed(self, data) -> float:

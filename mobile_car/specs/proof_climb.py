@@ -1,17 +1,17 @@
 """The climb proof: MuJoCo drives the robot straight up a slope MARGIN under its computed
-climb angle, where it must climb, and MARGIN over it, where it must not
-(docs/specs.md, "Statics, and their proofs"). As in the tilt proof gravity is turned, not the floor, and the
-contacts are the proof model's (:func:`.proof_tilt.proof_model`), as soft as sim drives
-on (on the tilt's stiff resting contacts Husky's tyres chattered and slid back 1° under
-its limit). The wheels are sim's motors: their velocity servos, limited to their
+climb angle, where it must climb, and MARGIN over it, where it must not (docs/specs.md,
+"Statics, and their proofs"). As in the tilt proof gravity is turned, not the floor, and
+the contacts are the proof model's (:func:`.proof_tilt.proof_model`), as soft as sim
+drives on (on the tilt's stiff resting contacts Husky's tyres chattered and slid back 1°
+under its limit). The wheels are sim's motors: their velocity servos, limited to their
 effort, commanded a crawl (CRAWL at the rim, sim's speed where that is slower) after
-sim's ramp; the robot climbs when, over the last
-MEASURE s of DRIVE s, it goes up the slope at PROGRESS of r·ω or more. A crawl, because
-1° under its limit a robot has ~0.17 m/s² to spare: at sim's speed it was still
-catching up after its ramp (a 10 kg box at 0.25 m/s: 64%), which says nothing of the
-slope. The servos are SERVO_STIFFER times sim's gain: at sim's, Husky's wheels lagged
-their command by a third under the torque a 39° slope asks (kv·Δω = τ), which is the
-servo's droop, not the slope; their effort limits are sim's."""
+sim's ramp; the robot climbs when, over the last MEASURE s of DRIVE s, it goes up the
+slope at PROGRESS of r·ω or more. A crawl, because 1° under its limit a robot has ~0.17
+m/s² to spare: at sim's speed it was still catching up after its ramp (a 10 kg box at
+0.25 m/s: 64%), which says nothing of the slope. The servos are SERVO_STIFFER times sim's
+gain: at sim's, Husky's wheels lagged their command by a third under the torque a 39°
+slope asks (kv·Δω = τ), which is the servo's droop, not the slope; their effort limits
+are sim's."""
 
 from __future__ import annotations
 

@@ -3,19 +3,31 @@ axis, so that the slope falls towards an azimuth, its drive wheels braked, until
 or tips; the angle is compared with the computed one (docs/specs.md, "Statics, and their proofs").
 
 Gravity turns instead of the floor (the same slope to the robot; the floor's contact
-frame stays put). The slope rises at FAST_RATE to WINDOW below the computed angle, then
+frame stays put). The slope rises at FAST_RATE to BEFORE below the computed angle, then
 at SLOW_RATE, quasi-static, until the event or WINDOW past it. Events: it tips when a
 part it stood on has risen LIFT (the angle taken is where that rise began: ONSET_LIFT);
-it slides when a part it stands on that holds (no swivel castor) has moved SLIDE along
-the floor (the angle taken is
-where that part's speed last rose past SLIDE_SPEED: MuJoCo's soft friction creeps below
-it; a part, not the centre of mass, which barely moves when the robot starts to turn).
+it slides when a part it stands on that holds (no swivel castor) has slipped SLIDE over
+the floor where it touches it (the velocity of its point at the contact: a wheel that
+rolls, or a robot rocking over an edge, moves its centre but not that point), the
+angle taken where the slip's speed rose past SLIDE_SPEED, unless it stopped for STILL
+since (it slides in jerks, sticking for a few ms).
 Brakes are a damping on the driven wheels' joints that lets them creep BRAKE_CREEP
 (m/s at the rim under the whole weight). Each contact gets the friction the figure
 assumed, and the friction cone is elliptic (Coulomb's: MuJoCo's default pyramid holds
-less across its axes, and creeps 5 times as fast), with IMPRATIO; the contacts as stiff
-as sim's drop makes them (RESTING_SOLREF: at MuJoCo's default a wheel sinks ~3 mm under
-its load, and rises as much as the slope unloads it, long before it tips)."""
+less across its axes, and creeps 5 times as fast), with IMPRATIO and NOSLIP_ITERATIONS
+of MuJoCo's noslip pass; the contacts as stiff as sim's drop makes them
+(RESTING_SOLREF: at MuJoCo's default a wheel sinks ~3 mm under its load, and rises as
+much as the slope unloads it, long before it tips).
+
+Why noslip, and the slip measured so finely: MuJoCo's soft friction creeps, and a
+contact that slips gets more normal force the faster it slips (in the elliptic cone's
+middle zone the normal force grows with the tangential residual). A robot past its
+slide angle then crept down at 0.5 mm/s on wheels whose loads had swollen to hold it:
+MiR "held" 2-4° past its figure under the 5 mm/s a slide was once taken at. The noslip
+pass takes the creep out while the friction holds (MiR: 0.23 mm/s to 0.0005 mm/s at 30°),
+so a slip of SLIDE_SPEED is the slide itself; IMPRATIO 100 keeps the swelling small
+(it goes as 1/impratio: at 10 Husky slid sideways 4.5° early, MiR's worst direction
+held 1.4° long)."""
 
 from __future__ import annotations
 
@@ -28,16 +40,21 @@ from .figures import Proof
 FAST_RATE = math.radians(10.0)   # rad/s
 SLOW_RATE = math.radians(2.0)    # rad/s
 WINDOW = math.radians(4.0)
+BEFORE = math.radians(2.0)
 SETTLE = 0.5                     # s on the level floor first
 LIFT = 0.002                     # m
 ONSET_LIFT = 0.0005              # m
-SLIDE = 0.005                    # m
-SLIDE_SPEED = 0.005              # m/s
+SLIDE = 0.0002                   # m
+SLIDE_SPEED = 0.00005            # m/s: with noslip a held robot creeps under 1e-6
+STILL = 0.2                      # s
 BRAKE_CREEP = 1e-5               # m/s
- # MuJoCo's friction constraint this much stiffer than the normal one: at 1 a box held by
-# its four braked wheels on μ 0.6 crept 8 mm/s at 30° of its 31° slide angle, at 10 0.9
-IMPRATIO = 10.0
+# MuJoCo's friction constraint this much stiffer than the normal one: at 1 a box held by
+# its four braked wheels on μ 0.6 crept 8 mm/s at 30° of its 31° slide angle, at 10 0.9;
+# and the normal force a slipping contact gains goes as 1 / IMPRATIO
+IMPRATIO = 100.0
+NOSLIP_ITERATIONS = 10
 TOLERANCE = 1.0                  # deg
+CHUNK = 5                        # steps between the checks (5 ms: 0.01° of slope)
 GRAVITY = 9.81
 RUNS = {"forward": 0, "left": 90, "backward": 180, "right": 270}
 
@@ -136,8 +153,6 @@ def proof_model(sim, found, resting: bool = True):
 
 def tilt(sim, found, azimuth: float, expected: float) -> Tilt:
     """One tilt towards ``azimuth`` (deg), slowing near ``expected`` (deg)."""
-    import numpy as np
-
     from ..sim.run import Run
 
     model, copied = proof_model(sim, found)
@@ -149,18 +164,18 @@ def tilt(sim, found, azimuth: float, expected: float) -> Tilt:
     run.step(SETTLE)
     bodies = sorted({c.body for c in found.contacts})
     start_heights = run.data.xpos[bodies, 2].copy()
-    # What slides: the parts that hold (a castor wheel swivels round when pulled sideways,
-    # its wheel moving by its trail: MiR's 5 mm at 5°, its robot standing still)
-    holding = sorted({c.body for c in found.contacts if c.hold != "free"}) or bodies
-    start, last = None, run.data.xpos[holding, :2].copy()
+    slip = Slip(model, sim.floor_geom, sim.root_body, found.contacts, bodies)
     a = math.radians(azimuth)
-    slow_from = max(0.0, math.radians(expected) - WINDOW)
+    slow_from = max(0.0, math.radians(expected) - BEFORE)
     end = min(math.radians(expected) + WINDOW, math.radians(89.0))
     theta, elapsed = 0.0, 0.0
     onset_lift = onset_slide = None
-    step = model.opt.timestep
+    slid = still = 0.0
+    step = model.opt.timestep * CHUNK
     while theta < end:
-        theta += (FAST_RATE if theta < slow_from else SLOW_RATE) * step
+        slow = theta >= slow_from
+        theta += (SLOW_RATE if slow else FAST_RATE) * step
+        model.opt.noslip_iterations = NOSLIP_ITERATIONS if slow else 0
         elapsed += step
         model.opt.gravity[:] = [GRAVITY * math.sin(theta) * math.cos(a),
                                 GRAVITY * math.sin(theta) * math.sin(a),
@@ -173,15 +188,66 @@ def tilt(sim, found, azimuth: float, expected: float) -> Tilt:
             onset_lift = None
         if lift > LIFT:
             return Tilt(azimuth, "tips", math.degrees(onset_lift), elapsed)
-        where = run.data.xpos[holding, :2]
-        speed = float(np.hypot(*(where - last).T).max()) / step
-        last = where.copy()
-        if speed <= SLIDE_SPEED:
-            onset_slide = None
-        elif onset_slide is None:  # (what crept before does not count)
-            onset_slide, start = theta, where.copy()
-        elif float(np.hypot(*(where - start).T).max()) > SLIDE:
-            return Tilt(azimuth, "slides", math.degrees(onset_slide), elapsed)
+        speed = slip.speed(run.data)
+        if speed > SLIDE_SPEED:
+            if onset_slide is None:  # (what crept before does not count)
+                onset_slide, slid = theta, 0.0
+            still = 0.0
+            slid += speed * step
+            if slid > SLIDE:
+                return Tilt(azimuth, "slides", math.degrees(onset_slide), elapsed)
+        elif onset_slide is not None:
+            still += step
+            if still > STILL:
+                onset_slide = None
         if not math.isfinite(lift):
             return Tilt(azimuth, None, None, elapsed)
     return Tilt(azimuth, None, math.degrees(theta), elapsed)
+
+
+class Slip:
+    """How fast the parts that hold slip over the floor where they touch it (m/s): the
+    velocity of the body's point at the contact, along the floor (a wheel that rolls,
+    or a robot that rocks over an edge, moves its body's centre; its contact stays put);
+    along its axle only for a part that holds only along it (a mecanum wheel's rollers
+    roll across it). Not a castor wheel on a swivel: pulled sideways it swivels round,
+    its wheel moving by its trail (MiR's 5 mm at 5°, its robot standing still)."""
+
+    def __init__(self, model, floor: int, root: int, contacts, bodies):
+        import numpy as np
+
+        holds = {c.body: c.axis if c.hold == "axle" else (0.0, 0.0)
+                 for c in contacts if c.hold != "free"} or dict.fromkeys(bodies, (0.0, 0.0))
+        self.floor = floor
+        self.holds = np.zeros(model.ngeom, dtype=bool)  # by geom
+        self.axis = np.zeros((model.ngeom, 2))
+        for g in range(model.ngeom):
+            body = int(model.geom_bodyid[g])
+            if body in holds:
+                self.holds[g], self.axis[g] = True, holds[body]
+        self.along = self.axis.any(axis=1)
+        self.root = int(model.body_rootid[root])
+        self.body = model.geom_bodyid
+
+    def speed(self, data) -> float:
+        import numpy as np
+
+        n = data.ncon
+        if n == 0:
+            return 0.0
+        contact = data.contact
+        geoms = contact.geom[:n]
+        other = geoms.sum(axis=1) - self.floor  # (the robot touches nothing but the floor)
+        mask = self.holds[other] & (geoms == self.floor).any(axis=1)
+        if not mask.any():
+            return 0.0
+        other = other[mask]
+        # (rotation, translation) at the centre of the root's subtree
+        velocity = data.cvel[self.body[other]]
+        r = contact.pos[:n][mask] - data.subtree_com[self.root]
+        vx = velocity[:, 3] + velocity[:, 1] * r[:, 2] - velocity[:, 2] * r[:, 1]
+        vy = velocity[:, 4] + velocity[:, 2] * r[:, 0] - velocity[:, 0] * r[:, 2]
+        axis = self.axis[other]
+        speed = np.where(self.along[other], np.abs(vx * axis[:, 0] + vy * axis[:, 1]),
+                         np.hypot(vx, vy))
+        return float(speed.max())

@@ -14,11 +14,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-# m: the points of a geom this close to its lowest one touch the floor with it; no more:
-# TurtleBot3's castor block, leaning back with the robot at rest, touches by its back
-# edge, and its front edge 0.1 mm up counted as touching put the castor's load 15 mm
-# ahead of where MuJoCo carries it (its slide figure 1.7° off)
-FLAT = 0.00002
+# m: the points of a geom this close to its lowest one touch the floor with it (a
+# bicycle's tyre across its width, a block's bottom face: equal but for rounding); no
+# more: TurtleBot3's castor block, leaning back with the robot at rest, touches by its
+# back edge, and its front edge 0.1 mm up counted as touching put the castor's load
+# 15 mm ahead of where MuJoCo carries it (its slide figure 1.7° off); and that edge is
+# itself askew (its rpy -1.57, not -π/2): one corner 16 µm over the other, which MuJoCo,
+# sinking 2 µm under the castor's load, never touches. Counted, the castor's load sat
+# on the centre line, not on the corner: the wheels' shares 0.374 each where MuJoCo
+# gives 0.390 and 0.359, and the slide figure 1° off towards azimuth 195°.
+FLAT = 0.000002
 # m: a geom whose lowest point is this close to the floor at rest touches it
 TOUCHING = 0.0001
 # A declared μ over this is no tyre's (rubber on concrete: ~1; MuJoCo went NaN in its

@@ -227,3 +227,42 @@ def test_the_entry_specs_calls_takes_its_context(tmp_path):
         "statics.tip.backward", "statics.tip.right", "statics.tip.min", "statics.slide",
         "statics.stand", "statics.climb", "statics.top_speed", "statics.turning_radius"]
     assert all(f.proof is None for f in result.figures)
+
+
+def _askew_castor(roll: str) -> str:
+    """Two wheels under the centre and TurtleBot3 burger's castor block behind them (its
+    collision box 30 x 9 x 20 mm turned by ``roll`` about x), 1 mm over the floor and the
+    centre of mass 3 cm back: the robot leans back onto the block's back bottom edge."""
+    castor = f"""
+  <joint name="caster_back_joint" type="fixed">
+    <parent link="base_link"/><child link="caster_back_link"/>
+    <origin xyz="-0.15 0 {-R + 0.0055:.6g}" rpy="{roll} 0 0"/>
+  </joint>
+  <link name="caster_back_link">
+    <collision><geometry><box size="0.030 0.009 0.020"/></geometry></collision>
+    <inertial><mass value="0.005"/><inertia ixx="1e-6" ixy="0" ixz="0" iyy="1e-6" iyz="0"
+      izz="1e-6"/></inertial>
+  </link>
+</robot>
+"""
+    return box_on_wheels(wheelbase=0.0, ends=("rear",), com_x=-0.03).replace(
+        "\n</robot>\n", castor)
+
+
+def test_a_castor_block_touches_by_the_corners_that_reach_the_floor(tmp_path):
+    """burger's block is turned -1.57 about x, not -π/2: one corner of its bottom edge is
+    16 µm over the other, and MuJoCo, sinking 2 µm under the castor's load, carries it on
+    the lower one alone. The stance counts that corner only (its wheels' shares then
+    differ, as MuJoCo's do); turned by exactly π/2 the block touches by both."""
+    from mobile_car.specs.support import stance
+
+    shown = {}
+    for name, roll in (("askew", "-1.57"), ("square", f"{-math.pi / 2!r}")):
+        path = tmp_path / f"{name}.urdf"
+        path.write_text(_askew_castor(roll))
+        _checked, sim = checked_and_sim(path)
+        shown[name] = [(round(c.x, 4), round(c.y, 4)) for c in stance(sim, {}, None).contacts
+                       if c.link == "caster_back_link"]
+    (corner,) = shown["askew"]
+    assert corner[0] == pytest.approx(-0.165, abs=1e-3) and abs(corner[1]) == pytest.approx(0.01)
+    assert sorted(y for _x, y in shown["square"]) == pytest.approx([-0.01, 0.01])

@@ -6,13 +6,15 @@ the shared real-robots folder when it is there."""
 
 from __future__ import annotations
 
+import math
 import time
 
 import pytest
+from sim.robot_makers import castor_swivels
 from sim.test_sim_real_robots import FOLDER, needs_folder
 from specs.statics_robots import box_on_wheels, checked_and_sim
 
-from mobile_car.specs.statics import statics_section
+from mobile_car.specs.statics import Statics, statics_section
 
 TILTED = ("statics.tip.forward", "statics.tip.left", "statics.tip.backward",
           "statics.tip.right", "statics.slide", "statics.stand")
@@ -97,6 +99,34 @@ def test_no_proof_without_mujoco_runs(tmp_path):
     assert all(f.proof is None for f in section.figures)
 
 
+@pytest.mark.parametrize("azimuth", [0, 90])
+def test_on_swivel_castor_wheels_it_slides_where_its_braked_wheels_let_go(tmp_path, azimuth):
+    """MiR's shape (castor_swivels): the castor wheels roll every way and hold nothing,
+    so the two braked wheels carry the slope's whole pull. MuJoCo's soft contacts give a
+    contact that slips more normal force the faster it slips (the elliptic cone's middle
+    zone), and its friction creeps: the robot crept down at 0.5 mm/s with its wheels'
+    loads swollen to hold it, under the 5 mm/s a slide was taken at, and "held" 2-4°
+    past the figure (left: neither slid nor tipped by 38.8°, computed 34.8°). With
+    MuJoCo's noslip pass nothing creeps while the friction holds, and the slip is
+    measured where the wheels touch."""
+    from lxml import etree
+
+    from mobile_car.sim.model import gazebo_friction
+    from mobile_car.specs.proof_tilt import tilt
+    from mobile_car.specs.support import stance
+
+    path = tmp_path / "swivels.urdf"
+    path.write_text(castor_swivels())
+    checked, sim = checked_and_sim(path)
+    found = stance(sim, gazebo_friction(etree.fromstring(checked.loaded.urdf)), None)
+    statics = Statics(found, sim)
+    slide, tip = math.degrees(statics.slide(azimuth)), math.degrees(statics.tip(azimuth))
+    assert slide < tip - 20
+    run = tilt(sim, found, azimuth, slide)
+    assert run.event == "slides", run
+    assert run.angle == pytest.approx(slide, abs=1.0)
+
+
 @pytest.fixture(scope="module")
 def real(tmp_path_factory):
     """TurtleBot3 burger (its .urdf expanded as xacro) and Husky, proven once."""
@@ -109,15 +139,13 @@ def real(tmp_path_factory):
 @needs_folder
 @pytest.mark.parametrize("robot", ["burger", "husky"])
 def test_real_robots_tilt_and_climb_as_computed(real, robot):
-    """Forward, left, backward, right, the worst direction and the climb within 1°; the
-    slide in its worst direction within 1.5°: burger's, 15° off backward, is 34.7° where
-    one wheel carries 7% more than the other and, rigid, both must push alike; MuJoCo's
-    soft tyres let the light one creep and slide at 35.7° (W506 says so)."""
+    """Forward, left, backward, right, the worst direction and the climb within 1°."""
     section, fig, _seconds = real[robot]
-    for key in (*TILTED[:4], "statics.stand", "statics.climb"):
+    for key in (*TILTED, "statics.climb"):
         assert fig[key].proof is not None and fig[key].proof.agrees, (key, fig[key].proof)
     slide = fig["statics.slide"]
-    assert abs(slide.proof.measured - slide.value) <= 1.5, slide.proof
+    assert abs(slide.proof.measured - slide.value) <= 1.0, slide.proof
+    assert not [d for d in section.diagnostics if d.rule == "W506"]
 
 
 @needs_folder

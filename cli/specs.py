@@ -88,7 +88,8 @@ Exit codes:
               help="text: a table per section on stdout, notes on stderr; json: one "
                    "document, figures by key; markdown: for a pull request.")
 @click.option("--no-proof", is_flag=True,
-              help="Compute the figures only: no MuJoCo runs to prove them.")
+              help="Compute the figures only: no MuJoCo runs to prove them (the sensors' "
+                   "rays are cast by MuJoCo alone, unchecked).")
 @click.option("--friction", type=click.FloatRange(min=0), metavar="MU",
               help="The tyres' friction with the floor where the description gives none "
                    "(default 1.0, MuJoCo's).")

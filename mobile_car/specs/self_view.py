@@ -66,6 +66,30 @@ class RobotSurface:
     notes: list[str] = field(default_factory=list)
     _casters: dict = field(default_factory=dict)
 
+    def placed(self, link: str) -> bool:
+        return link in self.poses
+
+    def frame(self, sensor) -> np.ndarray:
+        """The sensor's frame (4x4) in the root frame."""
+        return sensor_frame(sensor, self.poses)
+
+    def blocked(self, sensor, origin: np.ndarray, directions: np.ndarray,
+                housing: list[str]) -> np.ndarray:
+        """(N,) bool: the ray meets the robot (the sensor's ``housing`` aside) within the
+        sensor's range. As Gazebo casts it, the ray starts at range min: a part nearer is
+        not seen (a real scanner reports no range there either)."""
+        caster = self.without(housing)
+        hit = np.zeros(len(directions), dtype=bool)
+        if caster is None or not len(directions):
+            return hit
+        starts = origin + directions * sensor.range_min
+        locations, rays, _ = caster.intersects_location(starts, directions,
+                                                        multiple_hits=False)
+        if len(rays):
+            distance = np.linalg.norm(locations - starts[rays], axis=1)
+            hit[rays[distance <= sensor.range_max - sensor.range_min]] = True
+        return hit
+
     def housing(self, link: str, origin: np.ndarray) -> list[str]:
         """The links a sensor on ``link`` at ``origin`` looks out of: its own, and any
         other whose geometry encloses its origin (a camera frame inside the camera link's
@@ -79,7 +103,7 @@ class RobotSurface:
     def _encloses(self, link: str, origin: np.ndarray) -> bool:
         caster = self._cached(("only", link), [i for i, piece in enumerate(self.pieces)
                                                if piece.link != link])
-        directions = _enclosing()
+        directions = enclosing_directions()
         if caster is None:
             return False
         _, rays, _ = caster.intersects_location(np.broadcast_to(origin, directions.shape),
@@ -99,7 +123,7 @@ class RobotSurface:
         return self._casters[key]
 
 
-def _enclosing() -> np.ndarray:
+def enclosing_directions() -> np.ndarray:
     """The directions a housing meets: the 6 axes and the 8 diagonals, unit length."""
     axes = np.vstack([np.eye(3), -np.eye(3)])
     diagonals = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)],
@@ -238,20 +262,3 @@ def camera_rays(sensor, frame: np.ndarray) -> np.ndarray:
     local = np.stack([np.ones(left.size), left.ravel(), up.ravel()], axis=1)
     local /= np.linalg.norm(local, axis=1, keepdims=True)
     return local @ frame[:3, :3].T
-
-
-def blocked(surface: RobotSurface, sensor, origin: np.ndarray,
-            directions: np.ndarray) -> np.ndarray:
-    """(N,) bool: the ray meets the robot (the sensor's housing aside) within the
-    sensor's range. As Gazebo casts it, the ray starts at range min: a part nearer is not
-    seen (a real scanner reports no range there either)."""
-    caster = surface.without(surface.housing(sensor.link, origin))
-    hit = np.zeros(len(directions), dtype=bool)
-    if caster is None or not len(directions):
-        return hit
-    starts = origin + directions * sensor.range_min
-    locations, rays, _ = caster.intersects_location(starts, directions, multiple_hits=False)
-    if len(rays):
-        distance = np.linalg.norm(locations - starts[rays], axis=1)
-        hit[rays[distance <= sensor.range_max - sensor.range_min]] = True
-    return hit

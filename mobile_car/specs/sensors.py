@@ -5,7 +5,8 @@ like one, with stated defaults): its pose in the root frame at rest, range, fiel
 and the sectors of its scan the robot blocks, found by casting each sample's ray against
 the robot's visual and collision geometry (:mod:`.self_view`) and proven by MuJoCo's own
 ray casting on the same geometry (:mod:`.ray_proof`); for every camera, the share of its
-image the robot covers. W520 warns of a lidar blocked over more than
+image the robot covers. Without proofs (``options["proof"]`` False) MuJoCo's cast is the
+figure and trimesh is not imported. W520 warns of a lidar blocked over more than
 DEFAULT_BLOCKED_SHARE of its samples. :func:`laser_filters_fragment` turns the sectors
 into a laser_filters chain that removes exactly them.
 
@@ -52,21 +53,17 @@ def sensors_section(checked, sim, options: dict | None = None) -> Section:
     sensors, result.notes = find_sensors(checked.robot, checked.where)
     if not sensors:  # (an empty section: a robot without sensors is nothing to note)
         return result
-    from .self_view import camera_grid, robot_surface
+    from .self_view import camera_grid
 
     start = dict(getattr(sim, "start", None) or {})
-    try:
-        surface = robot_surface(checked.loaded, start)
-    except Exception as error:  # yourdfpy and trimesh raise anything on what they refuse
-        result.notes.append(f"the robot's geometry could not be read for its sensors: "
-                            f"{type(error).__name__}: {error}")
+    cast, proof = _casts(checked, start, options.get("proof", True) is not False,
+                         result.notes)
+    if cast is None:
         return result
-    result.notes += surface.notes
-    proof = _proof(checked, start, options, result.notes)
     threshold = float(options.get("sensor_blocked_share", DEFAULT_BLOCKED_SHARE))
     rays = 0
     for sensor in sensors:
-        if sensor.link not in surface.poses:
+        if not cast.placed(sensor.link):
             result.notes.append(f"sensor {sensor.name}: link {sensor.link} is not placed")
             continue
         count = sensor.samples if sensor.kind == "lidar" else math.prod(camera_grid(sensor))
@@ -76,25 +73,51 @@ def sensors_section(checked, sim, options: dict | None = None) -> Section:
             continue
         rays += count
         if sensor.kind == "lidar":
-            result.figures += _lidar(sensor, surface, proof, threshold, checked, result)
+            result.figures += _lidar(sensor, cast, proof, threshold, checked, result)
         else:
-            result.figures += _camera(sensor, surface, proof)
+            result.figures += _camera(sensor, cast, proof)
     return result
 
 
-def _proof(checked, start, options, notes):
-    if options.get("proof", True) is False:
-        return None
+def _casts(checked, start, proving: bool, notes: list[str]):
+    """(what casts the figures' rays, what casts the proof's or None). With proofs:
+    trimesh's cast on render's assembly (:mod:`.self_view`), MuJoCo's the proof. Without:
+    MuJoCo's alone, already a complete cast of the same geometry, sparing trimesh's
+    import (and scipy's through it: ~0.5 s of a cold ``mcar specs --no-proof``); trimesh's
+    where MuJoCo cannot make the model or refuses a mesh trimesh would see.
+    (None, None) where neither can read the geometry (a note says why)."""
+    if not proving:
+        cast = _mujoco_cast(checked, start, None)
+        if cast is not None and not cast.refused:
+            notes += [f"sensors: {note}" for note in cast.notes]
+            return cast, None
+    from .self_view import robot_surface
+
+    try:
+        surface = robot_surface(checked.loaded, start)
+    except Exception as error:  # yourdfpy and trimesh raise anything on what they refuse
+        notes.append(f"the robot's geometry could not be read for its sensors: "
+                     f"{type(error).__name__}: {error}")
+        return None, None
+    notes += surface.notes
+    return surface, (_mujoco_cast(checked, start, notes) if proving else None)
+
+
+def _mujoco_cast(checked, start, notes):
+    """MuJoCo's model of the robot's visual and collision geometry, or None where it
+    cannot be made (said in ``notes``, the proof's, unless None)."""
     from .ray_proof import ProofUnavailable, RayProof
 
     try:
-        proof = RayProof(checked.loaded, start)
+        cast = RayProof(checked.loaded, start)
     except ProofUnavailable as why:
-        notes.append(f"no MuJoCo proof of the sensors' figures: MuJoCo cannot make the "
-                     f"robot's model with its visuals: {why}")
+        if notes is not None:
+            notes.append(f"no MuJoCo proof of the sensors' figures: MuJoCo cannot make the "
+                         f"robot's model with its visuals: {why}")
         return None
-    notes += [f"sensors' proof: {note}" for note in proof.notes]
-    return proof
+    if notes is not None:
+        notes += [f"sensors' proof: {note}" for note in cast.notes]
+    return cast
 
 
 def _pose_figure(sensor, frame, proof) -> Figure:
@@ -115,17 +138,18 @@ def _pose(frame) -> list[float]:
     return [round(float(v), 6) for v in frame[:3, 3]] + [round(yaw, DIGITS)]
 
 
-def _lidar(sensor, surface, proof, threshold, checked, result) -> list[Figure]:
-    from .self_view import blocked, lidar_rays, sensor_frame
+def _lidar(sensor, cast, proof, threshold, checked, result) -> list[Figure]:
+    from .self_view import lidar_rays
 
-    frame = sensor_frame(sensor, surface.poses)
-    hits = blocked(surface, sensor, frame[:3, 3], lidar_rays(sensor, frame))
+    frame = cast.frame(sensor)
+    housing = cast.housing(sensor.link, frame[:3, 3])
+    hits = cast.blocked(sensor, frame[:3, 3], lidar_rays(sensor, frame), housing)
     azimuths = sensor.azimuths()
     sectors = blocked_sectors(hits, azimuths, sensor.step)
     share = round(float(hits.mean()), DIGITS)
     key = f"sensors.{sensor.name}"
     method = (f"{sensor.samples} rays cast in the scan plane against the robot's visual and "
-              f"collision geometry ({_housing(surface, sensor, frame)})")
+              f"collision geometry{_cast_by(cast, housing)}")
     seen = ("each ray starts at range min, as Gazebo's: a part nearer is not seen (a real "
             "scanner reports no range there)")
     if sensor.layers > 1:
@@ -144,8 +168,7 @@ def _lidar(sensor, surface, proof, threshold, checked, result) -> list[Figure]:
     ]
     if proof is not None:
         mj_frame = proof.frame(sensor)
-        mj_hits = proof.blocked(sensor, mj_frame[:3, 3], lidar_rays(sensor, mj_frame),
-                                surface.housing(sensor.link, frame[:3, 3]))
+        mj_hits = proof.blocked(sensor, mj_frame[:3, 3], lidar_rays(sensor, mj_frame), housing)
         around = sensor.max_angle - sensor.min_angle + 1.5 * sensor.step >= 2 * math.pi
         agrees = within_one_sample(hits, mj_hits, around)
         differ = int((hits != mj_hits).sum())
@@ -165,25 +188,26 @@ def _lidar(sensor, surface, proof, threshold, checked, result) -> list[Figure]:
     return figures
 
 
-def _camera(sensor, surface, proof) -> list[Figure]:
-    from .self_view import blocked, camera_grid, camera_rays, sensor_frame
+def _camera(sensor, cast, proof) -> list[Figure]:
+    from .self_view import camera_grid, camera_rays
 
-    frame = sensor_frame(sensor, surface.poses)
-    hits = blocked(surface, sensor, frame[:3, 3], camera_rays(sensor, frame))
+    frame = cast.frame(sensor)
+    housing = cast.housing(sensor.link, frame[:3, 3])
+    hits = cast.blocked(sensor, frame[:3, 3], camera_rays(sensor, frame), housing)
     columns, rows = camera_grid(sensor)
     half = round(math.degrees(sensor.hfov) / 2, DIGITS)
     figure = Figure(f"sensors.{sensor.name}.covered", f"{sensor.name} share of its image "
                     "the robot covers", round(float(hits.mean()), DIGITS), "",
                     f"{sensor.source}; a {columns}x{rows} grid of rays through the image "
-                    f"cast against the robot's visual and collision geometry "
-                    f"({_housing(surface, sensor, frame)})",
+                    f"cast against the robot's visual and collision geometry"
+                    f"{_cast_by(cast, housing)}",
                     f"from the lens to the far clip, {sensor.range_max:g} m (a near clip "
                     "bounds Gazebo's drawing, not the lens); the camera looks along its "
                     "frame's x")
     if proof is not None:
         mj_frame = proof.frame(sensor)
         measured = float(proof.blocked(sensor, mj_frame[:3, 3], camera_rays(sensor, mj_frame),
-                                       surface.housing(sensor.link, frame[:3, 3])).mean())
+                                       housing).mean())
         figure.proof = Proof(round(measured, DIGITS),
                              abs(measured - figure.value) <= COVERED_TOLERANCE,
                              f"{COVERED_TOLERANCE:g} of the image",
@@ -193,9 +217,14 @@ def _camera(sensor, surface, proof) -> list[Figure]:
                    [-half, half], "deg", sensor.source), figure]
 
 
-def _housing(surface, sensor, frame) -> str:
-    links = surface.housing(sensor.link, frame[:3, 3])
-    return f"its housing left out: link{'s' if len(links) > 1 else ''} {', '.join(links)}"
+def _cast_by(cast, housing: list[str]) -> str:
+    """What cast the rays and what it left out, for a figure's source: " (its housing
+    left out: link ...)", MuJoCo's cast (without proofs) named and said unchecked."""
+    left_out = f"its housing left out: link{'s' if len(housing) > 1 else ''} {', '.join(housing)}"
+    if getattr(cast, "engine", None) != "mujoco":
+        return f" ({left_out})"
+    return (f" by MuJoCo's ray casting (mj_multiRay; {left_out}); not cross-checked: "
+            "--no-proof")
 
 
 def blocked_sectors(hits, azimuths, step: float) -> list[list[float]]:

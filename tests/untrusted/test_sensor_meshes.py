@@ -56,3 +56,31 @@ def test_a_visual_mesh_outside_the_robot_folders_is_never_read_for_its_sensors(t
     sectors = values(control)["sensors.scanner.blocked"]
     assert len(sectors) == 1 and control.figure("sensors.scanner.blocked").proof.measured == \
         sectors
+
+
+def test_without_proofs_mujoco_alone_refuses_the_outside_mesh_and_the_oversized_one(
+        tmp_path, monkeypatch):
+    # `mcar specs --no-proof`: MuJoCo's cast is the figure, trimesh never runs; the same
+    # resolver and limits (sim/meshes.py) keep the planted cube out.
+    outside, package = tmp_path / "outside", tmp_path / "robot"
+    outside.mkdir()
+    package.mkdir()
+    (outside / "secret.stl").write_bytes(_cube_stl(0.1))
+    shutil.copy(outside / "secret.stl", package / "cube.stl")
+    for name in ("../outside/secret.stl", f"file://{outside}/secret.stl"):
+        _, section = sensors_of(package / "robot.urdf", _robot(name), {"proof": False})
+        figure = section.figure("sensors.scanner.blocked")
+        assert figure.value == [] and figure.proof is None, name
+        assert "by MuJoCo's ray casting" in figure.source
+        assert any(note.startswith(f"sensors: link cube: mesh {name} left out:")
+                   for note in section.notes), section.notes
+    monkeypatch.setenv("MCAR_MAX_MESH_FACES", "10")  # the cube has 12
+    _, section = sensors_of(package / "robot.urdf", _robot("cube.stl"), {"proof": False})
+    assert values(section)["sensors.scanner.blocked"] == []
+    assert any(note.startswith("sensors: link cube: mesh cube.stl left out:")
+               for note in section.notes), section.notes
+    # Control: within the limit, inside the folder, MuJoCo sees the cube block the scan.
+    monkeypatch.setenv("MCAR_MAX_MESH_FACES", "12")
+    _, control = sensors_of(package / "robot.urdf", _robot("cube.stl"), {"proof": False})
+    assert len(values(control)["sensors.scanner.blocked"]) == 1
+    assert "by MuJoCo's ray casting" in control.figure("sensors.scanner.blocked").source

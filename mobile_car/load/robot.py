@@ -61,17 +61,21 @@ class LoadOptions:
         return bool(self.mappings) or self.overrides is not None
 
 
-@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class LoadedRobot:
     """An expanded robot, ready to check and use."""
 
-    input: RobotInput
-    urdf: bytes
-    search: PackageSearch
-    deps: list[Path] = field(default_factory=list)  # the files read, the input first
-    warnings: list[str] = field(default_factory=list)  # xacro's warnings
-    from_xacro: bool = False
-    origins: object = None  # expand.origins.Origins: where each element was written
+    # A plain class, not a dataclass: never compared, and a dataclass costs every run
+    # that imports it the compiling of its methods (values.py).
+    def __init__(self, input: RobotInput, urdf: bytes, search: PackageSearch,
+                 deps: list[Path] | None = None, warnings: list[str] | None = None,
+                 from_xacro: bool = False, origins: object = None):
+        self.input = input
+        self.urdf = urdf
+        self.search = search
+        self.deps = [] if deps is None else deps  # the files read, the input first
+        self.warnings = [] if warnings is None else warnings  # xacro's warnings
+        self.from_xacro = from_xacro
+        self.origins = origins  # expand.origins.Origins: where each element was written
 
     @property
     def label(self) -> str:

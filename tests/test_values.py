@@ -1,5 +1,6 @@
 """mobile_car.values.Value: the frozen dataclass's behaviour (==, hash, repr, no assignment,
-copy and pickle) for the value classes every run makes, without compiling methods."""
+copy and pickle) for the value classes every run makes, without compiling methods; and
+LoadOptions.replace, which makes a variant as dataclasses.replace did."""
 
 from __future__ import annotations
 
@@ -51,3 +52,14 @@ def test_wrong_arguments_refused():
     with pytest.raises(TypeError):
         Diagnostic("E104", "r.urdf", 3)
     assert Spec().children == {} and Spec().children is not Spec().children
+
+
+def test_load_options_replace_makes_a_variant_and_refuses_an_unknown_field():
+    from mobile_car.load.robot import LoadOptions
+
+    options = LoadOptions({"a": "1"}, [], through_xacro=False)
+    variant = options.replace(through_xacro=True)
+    assert (variant.through_xacro, variant.mappings, options.through_xacro) == \
+        (True, {"a": "1"}, False)
+    with pytest.raises(TypeError, match="through_xacr"):
+        options.replace(through_xacr=True)

@@ -32,7 +32,6 @@ one more read: they are written by rename, without the fsync outputs get.
 
 from __future__ import annotations
 
-import array
 import math
 import os
 import stat
@@ -241,10 +240,14 @@ def _small_stl_bounds(path: Path, triangles: int) -> tuple | None:
     corners = bytearray(36 * triangles)
     for offset in range(36):
         corners[offset::36] = data[12 + offset::50][:triangles]
-    floats = array.array("f", bytes(corners))
-    if sys.byteorder != "little":
+    if sys.byteorder == "little":  # read in place, without the array module's import
+        values = memoryview(corners).cast("f").tolist()
+    else:
+        import array
+
+        floats = array.array("f", bytes(corners))
         floats.byteswap()
-    values = floats.tolist()
+        values = floats.tolist()
     if not math.isfinite(sum(values)):  # a NaN or an infinity: numpy's box is not finite
         return None
     return (tuple(min(values[axis::3]) for axis in range(3)),

@@ -30,7 +30,6 @@ import stat
 from pathlib import Path
 
 from ..errors import InputError
-from . import scene_counts
 from .bounded import open_regular
 from .compressed import (  # noqa: F401 (MeshOverLimit: one name for every limit)
     MAX_MESH_MB_ENV,
@@ -238,5 +237,15 @@ def _off(handle, size: int, shown: str, folder) -> MeshScan:
     return MeshScan()
 
 
-_SCANNERS = {"stl": _stl, "obj": _obj, "ply": _ply, "off": _off, "dae": scene_counts.dae,
-             "gltf": scene_counts.gltf, "glb": scene_counts.glb}
+def _scene(kind: str):
+    """The scene_counts reader of ``kind``, imported when a COLLADA or glTF file is met
+    (it brings urllib.parse and the XML reader; a robot of STL meshes needs neither)."""
+    def scan(*args):
+        from . import scene_counts
+
+        return getattr(scene_counts, kind)(*args)
+    return scan
+
+
+_SCANNERS = {"stl": _stl, "obj": _obj, "ply": _ply, "off": _off, "dae": _scene("dae"),
+             "gltf": _scene("gltf"), "glb": _scene("glb")}

@@ -54,7 +54,7 @@ def check_masses(robot, tree, held: dict, mesh_bounds: dict, report: Reporter) -
     # each count the other as the robot).
     rest = total - sum(masses[name] for name in wheels)
     for name, mass in masses.items():
-        shapes = own_elements(held[name])
+        shapes = held[name]
         if name in wheels and 0 < rest < mass / WHEEL_OVER_REST:
             report.add("E119", _mass_element(shapes), f"link '{name}' turns on a continuous "
                        f"joint (a wheel) and weighs {mass:g} kg, {mass / rest:.0f} times the "
@@ -65,12 +65,16 @@ def check_masses(robot, tree, held: dict, mesh_bounds: dict, report: Reporter) -
 
 
 def _mass_element(shapes):
-    """Where a message about a link's mass points: its <mass>, else its <inertial>
-    (looked up only for a message: most links have none)."""
-    return firsts(shapes.inertial[0]).get("mass", shapes.inertial[0])
+    """Where a message about a link's mass points: its own <mass>, else its <inertial>
+    (looked up only for a message: most links have none; a repeated link's elements are
+    its twin's until own_elements maps them, which costs a walk of the link)."""
+    inertial = own_elements(shapes).inertial[0]
+    return firsts(inertial).get("mass", inertial)
 
 
 def _density(name: str, mass: float, shapes, mesh_bounds: dict, report: Reporter) -> None:
+    if shapes.twin is not None and any(body[1].tag == "mesh" for body in shapes.bodies):
+        shapes = own_elements(shapes)  # a mesh's bounds are known by its own element
     bodies = [b for b in shapes.bodies if b[0] == "collision"]
     kind = bodies[0][0] if bodies else None
     largest, smallest = 0.0, 0.0  # the volume the shapes could have at most, at least

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import sys
 import time
 from dataclasses import dataclass, field
@@ -183,7 +182,7 @@ def command(words, output, view, size, collision, background, grid, axes, render
                      len(jobs), outdir, sheet, time.perf_counter() - started)
         sys.exit(EXIT_OK)
     with prepared_load(selection, mappings, package_paths, sets, config_files) as load:
-        load = dataclasses.replace(load, size_limited=True)
+        load = load.replace(size_limited=True)
         if len(jobs) == 1 and not sheet:
             from mobile_car.render.jobs import check_first
 

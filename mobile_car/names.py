@@ -13,7 +13,6 @@ shown again is unchanged, so layers may each make sure.
 from __future__ import annotations
 
 import os
-import unicodedata
 
 # Invisible characters that reorder or hide the text around them (Trojan Source,
 # CVE-2021-42574): the bidi embeddings, overrides and isolates, and the marks.
@@ -28,6 +27,8 @@ _ESCAPED_CATEGORIES = frozenset(("Cc", "Zl", "Zp", "Cs"))
 def _escaped(char: str) -> bool:
     if " " <= char <= "~":  # printable ASCII, the common case
         return False
+    import unicodedata  # here: a name in ASCII, the usual case, needs none of its tables
+
     return char in _BIDI or unicodedata.category(char) in _ESCAPED_CATEGORIES
 
 

@@ -22,11 +22,19 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from . import seal_keeper
-from .seal_keeper import KEY_BYTES, KEY_NAME  # noqa: F401 - where the key is kept, for tests
-
 CACHE_DIR_ENV = "MCAR_CACHE_DIR"
 SEAL_FIELD = "seal"
+
+
+def __getattr__(name: str):
+    """KEY_NAME and KEY_BYTES (where the key is kept, for tests) from the keeper's module,
+    imported only when asked: every check asks cache_dir() (the cache folder is one no
+    robot may name a file in), and the keeper's module brings signal, select and SHA-256."""
+    if name in ("KEY_NAME", "KEY_BYTES"):
+        from . import seal_keeper
+
+        return getattr(seal_keeper, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def cache_dir() -> Path:
@@ -47,6 +55,8 @@ def _seal_of(section: str, entries: dict) -> str | None:
     # Sealed as the reader will see it: after a JSON round trip, keys sorted.
     canonical = json.dumps([section, json.loads(json.dumps(entries))], sort_keys=True,
                            separators=(",", ":"), ensure_ascii=True)
+    from . import seal_keeper
+
     return seal_keeper.seal(cache_dir(), canonical.encode("ascii"))
 
 

@@ -9,7 +9,6 @@ package) are kept as ``failure`` (exit 2), not as diagnostics.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import BuildError, McarError
@@ -36,20 +35,27 @@ from .urdf_reader import Robot, read_robot
 LARGE_ROBOT = 2000  # links: the rest pose is worked out with numpy (rest_pose_arrays.py)
 
 
-@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class CheckResult(Counted):
-    file: str
-    robot: Robot | None = None
-    tree: KinematicTree | None = None
-    diagnostics: list[Diagnostic] = field(default_factory=list)
-    failure: McarError | None = None
-    where: object = None  # element -> (file, line, note), for the JSON listing
-    loaded: LoadedRobot | None = None  # what was checked: URDF text, search, files read
-    mesh_files: list[MeshFile] = field(default_factory=list)  # every <mesh>, see meshes.py
-    gazebo: object = None  # with --gazebo: what Gazebo makes of it (gazebo.changes.GazeboView)
-    # The box around every visual and collision shape in the rest pose, (x, y, z) in metres;
-    # None when the tree is not sound or no shape's size is known.
-    extents: tuple | None = None
+    # A plain class, not a dataclass: never compared, and a dataclass costs every run
+    # that imports it the compiling of its methods (values.py).
+    def __init__(self, file: str, robot: Robot | None = None,
+                 tree: KinematicTree | None = None, diagnostics: list[Diagnostic] | None = None,
+                 failure: McarError | None = None, where: object = None,
+                 loaded: LoadedRobot | None = None, mesh_files: list[MeshFile] | None = None,
+                 gazebo: object = None, extents: tuple | None = None):
+        self.file = file
+        self.robot = robot
+        self.tree = tree
+        self.diagnostics = [] if diagnostics is None else diagnostics
+        self.failure = failure
+        self.where = where  # element -> (file, line, note), for the JSON listing
+        self.loaded = loaded  # what was checked: URDF text, search, files read
+        self.mesh_files = [] if mesh_files is None else mesh_files  # every <mesh>: meshes.py
+        # With --gazebo: what Gazebo makes of it (gazebo.changes.GazeboView).
+        self.gazebo = gazebo
+        # The box around every visual and collision shape in the rest pose, (x, y, z) in
+        # metres; None when the tree is not sound or no shape's size is known.
+        self.extents = extents
 
     @property
     def tree_is_drawable(self) -> bool:

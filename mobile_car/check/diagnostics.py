@@ -6,21 +6,23 @@ The library only builds the strings and dicts; the command line prints them.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from ..errors import EXIT_OK, EXIT_PROBLEMS
 from ..names import shown, shown_lines
+from ..values import Value
 from .rules import ERROR, NOTE, RULES, WARNING
 
 
-@dataclass(frozen=True)
-class Diagnostic:
+class Diagnostic(Value):
     """A rule broken at FILE:LINE (line is None when no line is known)."""
 
+    _fields = __slots__ = ("rule", "file", "line", "message")
     rule: str
     file: str
     line: int | None
     message: str
+
+    def __init__(self, rule: str, file: str, line: int | None, message: str):
+        self._set(rule, file, line, message)
 
     @property
     def severity(self) -> str:

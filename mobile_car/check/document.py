@@ -10,19 +10,20 @@ import re
 from .context import Reporter, has_xacro_expression, shorten
 from .urdf_model import tag_name
 
-_VERSION_RE = re.compile(r"[ \t\n\r\f\v]*\+?([0-9]+)\.[ \t\n\r\f\v]*\+?([0-9]+)\Z")
+# The patterns a sound robot rarely needs are compiled by re at their first use (and kept
+# in its cache): a check that never needs them does not pay for compiling them.
+_VERSION = r"[ \t\n\r\f\v]*\+?([0-9]+)\.[ \t\n\r\f\v]*\+?([0-9]+)\Z"
 NUMERIC_ATTRS = ("xyz", "rpy", "size", "scale", "rgba", "radius", "length", "value", "ixx",
                  "ixy", "ixz", "iyy", "iyz", "izz", "lower", "upper", "effort", "velocity",
                  "soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity", "rising",
                  "falling", "damping", "friction", "multiplier", "offset")
 # XML turns a tab or line break inside an attribute value into a space (lxml does);
 # TinyXML keeps it, and urdfdom then cannot read the numbers. Only the raw text shows it.
-_RAW_WHITESPACE_RE = re.compile(
-    rb"[\s\"'](" + "|".join(NUMERIC_ATTRS).encode() + rb")\s*=\s*"
-    rb"(?:\"[^\"\t\n\r<]*[\t\n\r][^\"]*\"|'[^'\t\n\r<]*[\t\n\r][^']*')")
+_RAW_WHITESPACE = (rb"[\s\"'](" + "|".join(NUMERIC_ATTRS).encode() + rb")\s*=\s*"
+                   rb"(?:\"[^\"\t\n\r<]*[\t\n\r][^\"]*\"|'[^'\t\n\r<]*[\t\n\r][^']*')")
 _DOCTYPE_SUBSET_RE = re.compile(rb"<!DOCTYPE[^>\[]*\[")
 # A line break followed, on its line, by a quote that ends a value: a value spans lines.
-# Faster than _RAW_WHITESPACE_RE, which runs only when this finds something.
+# Faster than _RAW_WHITESPACE, which runs only when this finds something.
 _LINE_BREAK_IN_VALUE_RE = re.compile(rb"\n[^\"'\n<>]*[\"'](?=[\s/>])")
 XACRO_HINT = "build it first: `mcar build FILE.xacro -o FILE.urdf`, or check the .xacro itself"
 
@@ -60,7 +61,7 @@ def check_root(root, report: Reporter) -> bool:
         report.add("E102", root, "<robot> has an empty name")
     version = root.get("version")
     if version is not None:
-        match = _VERSION_RE.match(version)
+        match = re.match(_VERSION, version)
         if not match:
             report.add("E103", root, f"version=\"{shorten(version)}\" is not of the form "
                                      "MAJOR.MINOR; urdfdom 3.0 reads only 1.0")
@@ -103,7 +104,7 @@ def check_raw_whitespace(root, data: bytes, report: Reporter) -> None:
     if b"\t" not in data and b"\r" not in data and not _LINE_BREAK_IN_VALUE_RE.search(data):
         return
     hits = [(data.count(b"\n", 0, m.start(1)) + 1, m.group(1).decode())
-            for m in _RAW_WHITESPACE_RE.finditer(data)]
+            for m in re.finditer(_RAW_WHITESPACE, data)]
     if not hits:
         return
     by_line = {}

@@ -54,19 +54,27 @@ def check_masses(robot, tree, held: dict, mesh_bounds: dict, report: Reporter) -
     # each count the other as the robot).
     rest = total - sum(masses[name] for name in wheels)
     for name, mass in masses.items():
-        shapes = own_elements(held[name])
-        element = firsts(shapes.inertial[0]).get("mass", shapes.inertial[0])
+        shapes = held[name]
         if name in wheels and 0 < rest < mass / WHEEL_OVER_REST:
-            report.add("E119", element, f"link '{name}' turns on a continuous joint (a "
-                       f"wheel) and weighs {mass:g} kg, {mass / rest:.0f} times the "
+            report.add("E119", _mass_element(shapes), f"link '{name}' turns on a continuous "
+                       f"joint (a wheel) and weighs {mass:g} kg, {mass / rest:.0f} times the "
                        f"{rest:.3g} kg of the robot without its wheels: no wheel built is "
                        f"over {WHEEL_OVER_REST:g} times its robot (a unit or a digit wrong?)")
             continue
-        _density(name, mass, shapes, mesh_bounds, element, report)
+        _density(name, mass, shapes, mesh_bounds, report)
 
 
-def _density(name: str, mass: float, shapes, mesh_bounds: dict, element,
-             report: Reporter) -> None:
+def _mass_element(shapes):
+    """Where a message about a link's mass points: its own <mass>, else its <inertial>
+    (looked up only for a message: most links have none; a repeated link's elements are
+    its twin's until own_elements maps them, which costs a walk of the link)."""
+    inertial = own_elements(shapes).inertial[0]
+    return firsts(inertial).get("mass", inertial)
+
+
+def _density(name: str, mass: float, shapes, mesh_bounds: dict, report: Reporter) -> None:
+    if shapes.twin is not None and any(body[1].tag == "mesh" for body in shapes.bodies):
+        shapes = own_elements(shapes)  # a mesh's bounds are known by its own element
     bodies = [b for b in shapes.bodies if b[0] == "collision"]
     kind = bodies[0][0] if bodies else None
     largest, smallest = 0.0, 0.0  # the volume the shapes could have at most, at least
@@ -88,13 +96,13 @@ def _density(name: str, mass: float, shapes, mesh_bounds: dict, element,
     if largest <= 0 or across < PLACEHOLDER:
         return
     if mass / largest > DENSEST:
-        report.add("E119", element, f"link '{name}': {mass:g} kg in its {kind} shapes of "
-                   f"{_litres(largest)} is {mass / largest:.3g} kg/m³ at least, denser than "
-                   f"any material (osmium: 22 590 kg/m³; the bound is {DENSEST:g}): a "
+        report.add("E119", _mass_element(shapes), f"link '{name}': {mass:g} kg in its {kind} "
+                   f"shapes of {_litres(largest)} is {mass / largest:.3g} kg/m³ at least, "
+                   f"denser than any material (osmium: 22 590 kg/m³; the bound is {DENSEST:g}): a "
                    "unit or a digit wrong?")
     elif smallest > 0 and mass > TOKEN_MASS and mass / smallest < LIGHTEST:
-        report.add("E119", element, f"link '{name}': {mass:g} kg in its {kind} shapes of "
-                   f"{_litres(smallest)} or more is {mass / smallest:.3g} kg/m³ at most, "
+        report.add("E119", _mass_element(shapes), f"link '{name}': {mass:g} kg in its {kind} "
+                   f"shapes of {_litres(smallest)} or more is {mass / smallest:.3g} kg/m³ at most, "
                    f"lighter than any solid (air: 1.2 kg/m³; the bound is {LIGHTEST:g}): "
                    "a unit or a digit wrong?")
 

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import NamedTuple
 
 from ..errors import InputError, PackageNotFoundError
 from ..load.bounded import not_regular
@@ -25,33 +24,49 @@ from ..load.inputs import display_path
 from ..load.mesh_facts import mesh_facts
 from ..packages.asset_roots import OutsideRootsError
 from ..packages.search import PackageSearch
+from ..values import Value
 from .context import Reporter, has_xacro_expression
 
 # What stands for a mesh that is not read (say it where the pictures do: docs/render.md).
 PLACEHOLDER = "drawn as a magenta box"
 
 
-class _Outcome(NamedTuple):
+# Values (values.py), not NamedTuples: a class made with typing.NamedTuple compiles its
+# __new__ on every run that imports it.
+
+
+class _Outcome(Value):
+    _fields = __slots__ = ("problem", "over_limit", "reads", "bounds")
     problem: str | None  # why it cannot be loaded (W207)
     over_limit: str | None  # the limit it passes (W210)
     reads: tuple[Path, ...]  # the other files it reads
-    bounds: tuple | None = None  # its box in metres (mesh frame, no URDF scale), if known
+    bounds: tuple | None  # its box in metres (mesh frame, no URDF scale), if known
+
+    def __init__(self, problem: str | None, over_limit: str | None, reads: tuple[Path, ...],
+                 bounds: tuple | None = None):
+        self._set(problem, over_limit, reads, bounds)
 
 
 _loaded: dict[Path, _Outcome] = {}
 
 
-class MeshFile(NamedTuple):
+class MeshFile(Value):
     """A ``<mesh>`` of the robot: ``kind`` visual or collision, its file (None when its
     package is unknown) and whether it loads."""
 
+    _fields = __slots__ = ("kind", "path", "sound", "over_limit", "reads", "element", "bounds")
     kind: str
     path: Path | None
     sound: bool  # found, and loads or is over a limit (then drawn as a marker: over_limit)
-    over_limit: str | None = None  # why it is not read: the limit it passes
-    reads: tuple[Path, ...] = ()  # the files it pulls in: materials, textures
-    element: object = None  # the <mesh> element
-    bounds: tuple | None = None  # ((x, y, z) min, max) in metres, the URDF scale not applied
+    over_limit: str | None  # why it is not read: the limit it passes
+    reads: tuple[Path, ...]  # the files it pulls in: materials, textures
+    element: object  # the <mesh> element
+    bounds: tuple | None  # ((x, y, z) min, max) in metres, the URDF scale not applied
+
+    def __init__(self, kind: str, path: Path | None, sound: bool, over_limit: str | None = None,
+                 reads: tuple[Path, ...] = (), element: object = None,
+                 bounds: tuple | None = None):
+        self._set(kind, path, sound, over_limit, reads, element, bounds)
 
 
 def check_meshes(root, base: Path, search: PackageSearch, report: Reporter

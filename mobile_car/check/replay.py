@@ -19,7 +19,6 @@ Kept free of xacro, lxml and numpy: a no-op check reads its records through this
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -39,17 +38,21 @@ MAX_KEPT_BYTES = 4 << 20
 MAX_KEPT_LINKS = 2000
 
 
-@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class ReplayedResult(Counted):
     """What :func:`replay` reads back: the parts of a CheckResult the output is made of."""
 
-    file: str
-    sound: bool
-    tree_text: bytes | None
-    diagnostics: list[Diagnostic] = field(default_factory=list)
-    extents: tuple | None = None
-    document: dict = field(default_factory=dict)  # as_json() of the result
-    failure: None = None  # a failed load is never kept
+    # A plain class, not a dataclass: never compared, and a dataclass costs every run
+    # that imports it the compiling of its methods (values.py).
+    def __init__(self, file: str, sound: bool, tree_text: bytes | None,
+                 diagnostics: list[Diagnostic] | None = None, extents: tuple | None = None,
+                 document: dict | None = None, failure: None = None):
+        self.file = file
+        self.sound = sound
+        self.tree_text = tree_text
+        self.diagnostics = [] if diagnostics is None else diagnostics
+        self.extents = extents
+        self.document = {} if document is None else document  # as_json() of the result
+        self.failure = failure  # a failed load is never kept
 
 
 def run_key(label: str, path: Path, basis: Basis) -> str:

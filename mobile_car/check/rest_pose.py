@@ -16,27 +16,31 @@ own box comes from :mod:`mobile_car.load.mesh_facts` (its file's unit applied), 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from math import cos, sin
 
 ZERO = (0.0, 0.0, 0.0)
 ONE = (1.0, 1.0, 1.0)
 IDENTITY = ((1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0), (0.0, 0.0, 0.0))
 
+# The classes here are plain classes, not dataclasses: never compared, and a dataclass
+# costs every run that imports it the compiling of its methods (values.py).
 
-@dataclass(slots=True)
+
 class LinkShapes:
     """What a link holds, its numbers read: ``bodies`` are (kind, shape element, xyz, rpy,
     dims) per visual and collision, dims a box's size, a cylinder's (radius, length), a
     sphere's (radius,), a mesh's scale; ``inertial`` is (element, mass, six moments, rpy)
     of its first <inertial>, or None."""
 
-    bodies: list
-    inertial: tuple | None = None
-    # The link's own element when the elements above are those of an earlier link whose
-    # content is byte for byte the same (link_bodies.py): the numbers are the same, a
-    # message must name this link's lines (own_elements).
-    twin: object = None
+    __slots__ = ("bodies", "inertial", "twin")
+
+    def __init__(self, bodies: list, inertial: tuple | None = None, twin: object = None):
+        self.bodies = bodies
+        self.inertial = inertial
+        # The link's own element when the elements above are those of an earlier link
+        # whose content is byte for byte the same (link_bodies.py): the numbers are the
+        # same, a message must name this link's lines (own_elements).
+        self.twin = twin
 
 
 def own_elements(shapes: LinkShapes) -> LinkShapes:
@@ -109,7 +113,6 @@ def _inertial_of(inertial) -> tuple | None:
     return None if rpy is None else (inertial, value, moments, rpy)
 
 
-@dataclass(slots=True)
 class Shape:
     """One visual or collision shape: ``kind`` (visual, collision), ``tag`` (box,
     cylinder, sphere, mesh), ``size`` (box: its size; cylinder: radius and length; sphere:
@@ -117,15 +120,19 @@ class Shape:
     frame, as (x, y, z) corners; ``placed`` its pose in its link's frame and ``own`` its
     box in its own frame, (low, high), from which :attr:`local` is worked out if asked."""
 
-    link: str
-    kind: str
-    tag: str
-    element: object     # the shape element (<box>, <mesh>, ...)
-    size: tuple
-    low: tuple
-    high: tuple
-    placed: tuple
-    own: tuple
+    __slots__ = ("link", "kind", "tag", "element", "size", "low", "high", "placed", "own")
+
+    def __init__(self, link: str, kind: str, tag: str, element: object, size: tuple,
+                 low: tuple, high: tuple, placed: tuple, own: tuple):
+        self.link = link
+        self.kind = kind
+        self.tag = tag
+        self.element = element  # the shape element (<box>, <mesh>, ...)
+        self.size = size
+        self.low = low
+        self.high = high
+        self.placed = placed
+        self.own = own
 
     @property
     def local(self) -> tuple:
@@ -133,7 +140,6 @@ class Shape:
         return placed_box(self.placed, *self.own)
 
 
-@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class RestPose:
     """The rest pose as the plausibility rules read it (:mod:`.rest_pose_arrays` makes the
     same from numpy arrays for a large robot). Only the shapes a rule looks at one by one
@@ -141,15 +147,16 @@ class RestPose:
     read: their collision shapes, else their visual ones); the boxes around all of them,
     and the widest, are kept as they are placed."""
 
-    poses: dict = field(default_factory=dict)   # link -> (rotation 9-tuple, origin)
-    shapes: list[Shape] = field(default_factory=list)
-    inertials: dict = field(default_factory=dict)  # link -> LinkShapes.inertial
-    low: list = field(default_factory=lambda: [float("inf")] * 3)  # around every shape
-    high: list = field(default_factory=lambda: [float("-inf")] * 3)
-    rest_low: list = field(default_factory=lambda: [float("inf")] * 3)  # but meshes
-    rest_high: list = field(default_factory=lambda: [float("-inf")] * 3)
-    widest: tuple | None = None  # (span, Shape)
-    judged: dict = field(default_factory=dict)  # link -> the kind of shape its inertia is read with
+    def __init__(self):
+        self.poses: dict = {}  # link -> (rotation 9-tuple, origin)
+        self.shapes: list[Shape] = []
+        self.inertials: dict = {}  # link -> LinkShapes.inertial
+        self.low = [float("inf")] * 3  # around every shape
+        self.high = [float("-inf")] * 3
+        self.rest_low = [float("inf")] * 3  # but meshes
+        self.rest_high = [float("-inf")] * 3
+        self.widest: tuple | None = None  # (span, Shape)
+        self.judged: dict = {}  # link -> the kind of shape its inertia is read with
 
     def extents(self) -> tuple | None:
         """(x, y, z) of the box around every shape, None if there is none."""

@@ -16,7 +16,7 @@ The rule table of docs/rules.md is generated from :data:`RULES`
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from ..values import Value
 
 ERROR = "error"
 WARNING = "warning"
@@ -24,12 +24,15 @@ NOTE = "note"
 _SEVERITIES = {"E": ERROR, "W": WARNING, "N": NOTE}
 
 
-@dataclass(frozen=True)
-class Rule:
+class Rule(Value):
+    _fields = __slots__ = ("id", "name", "summary", "urdfdom")
     id: str
     name: str
     summary: str
     urdfdom: str
+
+    def __init__(self, id: str, name: str, summary: str, urdfdom: str):
+        self._set(id, name, summary, urdfdom)
 
     @property
     def severity(self) -> str:

@@ -34,8 +34,8 @@ MOVING_TYPES = frozenset({"revolute", "continuous", "prismatic", "floating", "pl
 
 def moving_links(tree: KinematicTree) -> set[str]:
     """Links carried by a joint that is not fixed: these need mass and inertia."""
-    return {child for child, joints in tree.parent_joints.items()
-            if any(j.type in MOVING_TYPES for j in joints)}
+    return {child for child, joints in tree.parent_joints.items() for joint in joints
+            if joint.type in MOVING_TYPES}
 
 
 def check_tree(robot: Robot, tree: KinematicTree, report: Reporter) -> None:

@@ -16,22 +16,25 @@ from __future__ import annotations
 
 from collections import defaultdict
 from collections.abc import Iterator
-from dataclasses import dataclass, field
 
 from ..names import shown
 from .urdf_model import axis_of, first_child, origin_of, parse_number
 from .urdf_reader import Joint, Robot
 
 
-@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class KinematicTree:
-    links: list[str]                       # defined link names, document order
-    root: str | None                       # the root urdfdom would pick, or the biggest tree's
-    roots: list[str]                       # every link with no parent joint, by name
-    children: dict[str, list[Joint]]       # parent link -> joints to its children, urdfdom order
-    parent_joints: dict[str, list[Joint]]  # child link -> joints naming it as child
-    self_loops: list[Joint] = field(default_factory=list)
-    cycles: list[list[str]] = field(default_factory=list)  # each a closed path: a, b, ..., a
+    # A plain class, not a dataclass: never compared, and a dataclass costs every run
+    # that imports it the compiling of its methods (values.py).
+    def __init__(self, links: list[str], root: str | None, roots: list[str],
+                 children: dict[str, list[Joint]], parent_joints: dict[str, list[Joint]],
+                 self_loops: list[Joint] | None = None, cycles: list[list[str]] | None = None):
+        self.links = links  # defined link names, document order
+        self.root = root  # the root urdfdom would pick, or the biggest tree's
+        self.roots = roots  # every link with no parent joint, by name
+        self.children = children  # parent link -> joints to its children, urdfdom order
+        self.parent_joints = parent_joints  # child link -> joints naming it as child
+        self.self_loops = [] if self_loops is None else self_loops
+        self.cycles = [] if cycles is None else cycles  # each a closed path: a, b, ..., a
 
     @property
     def two_parents(self) -> dict[str, list[Joint]]:

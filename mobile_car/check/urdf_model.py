@@ -66,8 +66,9 @@ class SourceLines:
     """
 
     CAP = 65535
-    _START_TAG_RE = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>"
-                               rb"|<!DOCTYPE(?:[^\[>]|\[.*?\])*>|(<)(?![/!?])", re.S)
+    # Compiled by re at its first use: only a file past line 65535 needs it.
+    _START_TAG = (rb"(?s)<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>"
+                  rb"|<!DOCTYPE(?:[^\[>]|\[.*?\])*>|(<)(?![/!?])")
 
     def __init__(self, root, data: bytes):
         self.root = root
@@ -82,7 +83,7 @@ class SourceLines:
         if self._index is None:
             self._index = {e: i for i, e in enumerate(self.root.iter(etree.Element))}
             line, previous = 1, 0
-            for match in self._START_TAG_RE.finditer(self.data):
+            for match in re.finditer(self._START_TAG, self.data):
                 if match.group(1):
                     line += self.data.count(b"\n", previous, match.start())
                     previous = match.start()
@@ -143,13 +144,13 @@ def parse_numbers(text: str | None, count: int) -> tuple[float, ...] | str:
 
 _PLAIN_NUMBER = r"([+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)"
 # The usual spelling, "0 0.1 -2", read by one regex; anything else takes the long way.
-_PLAIN_LISTS = {count: re.compile(r" *" + " +".join([_PLAIN_NUMBER] * count) + r" *\Z")
-                for count in (3, 4)}
+# Compiled by re at their first use: float() reads most lists before they are needed.
+_PLAIN_LISTS = {count: r" *" + " +".join([_PLAIN_NUMBER] * count) + r" *\Z" for count in (3, 4)}
 
 
 def _parse_numbers(text: str, count: int) -> tuple[float, ...] | str:
     plain = _PLAIN_LISTS.get(count)
-    match = plain.match(text) if plain is not None else None
+    match = re.match(plain, text) if plain is not None else None
     if match:
         values = tuple(map(float, match.groups()))
         if all(map(math.isfinite, values)):

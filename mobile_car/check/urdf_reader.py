@@ -11,30 +11,36 @@ whole run.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 from lxml import etree
 
 from .urdf_vocabulary import COLLISION, GEOMETRY, INERTIAL, JOINT, LINK, MATERIAL, ROBOT, VISUAL
 
+# The classes here are plain classes with slots, not dataclasses: never compared, and a
+# dataclass costs every run that imports it the compiling of its methods (values.py).
 
-@dataclass(slots=True)
+
 class Anomalies:
     """What the vocabulary does not expect, found while reading."""
 
-    unknown: list = field(default_factory=list)     # (element, parent element, parent spec)
-    attributes: list = field(default_factory=list)  # elements with an unknown attribute
-    repeats: list = field(default_factory=list)     # second <origin>, <limit>, ...
+    __slots__ = ("unknown", "attributes", "repeats")
+
+    def __init__(self):
+        self.unknown: list = []     # (element, parent element, parent spec)
+        self.attributes: list = []  # elements with an unknown attribute
+        self.repeats: list = []     # second <origin>, <limit>, ...
 
 
-@dataclass(slots=True)
 class Body:
     """A ``<visual>`` or ``<collision>``: its parts, its geometry's children, its material."""
 
-    element: etree._Element
-    parts: dict                   # name -> the first child element of that name
-    shapes: list                  # element children of the first <geometry>, in order
-    material: dict | None = None  # parts of its <material>, if that has children
+    __slots__ = ("element", "parts", "shapes", "material")
+
+    def __init__(self, element: etree._Element, parts: dict, shapes: list,
+                 material: dict | None = None):
+        self.element = element
+        self.parts = parts  # name -> the first child element of that name
+        self.shapes = shapes  # element children of the first <geometry>, in order
+        self.material = material  # parts of its <material>, if that has children
 
 
 class Link:
@@ -90,31 +96,38 @@ class Link:
         return self.element.sourceline
 
 
-@dataclass(slots=True)
 class Joint:
-    name: str | None
-    type: str | None
-    parent: str | None
-    child: str | None
-    element: etree._Element
-    parts: dict                   # name -> the first child element of that name
+    __slots__ = ("name", "type", "parent", "child", "element", "parts")
+
+    def __init__(self, name: str | None, type: str | None, parent: str | None,
+                 child: str | None, element: etree._Element, parts: dict):
+        self.name = name
+        self.type = type
+        self.parent = parent
+        self.child = child
+        self.element = element
+        self.parts = parts  # name -> the first child element of that name
 
     @property
     def line(self) -> int:
         return self.element.sourceline
 
 
-@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class Robot:
     """The content of a ``<robot>``, in document order."""
 
-    name: str | None
-    element: etree._Element
-    links: list[Link] = field(default_factory=list)
-    joints: list[Joint] = field(default_factory=list)
-    materials: list[tuple[etree._Element, dict]] = field(default_factory=list)
-    others: list[etree._Element] = field(default_factory=list)  # other top-level elements
-    anomalies: Anomalies = field(default_factory=Anomalies)
+    def __init__(self, name: str | None, element: etree._Element,
+                 links: list[Link] | None = None, joints: list[Joint] | None = None,
+                 materials: list[tuple[etree._Element, dict]] | None = None,
+                 others: list[etree._Element] | None = None,
+                 anomalies: Anomalies | None = None):
+        self.name = name
+        self.element = element
+        self.links = [] if links is None else links
+        self.joints = [] if joints is None else joints
+        self.materials = [] if materials is None else materials
+        self.others = [] if others is None else others  # other top-level elements
+        self.anomalies = Anomalies() if anomalies is None else anomalies
 
 
 def read_robot(root) -> Robot:

@@ -8,21 +8,25 @@ spelled like a top-level one, an ``<origin>`` is the same in a joint and in a vi
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from ..values import Value
 
 
-@dataclass(frozen=True)
-class Spec:
-    attrs: frozenset = frozenset()
-    children: dict = field(default_factory=dict)  # name -> Spec
-    single: frozenset = frozenset()               # children urdfdom reads only once
-    repeated: frozenset = frozenset()             # children that may occur many times
+class Spec(Value):
+    _fields = ("attrs", "children", "single", "repeated")
+    __slots__ = (*_fields, "attrs_ok", "lookup")
+    attrs: frozenset
+    children: dict  # name -> Spec
+    single: frozenset  # children urdfdom reads only once
+    repeated: frozenset  # children that may occur many times
 
-    def __post_init__(self):
+    def __init__(self, attrs: frozenset = frozenset(), children: dict | None = None,
+                 single: frozenset = frozenset(), repeated: frozenset = frozenset()):
+        children = {} if children is None else children
+        self._set(attrs, children, single, repeated)
         # Made once: the reader looks these up for every element of the document.
-        object.__setattr__(self, "attrs_ok", self.attrs.issuperset)
+        object.__setattr__(self, "attrs_ok", attrs.issuperset)
         object.__setattr__(self, "lookup", {tag: (child.attrs.issuperset, not child.children)
-                                            for tag, child in self.children.items()})
+                                            for tag, child in children.items()})
 
 
 def _leaf(*attrs: str) -> Spec:

@@ -219,12 +219,10 @@ def _built(item: CiItem, loaded, options: LoadOptions) -> bytes:
     finds the other's output changed. The check reads the URDF as it is."""
     if loaded.from_xacro:
         return loaded.urdf
-    import dataclasses
-
     from ..load.robot import load_robot
 
     try:
-        return load_robot(item.input, dataclasses.replace(options, through_xacro=True)).urdf
+        return load_robot(item.input, options.replace(through_xacro=True)).urdf
     except McarError:  # xacro cannot parse it: written as it is, and its check says why
         return loaded.urdf
 

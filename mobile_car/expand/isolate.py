@@ -23,10 +23,10 @@ import select
 import signal
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
 from pathlib import Path
 
 from ..held_signals import hold_signals, release_signals
+from ..values import Value
 from . import wire
 
 TIMEOUT_ENV = "MCAR_XACRO_TIMEOUT"
@@ -37,14 +37,17 @@ DEFAULT_MEMORY_MB = 4096
 DEFAULT_OUTPUT_MB = 256  # PR2, the largest robot we know, expands to about 1 MB
 
 
-@dataclass(frozen=True)
-class Codec:
+class Codec(Value):
     """How a value crosses the pipe: ``pack`` (in the child) makes its frame, ``unpack``
     (in the parent) makes the value again from the header and body of a well-formed
     ``ok`` frame, checking every field, or raises :class:`wire.MalformedResult`."""
 
+    _fields = __slots__ = ("pack", "unpack")
     pack: Callable[[object], bytes]
     unpack: Callable[[dict, bytes], object]
+
+    def __init__(self, pack: Callable[[object], bytes], unpack: Callable[[dict, bytes], object]):
+        self._set(pack, unpack)
 
 
 def _unpack_json(header: dict, body: bytes):

@@ -25,10 +25,10 @@ against the files the build read before using it (:func:`Origins.from_wire`).
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
 from xml.dom import expatbuilder
 
 from ..load.inputs import STDIN_LABEL
+from ..values import Value
 
 # The xacro elements xacro checks the attributes of: never marked. Every other element
 # is (xacro:element and xacro:call too: they become elements or calls).
@@ -46,8 +46,7 @@ _MAX_WIRE_INTS = 3_000_000  # ~20 MB of JSON at most; the frame's header allows 
 _MAX_HEADER_INTS = 1_000_000  # ...so the child sends at most this many
 
 
-@dataclass(frozen=True)
-class Origins:
+class Origins(Value):
     """Element ``i`` of the URDF (document order) was written at ``site(i)``.
 
     ``calls[k]`` = (file, line, macro name, outer call or -1): a macro call, at the
@@ -55,11 +54,17 @@ class Origins:
     ``of[i]`` = the site of element ``i``, or -1. Files are named as xacro read them.
     """
 
+    _fields = __slots__ = ("files", "names", "calls", "sites", "of")
     files: tuple[str, ...]
     names: tuple[str, ...]
     calls: tuple[tuple[int, int, int, int], ...]
     sites: tuple[tuple[int, int, int], ...]
     of: tuple[int, ...]
+
+    def __init__(self, files: tuple[str, ...], names: tuple[str, ...],
+                 calls: tuple[tuple[int, int, int, int], ...],
+                 sites: tuple[tuple[int, int, int], ...], of: tuple[int, ...]):
+        self._set(files, names, calls, sites, of)
 
     def site(self, index: int) -> tuple[str, int, list[tuple[str, str, int]]] | None:
         """(file, line, [(macro, file, line) of each call, innermost first]) of element

@@ -34,11 +34,11 @@ import errno
 import os
 import signal
 import sys
-from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
 from ..packages.asset_roots import VCS_FOLDERS
+from ..values import Value
 
 _trusted = False
 _unconfined_runs: list[str] = []  # why a run went unconfined, for one notice per process
@@ -49,13 +49,17 @@ class SandboxViolation(PermissionError):
     which copes with a refused write (Python's own bytecode cache) copes with this."""
 
 
-@dataclass(frozen=True)
-class Support:
+class Support(Value):
     """What this machine's kernel offers the sandbox."""
 
+    _fields = __slots__ = ("seccomp", "landlock_abi", "landlock_reason")
     seccomp: str | None  # None when available, else why not
     landlock_abi: int  # 0 when Landlock is unavailable
-    landlock_reason: str | None = None
+    landlock_reason: str | None
+
+    def __init__(self, seccomp: str | None, landlock_abi: int,
+                 landlock_reason: str | None = None):
+        self._set(seccomp, landlock_abi, landlock_reason)
 
     def describe(self) -> list[str]:
         if _trusted:

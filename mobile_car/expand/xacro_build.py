@@ -19,7 +19,6 @@ import io
 import os
 import re
 import xml.dom.minidom
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import xacro
@@ -44,16 +43,20 @@ _ARG_DECL_RE = re.compile(r"<xacro:arg\b[^>]*?\bname\s*=\s*[\"']([^\"']+)[\"']",
 _ARG_USE_RE = re.compile(r"\$\(arg\s+([^\s)]+)\s*\)|\barg\(\s*[\"']([^\"']+)[\"']\s*\)")
 
 
-@dataclass
 class BuildResult:
     """One expanded file: the URDF text, the files it read, and xacro's warnings."""
 
-    source: Path
-    xml: str
-    deps: list[Path] = field(default_factory=list)
-    warnings: list[str] = field(default_factory=list)
-    known_args: set[str] = field(default_factory=set)  # args the files declare or use
-    origins: Origins | None = None  # where each element of ``xml`` was written
+    # A plain class, not a dataclass: never compared, and a dataclass costs every run
+    # that imports it the compiling of its methods (values.py).
+    def __init__(self, source: Path, xml: str, deps: list[Path] | None = None,
+                 warnings: list[str] | None = None, known_args: set[str] | None = None,
+                 origins: Origins | None = None):
+        self.source = source
+        self.xml = xml
+        self.deps = [] if deps is None else deps
+        self.warnings = [] if warnings is None else warnings
+        self.known_args = set() if known_args is None else known_args  # declared or used
+        self.origins = origins  # where each element of ``xml`` was written
 
 
 def banner_name(path: Path) -> str:

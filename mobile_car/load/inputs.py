@@ -7,10 +7,10 @@ name is :mod:`mobile_car.load.selection`'s business.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import UsageError
+from ..values import Value
 from .input_limit import (  # noqa: F401  (their home before; imported from here too)
     DEFAULT_MAX_INPUT_MB,
     MAX_INPUT_MB_ENV,
@@ -50,14 +50,17 @@ def split_words(words) -> tuple[list[str], dict[str, str]]:
             parse_mapping_args([w for w in words if ":=" in w]))
 
 
-@dataclass(frozen=True)
-class RobotInput:
+class RobotInput(Value):
     """One robot to load: a file, or standard input (``path`` None)."""
 
+    _fields = __slots__ = ("path", "base")
     path: Path | None
     # The folder the input was found in (a folder or package input); outputs mirror the
     # input's place below it. None for a file the user named.
-    base: Path | None = None
+    base: Path | None
+
+    def __init__(self, path: Path | None, base: Path | None = None):
+        self._set(path, base)
 
     @property
     def label(self) -> str:

@@ -32,15 +32,14 @@ one more read: they are written by rename, without the fsync outputs get.
 
 from __future__ import annotations
 
-import array
 import math
 import os
 import stat
 import sys
-from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
+from ..values import Value
 from .bounded import open_regular
 from .compressed import compressed_kind, max_mesh_bytes
 from .mesh_limits import MeshOverLimit, max_mesh_faces, scan_mesh
@@ -51,19 +50,24 @@ _RECORD_LIMIT = 1 << 16  # a record is a few hundred bytes; more was not written
 _PATH_SECTION, _CONTENT_SECTION = "mesh-path", "mesh-content"
 
 
-@dataclass(frozen=True)
-class MeshFacts:
+class MeshFacts(Value):
     """``problem``: why it cannot be loaded (None: it loads); ``over_limit``: the mesh
     limit it passes (then it is not read, and nothing else is known); ``bounds``:
     ((xmin, ymin, zmin), (xmax, ymax, zmax)) in metres, None when unknown; ``reads``:
     the other files it reads (materials, textures, buffers), that exist."""
 
-    problem: str | None = None
-    over_limit: str | None = None
-    bounds: tuple | None = None
-    faces: int | None = None
-    vertices: int | None = None
-    reads: tuple[Path, ...] = ()
+    _fields = __slots__ = ("problem", "over_limit", "bounds", "faces", "vertices", "reads")
+    problem: str | None
+    over_limit: str | None
+    bounds: tuple | None
+    faces: int | None
+    vertices: int | None
+    reads: tuple[Path, ...]
+
+    def __init__(self, problem: str | None = None, over_limit: str | None = None,
+                 bounds: tuple | None = None, faces: int | None = None,
+                 vertices: int | None = None, reads: tuple[Path, ...] = ()):
+        self._set(problem, over_limit, bounds, faces, vertices, reads)
 
 
 _known: dict[tuple, MeshFacts] = {}
@@ -236,10 +240,14 @@ def _small_stl_bounds(path: Path, triangles: int) -> tuple | None:
     corners = bytearray(36 * triangles)
     for offset in range(36):
         corners[offset::36] = data[12 + offset::50][:triangles]
-    floats = array.array("f", bytes(corners))
-    if sys.byteorder != "little":
+    if sys.byteorder == "little":  # read in place, without the array module's import
+        values = memoryview(corners).cast("f").tolist()
+    else:
+        import array
+
+        floats = array.array("f", bytes(corners))
         floats.byteswap()
-    values = floats.tolist()
+        values = floats.tolist()
     if not math.isfinite(sum(values)):  # a NaN or an infinity: numpy's box is not finite
         return None
     return (tuple(min(values[axis::3]) for axis in range(3)),

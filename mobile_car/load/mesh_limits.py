@@ -30,7 +30,6 @@ import stat
 from pathlib import Path
 
 from ..errors import InputError
-from . import scene_counts
 from .bounded import open_regular
 from .compressed import (  # noqa: F401 (MeshOverLimit: one name for every limit)
     MAX_MESH_MB_ENV,
@@ -157,11 +156,12 @@ def _stl(handle, size: int, shown: str, folder) -> MeshScan:
     return MeshScan(triangles, None if triangles is None else 3 * triangles)
 
 
-_OBJ_FACE = re.compile(rb"^[ \t]*f[ \t]+([^\n]*)", re.M)
-_OBJ_VERTEX = re.compile(rb"^[ \t]*v[ \t]", re.M)
-_OBJ_MTLLIB = re.compile(rb"^[ \t]*mtllib[ \t]+([^\r\n]*)", re.M)
-_MTL_MAP = re.compile(rb"^[ \t]*(?:map_\w+|bump|disp|decal|refl|norm)[ \t]+([^\r\n]*)",
-                      re.M | re.I)
+# Patterns, compiled by re at their first use (and kept in its cache): a run that reads
+# no OBJ does not pay for compiling them.
+_OBJ_FACE = rb"(?m)^[ \t]*f[ \t]+([^\n]*)"
+_OBJ_VERTEX = rb"(?m)^[ \t]*v[ \t]"
+_OBJ_MTLLIB = rb"(?m)^[ \t]*mtllib[ \t]+([^\r\n]*)"
+_MTL_MAP = rb"(?mi)^[ \t]*(?:map_\w+|bump|disp|decal|refl|norm)[ \t]+([^\r\n]*)"
 
 
 def _obj(handle, size: int, shown: str, folder) -> MeshScan:
@@ -170,11 +170,12 @@ def _obj(handle, size: int, shown: str, folder) -> MeshScan:
     libraries = []
     partial = False
     for chunk in _chunks(handle):
-        lines = _OBJ_FACE.findall(chunk)
+        lines = re.findall(_OBJ_FACE, chunk)
         # an n-gon is n - 2 triangles: corners (tokens) less two a line
         faces += len(b" ".join(lines).split()) - 2 * len(lines)
-        vertices += len(_OBJ_VERTEX.findall(chunk))
-        libraries += [m.decode("utf-8", "replace").strip() for m in _OBJ_MTLLIB.findall(chunk)]
+        vertices += len(re.findall(_OBJ_VERTEX, chunk))
+        libraries += [m.decode("utf-8", "replace").strip()
+                      for m in re.findall(_OBJ_MTLLIB, chunk)]
         if faces > limit or vertices > VERTICES_PER_FACE * limit:
             partial = True
             break  # over already: no need to read the rest
@@ -198,7 +199,7 @@ def _mtl_maps(mtl: Path, folder: Path) -> list[Path]:
     except OSError:
         return []
     found = []
-    for rest in _MTL_MAP.findall(text):
+    for rest in re.findall(_MTL_MAP, text):
         name = rest.decode("utf-8", "replace").strip()
         for candidate in (name, *name.split()[-1:]):
             texture = find_beside(folder, candidate)
@@ -236,5 +237,15 @@ def _off(handle, size: int, shown: str, folder) -> MeshScan:
     return MeshScan()
 
 
-_SCANNERS = {"stl": _stl, "obj": _obj, "ply": _ply, "off": _off, "dae": scene_counts.dae,
-             "gltf": scene_counts.gltf, "glb": scene_counts.glb}
+def _scene(kind: str):
+    """The scene_counts reader of ``kind``, imported when a COLLADA or glTF file is met
+    (it brings urllib.parse and the XML reader; a robot of STL meshes needs neither)."""
+    def scan(*args):
+        from . import scene_counts
+
+        return getattr(scene_counts, kind)(*args)
+    return scan
+
+
+_SCANNERS = {"stl": _stl, "obj": _obj, "ply": _ply, "off": _off, "dae": _scene("dae"),
+             "gltf": _scene("gltf"), "glb": _scene("glb")}

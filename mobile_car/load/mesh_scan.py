@@ -6,11 +6,11 @@ a count the file declares, and the file beside the mesh that trimesh's resolver 
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
 from ..packages.asset_roots import in_vcs_folder
+from ..values import Value
 
 
 class MeshBroken(InputError):
@@ -18,15 +18,19 @@ class MeshBroken(InputError):
     than it holds): not read, reported like a mesh trimesh cannot load."""
 
 
-@dataclass(frozen=True)
-class MeshScan:
+class MeshScan(Value):
     """What a mesh file declares: ``faces`` and ``vertices`` (None: not known before
     decompressing or parsing it) and the other files it reads, that exist."""
 
-    faces: int | None = None
-    vertices: int | None = None
-    reads: tuple[Path, ...] = ()
-    partial: bool = False  # counting stopped once over the limit: at least these
+    _fields = __slots__ = ("faces", "vertices", "reads", "partial")
+    faces: int | None
+    vertices: int | None
+    reads: tuple[Path, ...]
+    partial: bool  # counting stopped once over the limit: at least these
+
+    def __init__(self, faces: int | None = None, vertices: int | None = None,
+                 reads: tuple[Path, ...] = (), partial: bool = False):
+        self._set(faces, vertices, reads, partial)
 
 
 def find_beside(folder: Path, name: str) -> Path | None:

@@ -9,26 +9,32 @@ wrong robot, so the commands say which one it was.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
 
 from ..packages.search import PackageSearch, enclosing_package, package_name
+from ..values import Value
 
 
-@dataclass(frozen=True)
-class Package:
+class Package(Value):
+    _fields = __slots__ = ("name", "root")
     name: str
     root: Path
 
+    def __init__(self, name: str, root: Path):
+        self._set(name, root)
 
-@dataclass(frozen=True)
-class WorkingSet:
+
+class WorkingSet(Value):
     """The packages a command without INPUT works on."""
 
+    _fields = __slots__ = ("packages", "folder", "output_root", "kind")
     packages: list[Package]
     folder: Path  # the package's root, or the workspace folder
     output_root: Path  # where build/ and renders/ go
     kind: str  # "package" (the one you stand in), "workspace" or "bundled"
+
+    def __init__(self, packages: list[Package], folder: Path, output_root: Path, kind: str):
+        self._set(packages, folder, output_root, kind)
 
     def describe(self) -> str:
         """One line for stderr: which robot this run is about."""

@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import functools
 import os
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import InputError, UsageError
@@ -41,37 +40,56 @@ class MacroFileError(UsageError):
     """A ``.xacro`` whose ``<robot>`` has no name: it defines macros, it is not a robot."""
 
 
-@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class LoadOptions:
     """How every input of one command is loaded."""
 
-    mappings: dict[str, str] = field(default_factory=dict)  # NAME:=VALUE
-    package_paths: list[Path] = field(default_factory=list)
-    # --set/--config, validated and written once: a mobile_car.config.overrides.Overrides,
-    # made by the config stage before loading. The loader reads only its xacro mappings
-    # (``.mappings``), so it depends on nothing of config: --set flows CLI -> config -> here.
-    overrides: object | None = None
-    through_xacro: bool = False  # a plain URDF goes through xacro too (mcar build)
-    # Refuse inputs over MCAR_MAX_INPUT_MB (xacro always does): for commands that hold
-    # ~45x the file in memory (render); `mcar check` reads any size.
-    size_limited: bool = False
+    # A plain class, not a dataclass (the last one a check of a plain URDF imported):
+    # a dataclass costs every run that imports it the compiling of its methods, and the
+    # dataclasses module its import (values.py). replace() makes a variant.
+    _FIELDS = ("mappings", "package_paths", "overrides", "through_xacro", "size_limited")
+
+    def __init__(self, mappings: dict[str, str] | None = None,
+                 package_paths: list[Path] | None = None, overrides: object | None = None,
+                 through_xacro: bool = False, size_limited: bool = False):
+        self.mappings = {} if mappings is None else mappings  # NAME:=VALUE
+        self.package_paths = [] if package_paths is None else package_paths
+        # --set/--config, validated and written once: a mobile_car.config.overrides.
+        # Overrides, made by the config stage before loading. The loader reads only its
+        # xacro mappings (``.mappings``), so it depends on nothing of config: --set flows
+        # CLI -> config -> here.
+        self.overrides = overrides
+        self.through_xacro = through_xacro  # a plain URDF goes through xacro too (build)
+        # Refuse inputs over MCAR_MAX_INPUT_MB (xacro always does): for commands that hold
+        # ~45x the file in memory (render); `mcar check` reads any size.
+        self.size_limited = size_limited
+
+    def replace(self, **changes) -> LoadOptions:
+        """These options with ``changes`` (field name -> value), as dataclasses.replace."""
+        unknown = set(changes) - set(self._FIELDS)
+        if unknown:
+            raise TypeError(f"LoadOptions has no field {sorted(unknown)[0]!r}")
+        return LoadOptions(**{**{name: getattr(self, name) for name in self._FIELDS}, **changes})
 
     @property
     def has_arguments(self) -> bool:
         return bool(self.mappings) or self.overrides is not None
 
 
-@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class LoadedRobot:
     """An expanded robot, ready to check and use."""
 
-    input: RobotInput
-    urdf: bytes
-    search: PackageSearch
-    deps: list[Path] = field(default_factory=list)  # the files read, the input first
-    warnings: list[str] = field(default_factory=list)  # xacro's warnings
-    from_xacro: bool = False
-    origins: object = None  # expand.origins.Origins: where each element was written
+    # A plain class, not a dataclass: never compared, and a dataclass costs every run
+    # that imports it the compiling of its methods (values.py).
+    def __init__(self, input: RobotInput, urdf: bytes, search: PackageSearch,
+                 deps: list[Path] | None = None, warnings: list[str] | None = None,
+                 from_xacro: bool = False, origins: object = None):
+        self.input = input
+        self.urdf = urdf
+        self.search = search
+        self.deps = [] if deps is None else deps  # the files read, the input first
+        self.warnings = [] if warnings is None else warnings  # xacro's warnings
+        self.from_xacro = from_xacro
+        self.origins = origins  # expand.origins.Origins: where each element was written
 
     @property
     def label(self) -> str:

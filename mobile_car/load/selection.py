@@ -13,26 +13,29 @@ from __future__ import annotations
 
 import os
 import stat
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import UsageError
 from .inputs import STDIN, RobotInput, display_path
 
 
-@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class Selection:
     """The inputs a command's words name, and how they were named."""
 
-    kind: str  # "files" (files and "-"), "folder", "parts" or "package"
-    inputs: list[RobotInput] = field(default_factory=list)
-    root: Path | None = None  # the folder or package, for those kinds
-    # Where build/ and renders/ go: the root of the package you stand in when no INPUT
-    # named it, else the working directory.
-    output_root: Path = field(default_factory=Path)
-    working: object = None  # the WorkingSet, when the package was chosen for the user
-    # Files found below the folders named that are not robots, with why (mcar ci -v).
-    skipped: list = field(default_factory=list)  # of packages.discover.Skipped
+    # A plain class, not a dataclass: never compared, and a dataclass costs every run
+    # that imports it the compiling of its methods (values.py).
+    def __init__(self, kind: str, inputs: list[RobotInput] | None = None,
+                 root: Path | None = None, output_root: Path | None = None,
+                 working: object = None, skipped: list | None = None):
+        self.kind = kind  # "files" (files and "-"), "folder", "parts" or "package"
+        self.inputs = [] if inputs is None else inputs
+        self.root = root  # the folder or package, for those kinds
+        # Where build/ and renders/ go: the root of the package you stand in when no
+        # INPUT named it, else the working directory.
+        self.output_root = Path() if output_root is None else output_root
+        self.working = working  # the WorkingSet, when the package was chosen for the user
+        # Files found below the folders named that are not robots, with why (mcar ci -v).
+        self.skipped = [] if skipped is None else skipped  # of packages.discover.Skipped
 
     @property
     def reads_stdin(self) -> bool:

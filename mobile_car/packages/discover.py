@@ -34,12 +34,12 @@ from __future__ import annotations
 
 import functools
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import InputError
 from ..load.bounded import open_regular, read_text_quietly
 from ..load.inputs import input_limit_mb
+from ..values import Value
 from .asset_roots import link_out_of, real_path
 from .file_shape import FileShape, file_shape, include_target
 
@@ -98,20 +98,25 @@ def source_base(root: Path) -> Path:
     return folders[0] if len(folders) == 1 else root
 
 
-@dataclass(frozen=True)
-class Skipped:
+class Skipped(Value):
     """A file below the robot folders that is not a robot, and why."""
 
+    _fields = __slots__ = ("path", "reason")
     path: Path
     reason: str
 
+    def __init__(self, path: Path, reason: str):
+        self._set(path, reason)
 
-@dataclass
+
 class Discovery:
     """The robot files of a folder, sorted, and the files skipped there."""
 
-    robots: list[Path] = field(default_factory=list)
-    skipped: list[Skipped] = field(default_factory=list)
+    # A plain class, not a dataclass: never compared, and a dataclass costs every run
+    # that imports it the compiling of its methods (values.py).
+    def __init__(self, robots: list[Path] | None = None, skipped: list[Skipped] | None = None):
+        self.robots = [] if robots is None else robots
+        self.skipped = [] if skipped is None else skipped
 
 
 def robot_files(root: Path) -> list[Path]:

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import re
 import xml.parsers.expat
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import InputError
@@ -28,22 +27,24 @@ DIRECTIVES = frozenset({"insert_block", "include", "property", "macro", "arg", "
 _MAKERS = frozenset({"include", "element", "insert_block", "call"})
 
 
-@dataclass
 class FileShape:
     """The facts about one file. ``read_whole``: expat read all of it without error;
     False when it gave up (a broken file), the file could not be read, or a plain URDF
     with a ``<link>`` needed no more than its root: then nothing past the root is known."""
 
-    read_whole: bool = False
-    root: str | None = None  # the root element's tag as written (robot, sdf, xacro:macro)
-    name: str | None = None  # the root's name attribute
-    links: bool = False  # a <link> outside every <xacro:macro>
-    makers: bool = False  # a macro call, include or xacro:element outside them
-    calls: bool = False  # the same but includes: what makes links in this file itself
-    macros: int = 0  # <xacro:macro> definitions
-    uses_xacro: bool = False  # as mobile_car.load.xacro_use decides
-    includes: list[str] = field(default_factory=list)  # filename="..." of each include
-    arg_defaults: dict[str, str] = field(default_factory=dict)
+    # A plain class, not a dataclass: never compared, and a dataclass costs every run
+    # that imports it the compiling of its methods (values.py).
+    def __init__(self, root: str | None = None, name: str | None = None, links: bool = False):
+        self.read_whole = False
+        self.root = root  # the root element's tag as written (robot, sdf, xacro:macro)
+        self.name = name  # the root's name attribute
+        self.links = links  # a <link> outside every <xacro:macro>
+        self.makers = False  # a macro call, include or xacro:element outside them
+        self.calls = False  # the same but includes: what makes links in this file itself
+        self.macros = 0  # <xacro:macro> definitions
+        self.uses_xacro = False  # as mobile_car.load.xacro_use decides
+        self.includes: list[str] = []  # filename="..." of each include
+        self.arg_defaults: dict[str, str] = {}
 
 
 def file_shape(path: Path) -> FileShape:

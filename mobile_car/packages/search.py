@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import InputError, PackageNotFoundError
@@ -103,28 +102,29 @@ def _decoded_readings(rest: str, host: bool = False) -> set[str]:
     return readings - {rest}
 
 
-@dataclass(repr=False, eq=False)  # never compared: fewer methods to compile at start-up
 class PackageSearch:
     """Resolves package names to directories; build one per command and reuse it."""
 
-    package_paths: list[Path] = field(default_factory=list)
-    origin: Path | None = None  # the input file, whose own package wins
-    environ: dict[str, str] | None = None
-    # Folders whose files a robot may name besides the packages (--asset-path).
-    asset_paths: list[Path] = field(default_factory=lambda: list(chosen_asset_paths()))
-    _allowed: tuple | None = field(default=None, init=False, repr=False)
-    _package_assets: list[Path] | None = field(default=None, init=False, repr=False)
-    # The mcar.yaml files whose assets.paths were consulted (a record of the run stamps them).
-    settings_read: list[Path] = field(default_factory=list, init=False, repr=False)
-    _cache: dict[str, Path] = field(default_factory=dict, init=False, repr=False)
-    _crawled: dict[str, Path] | None = field(default=None, init=False, repr=False)
-
-    def __post_init__(self):
-        for path in self.package_paths:
+    # A plain class, not a dataclass: never compared, and a dataclass costs every run
+    # that imports it the compiling of its methods (values.py).
+    def __init__(self, package_paths: list[Path] | None = None, origin: Path | None = None,
+                 environ: dict[str, str] | None = None, asset_paths: list[Path] | None = None):
+        self.origin = origin  # the input file, whose own package wins
+        self.environ = environ
+        # Folders whose files a robot may name besides the packages (--asset-path).
+        self.asset_paths = list(chosen_asset_paths()) if asset_paths is None else asset_paths
+        for path in package_paths or ():
             if not Path(path).is_dir():
                 raise InputError(f"--package-path {path}: not a directory")
         # Absolute once, here: see _split_path_list.
-        self.package_paths = [Path(os.path.abspath(p)) for p in self.package_paths]
+        self.package_paths = [Path(os.path.abspath(p)) for p in package_paths or ()]
+        self._allowed: tuple | None = None
+        self._package_assets: list[Path] | None = None
+        # The mcar.yaml files whose assets.paths were consulted (a record of the run
+        # stamps them).
+        self.settings_read: list[Path] = []
+        self._cache: dict[str, Path] = {}
+        self._crawled: dict[str, Path] | None = None
 
     @property
     def _env(self) -> dict[str, str]:

@@ -3,8 +3,6 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from ..check.diagnostics import Diagnostic
 
 ERROR, WARNING = "error", "warning"
@@ -32,10 +30,11 @@ SIM_RULES = {
 }
 
 
-@dataclass(frozen=True)
 class SimDiagnostic(Diagnostic):
     """A sim rule broken at FILE:LINE; prints exactly as check's Diagnostic does, from
     the sim rules' table."""
+
+    __slots__ = ()
 
     @property
     def severity(self) -> str:

@@ -20,7 +20,6 @@ the others and dimensions baked into a mesh cannot change, so neither has a slid
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import re
 from dataclasses import dataclass
@@ -140,7 +139,7 @@ class Dimensions:
         fit together (UsageError). Once it is built, they are the current overrides."""
         values = dict(self.values if values is None else values)
         with applied_overrides(self.spec, values, self.search) as overrides:
-            model = load_model(self.inp, dataclasses.replace(self.options, overrides=overrides))
+            model = load_model(self.inp, self.options.replace(overrides=overrides))
         self.values = values
         return model
 

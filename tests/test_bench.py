@@ -129,6 +129,29 @@ def test_quick_robots_section_times_sim_on_real_robots_next_to_the_car(tmp_path,
     assert rows["`mcar check` Husky (husky.urdf.xacro)"][4] == "0"
 
 
+def test_quick_specs_section_times_specs_with_and_without_proofs_beside_sim(tmp_path,
+                                                                           mcar_bin):
+    from sim.test_sim_real_robots import FOLDER
+
+    if FOLDER is None:
+        pytest.skip("the shared real-robots folder is absent (set MCAR_REAL_ROBOTS)")
+    text = quick_section(tmp_path, "specs", timeout=600)
+    assert "## `mcar specs`" in text
+    rows = {cells[0]: cells for cells in (line.strip("| ").split(" | ")
+                                          for line in text.splitlines()
+                                          if line.startswith("| `"))}
+    names = ("TurtleBot3 burger", "the bundled car")
+    assert list(rows) == [label for name in names for label in (
+        f"`mcar specs --no-proof` {name}", f"`mcar specs` {name} (with its proofs)",
+        f"`mcar sim --scenario drop` {name}", f"`mcar sim` {name}")]
+    for cells in rows.values():
+        # Every run exited 0 (every proof agreeing), with a peak memory and a ratio to sim's.
+        assert re.fullmatch(r"[\d.]+ m?s", cells[1]) and cells[4] == "0", cells
+        assert re.fullmatch(r"\d+ MiB|-", cells[2]) and re.fullmatch(r"\d+\.\d\d", cells[3])
+    assert rows["`mcar sim` TurtleBot3 burger"][3] == "1.00"
+    assert rows["`mcar specs --no-proof` TurtleBot3 burger"][5] in ("met", "**missed**")
+
+
 def test_quick_gazebo_section_times_check_gazebo_and_the_helper(tmp_path, mcar_bin,
                                                                 gazebo):
     text = quick_section(tmp_path, "gazebo", timeout=300)

@@ -18,11 +18,11 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import McarError
 from ..load.inputs import display_path
+from ..values import Value
 
 SUFFIX = "_description"
 SUFFIXES = (SUFFIX, "_base")  # of a description package; the control package's:
@@ -32,11 +32,17 @@ MAX_FILES = 20  # YAML files looked at in one control package
 _PACKAGE_URI = re.compile(rb"package://([A-Za-z0-9_]+(?:_description|_base))/")
 
 
-@dataclass(frozen=True)
-class ControlConfig:
+class ControlConfig(Value):
+    """A control package's wheel_separation_multiplier and where it is written (a Value,
+    not a dataclass: every `mcar check` of a package imports this module)."""
+
+    _fields = __slots__ = ("multiplier", "file", "line")
     multiplier: float
     file: Path
     line: int | None
+
+    def __init__(self, multiplier: float, file: Path, line: int | None):
+        self._set(multiplier, file, line)
 
     @property
     def where(self) -> str:

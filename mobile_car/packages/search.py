@@ -127,8 +127,9 @@ class PackageSearch:
         self._crawled: dict[str, Path] | None = None
 
     @property
-    def _env(self) -> dict[str, str]:
-        return dict(os.environ) if self.environ is None else self.environ
+    def _env(self):
+        """The environment the packages are found through (read only: no copy made)."""
+        return os.environ if self.environ is None else self.environ
 
     def where_looked(self) -> list[str]:
         places = []
@@ -183,13 +184,20 @@ class PackageSearch:
 
     def find(self, name: str) -> Path:
         """The directory of package ``name``; PackageNotFoundError names where it looked."""
-        if name in self._cache:
-            return self._cache[name]
-        result = self._lookup(name)
+        result = self.find_if_any(name)
         if result is None:
             raise PackageNotFoundError(
                 f"package '{name}' not found; looked in: " + "; ".join(self.where_looked()))
-        self._cache[name] = result
+        return result
+
+    def find_if_any(self, name: str) -> Path | None:
+        """The directory of package ``name``, None where there is none (a sibling package
+        a robot may or may not have: its control or navigation package)."""
+        if name in self._cache:
+            return self._cache[name]
+        result = self._lookup(name)
+        if result is not None:
+            self._cache[name] = result
         return result
 
     def _lookup(self, name: str) -> Path | None:

@@ -98,9 +98,8 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
     for name in _description_packages(loaded):
         stem = next(name[: -len(s)] for s in SUFFIXES if name.endswith(s))
         for suffix in suffixes:
-            try:
-                root = loaded.search.find(name if suffix is None else stem + suffix)
-            except McarError:
+            root = loaded.search.find_if_any(name if suffix is None else stem + suffix)
+            if root is None:
                 continue
             files = [path for folder in folders
                      for path in sorted(root.glob(f"{folder}/*.yaml" if folder else "*.yaml"))]

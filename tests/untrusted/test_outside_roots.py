@@ -15,28 +15,13 @@ from __future__ import annotations
 import importlib.util
 import json
 import shutil
-import struct
 from pathlib import Path
 
 import pytest
-from hostile import PACKAGE_XML, files_holding
+from hostile import PACKAGE_XML, cube_stl, files_holding
 
 MARK = b"MCAR-SECRET-7f3a9c"  # in every secret file: what must never reach an output
 
-
-def _binary_stl(header: bytes, size: float) -> bytes:
-    """A cube of side ``size`` (12 triangles) whose 80-byte header starts with ``header``."""
-    s = size / 2
-    corners = [(x, y, z) for x in (-s, s) for y in (-s, s) for z in (-s, s)]
-    faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1),
-             (2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
-    data = header.ljust(80, b" ") + struct.pack("<I", len(faces))
-    for face in faces:
-        data += struct.pack("<3f", 0, 0, 0)
-        for index in face:
-            data += struct.pack("<3f", *corners[index])
-        data += b"\0\0"
-    return data
 
 
 OBJ = """mtllib {outside}/evil.mtl
@@ -93,11 +78,11 @@ def _attack(root: Path) -> Path:
     for folder in (outside, meshes, urdf):
         folder.mkdir(parents=True)
     (outside / "secret.png").write_bytes(b"\x89PNG\r\n\x1a\n" + MARK + b" id_rsa")
-    (outside / "secret.stl").write_bytes(_binary_stl(MARK, 2.0))  # a big cube: it shows
+    (outside / "secret.stl").write_bytes(cube_stl(2.0, MARK))  # a big cube: it shows
     (outside / "evil.mtl").write_bytes(b"# " + MARK + b"\nnewmtl skin\nKd 1 0 0\n")
     (meshes / "linked.stl").symlink_to(outside / "secret.stl")
     (meshes / "linked.png").symlink_to(outside / "secret.png")
-    (meshes / "cube.stl").write_bytes(_binary_stl(b"inside", 0.05))
+    (meshes / "cube.stl").write_bytes(cube_stl(0.05, b"inside"))
     (meshes / "quad.obj").write_text(OBJ.format(outside=outside))
     (meshes / "local.mtl").write_text(f"newmtl skin\nKd 1 1 1\nmap_Kd {outside}/secret.png\n"
                                       "map_Ks ../../outside/secret.png\nmap_Ka linked.png\n")

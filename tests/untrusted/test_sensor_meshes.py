@@ -9,24 +9,9 @@ puts the same cube inside the robot's folder, and the sector appears in both eng
 from __future__ import annotations
 
 import shutil
-import struct
 
+from hostile import cube_stl
 from specs.sensor_robots import LIDAR_Z, lidar_link, link, ray_sensor, robot, sensors_of, values
-
-
-def _cube_stl(side: float) -> bytes:
-    """A binary STL cube of side ``side``, centred on its origin."""
-    s = side / 2
-    corners = [(x, y, z) for x in (-s, s) for y in (-s, s) for z in (-s, s)]
-    faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1),
-             (2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
-    data = b"MCAR-SECRET".ljust(80, b" ") + struct.pack("<I", len(faces))
-    for face in faces:
-        data += struct.pack("<3f", 0, 0, 0)
-        for index in face:
-            data += struct.pack("<3f", *corners[index])
-        data += b"\0\0"
-    return data
 
 
 def _robot(filename: str) -> str:
@@ -40,7 +25,7 @@ def test_a_visual_mesh_outside_the_robot_folders_is_never_read_for_its_sensors(t
     outside, package = tmp_path / "outside", tmp_path / "robot"
     outside.mkdir()
     package.mkdir()
-    (outside / "secret.stl").write_bytes(_cube_stl(0.1))
+    (outside / "secret.stl").write_bytes(cube_stl(0.1, b"MCAR-SECRET"))
     for name in ("../outside/secret.stl", f"file://{outside}/secret.stl"):
         _, section = sensors_of(package / "robot.urdf", _robot(name))
         assert values(section)["sensors.scanner.blocked"] == [], name
@@ -65,7 +50,7 @@ def test_without_proofs_mujoco_alone_refuses_the_outside_mesh_and_the_oversized_
     outside, package = tmp_path / "outside", tmp_path / "robot"
     outside.mkdir()
     package.mkdir()
-    (outside / "secret.stl").write_bytes(_cube_stl(0.1))
+    (outside / "secret.stl").write_bytes(cube_stl(0.1, b"MCAR-SECRET"))
     shutil.copy(outside / "secret.stl", package / "cube.stl")
     for name in ("../outside/secret.stl", f"file://{outside}/secret.stl"):
         _, section = sensors_of(package / "robot.urdf", _robot(name), {"proof": False})

@@ -10,30 +10,15 @@ test can fail."""
 from __future__ import annotations
 
 import os
-import struct
 import threading
 from pathlib import Path
 
 import pytest
+from hostile import cube_stl
 
 from mobile_car.check.checker import check_input
 from mobile_car.load.inputs import RobotInput
 from mobile_car.specs.inertia import inertia_section
-
-
-def cube_stl(side: float) -> bytes:
-    """A binary STL cube (12 triangles)."""
-    s = side / 2
-    corners = [(x, y, z) for x in (-s, s) for y in (-s, s) for z in (-s, s)]
-    faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1),
-             (2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
-    data = b"cube".ljust(80, b" ") + struct.pack("<I", len(faces))
-    for face in faces:
-        data += struct.pack("<3f", 0, 0, 0)
-        for index in face:
-            data += struct.pack("<3f", *corners[index])
-        data += b"\0\0"
-    return data
 
 
 def robot_naming(filename: str) -> str:

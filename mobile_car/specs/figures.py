@@ -16,12 +16,15 @@ from dataclasses import dataclass, field
 @dataclass(eq=False)
 class Proof:
     """What MuJoCo measured of a figure: ``measured`` in the figure's unit (None when the
-    run could not measure it), ``agrees`` within ``tolerance``, and how (one line)."""
+    run could not measure it), ``agrees`` within ``tolerance``, and how (one line);
+    ``instead``: where nothing was measured, what happened instead, in a few words for
+    the table ("slid first at 43.8°")."""
 
     measured: object
     agrees: bool
     tolerance: str
     detail: str = ""
+    instead: str = ""
 
 
 @dataclass(eq=False)

@@ -101,7 +101,8 @@ def _tip_proof(run: Tilt, tip: float, slide: float) -> Proof:
     if run.event == "slides":  # it never got to tip: right if the figures said so
         agrees = slide < tip and abs(run.angle - slide) <= TOLERANCE
         return Proof(None, agrees, f"±{TOLERANCE:g}°",
-                     f"{_said(run)}, before it could tip (slide computed {slide:.2f}°)")
+                     f"{_said(run)}, before it could tip (slide computed {slide:.2f}°)",
+                     instead=f"slid first at {run.angle:.3g}°")
     return Proof(None, False, f"±{TOLERANCE:g}°", _said(run))
 
 

@@ -81,7 +81,10 @@ def _proof_text(proof, unit: str) -> str:
     """``MuJoCo 23.4° ✓``, ``MuJoCo 19° ✗ disagrees``; "" for a figure without a proof."""
     if proof is None:
         return ""
-    measured = "not measured" if proof.measured is None else show(proof.measured, unit)
+    if proof.measured is None:
+        measured = proof.instead or "not measured"
+    else:
+        measured = show(proof.measured, unit)
     return f"MuJoCo {measured} " + ("✓" if proof.agrees else "✗ disagrees")
 
 

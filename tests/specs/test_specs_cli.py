@@ -148,3 +148,20 @@ def test_help_explains_frames_sections_and_sources(cli):
                   "--no-proof", "--friction MU", "--fix-inertia", "docs/specs.md"):
         assert words in text, words
     assert "--picture FILE.png" in text
+
+
+def test_a_proof_that_saw_something_else_first_says_what():
+    """A tip angle MuJoCo could not reach (the robot slid first) shows what happened, not a
+    bare tick beside "not measured"."""
+    from mobile_car.specs.report import SpecsReport, text_table
+
+    section = Section("statics", figures=[
+        Figure("statics.tip.left", "tip-over angle left", 67.9, "deg", "support polygon",
+               proof=Proof(None, True, "±1°", "slides at 43.78° before it could tip",
+                           instead="slid first at 43.8°")),
+        Figure("statics.tip.right", "tip-over angle right", 67.9, "deg", "support polygon",
+               proof=Proof(None, False, "±1°", "neither slid nor tipped"))])
+    rows = text_table(SpecsReport("robot.urdf", "robot", [section]))
+    assert rows[2].split()[3:] == ["67.9°", "MuJoCo", "slid", "first", "at", "43.8°", "✓",
+                                   "support", "polygon"]
+    assert "67.9°  MuJoCo not measured ✗ disagrees" in rows[3]

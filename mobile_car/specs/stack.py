@@ -255,8 +255,8 @@ def section(context) -> Section:
             source += f" x wheel_separation_multiplier {control.multiplier:g} ({control.where})"
         result.figures.append(Figure("stack.wheel_separation", "effective wheel separation",
                                      round(effective, 6), "m", source))
-    elif drive is None:
-        result.notes.append(f"no drive controller: {getattr(sim, 'why_no_drive', None)}")
+    elif drive is None and sim is not None:  # (no model at all: the body's notes say why)
+        result.notes.append(f"no drive controller: {sim.why_no_drive or 'no drive found'}")
     diagnostics, notes, _read = compare_package(checked, sim, sections)
     result.diagnostics += diagnostics
     result.notes += notes

@@ -112,7 +112,7 @@ def _check_document(root, data: bytes, file: str, base: Path, search: PackageSea
     if structure_only:
         return _finish(result, report)
     document.check_raw_whitespace(root, data, report)
-    check_joints(robot, report)
+    origins = check_joints(robot, report)  # joint -> (xyz, rpy), of the joints proved plain
     check_schema(robot, report, lambda: _package_macros(base))
     materials = material_colours(robot, report)
     top_level = {element.get("name") for element, _ in robot.materials}
@@ -127,7 +127,7 @@ def _check_document(root, data: bytes, file: str, base: Path, search: PackageSea
         if len(robot.links) >= LARGE_ROBOT:  # numpy pays for its import from here on
             from .rest_pose_arrays import rest_pose_arrays
 
-            pose = rest_pose_arrays(robot, tree, held, bounds)
+            pose = rest_pose_arrays(robot, tree, held, bounds, origins)
         if pose is None:
             pose = rest_pose(robot, tree, held, bounds)
         result.extents = pose.extents()

@@ -17,6 +17,7 @@ on the common spelling (much of checking a robot whose every number differs).
 from __future__ import annotations
 
 from collections.abc import Callable
+from itertools import repeat
 from math import isfinite
 
 from .diagnostics import Diagnostic
@@ -87,6 +88,7 @@ class Reporter:
         self.quick_numbers = quick_numbers
         self._read_singles: list[str] = []
         self._read_lists: list[str] = []
+        self._read_triples: list[str] = []  # read together: see triples()
         # Lists read so far, up to _LISTS_KEPT: robots repeat "0 0 1" and "0 0 0" thousands
         # of times and those come early; remembering every list of a CAD export, where
         # almost none repeats, would cost more than it saves.
@@ -114,6 +116,11 @@ class Reporter:
             singles = ",".join(self._read_singles).encode()
             lists = ",".join(self._read_lists).encode()
             if singles.translate(None, _SINGLE_BYTES) or lists.translate(None, _LIST_BYTES):
+                return False
+            # Texts read together (triples()): each one's three numbers one space apart.
+            triples = self._read_triples
+            if ",".join(triples).encode().translate(None, _LIST_BYTES) or \
+                    set(map(str.count, triples, repeat(" "))) - {2}:
                 return False
         if len(_CLEAN) < _CLEAN_LIMIT:
             _CLEAN.update(self._clean_here)
@@ -175,6 +182,47 @@ class Reporter:
                     return values
         value = parse_numbers(text, count)
         return value if value.__class__ is tuple else None
+
+    def triples(self, texts: list[str]) -> tuple[float, ...] | None:
+        """Three numbers from each of ``texts``, all in one tuple, or None if one does not
+        read; silent. Unlike :meth:`values`, a number may come back infinite (1e400):
+        the caller bounds every one of them."""
+        if self.quick_numbers:
+            joined = " ".join(texts)
+            words = joined.split()
+            # Three words in all per text, each text's one space apart (two spaces apart
+            # or with spaces around, as urdfdom allows, one by one below); that each has
+            # three, not four here and two there, is proved with the spelling: every
+            # text has two spaces (numbers_confirmed).
+            if len(words) == 3 * len(texts) and joined.count(" ") == len(words) - 1:
+                try:
+                    values = tuple(map(float, words))
+                except ValueError:
+                    values = None
+                if values is not None:
+                    self._read_triples += texts
+                    return values
+        values = []
+        for text in texts:
+            three = self.values(text, 3)
+            if three is None:
+                return None
+            values += three
+        return tuple(values)
+
+    def singles(self, texts: list) -> tuple[float, ...] | None:
+        """The number in each of ``texts``, or None if one is absent or does not read;
+        silent. A number may come back infinite or NaN: the caller bounds each."""
+        if self.quick_numbers:
+            try:
+                values = tuple(map(float, texts))
+            except (TypeError, ValueError):  # TypeError: an absent text
+                values = None
+            if values is not None:
+                self._read_singles += texts
+                return values
+        values = tuple([self.value(text) for text in texts])
+        return None if None in values else values
 
     def number(self, element, attr: str, owner: str) -> float | None:
         """The number in ``attr``, or None (absent, unreadable: E114, or xacro: E105)."""

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from .context import MAX_ANGLE, MAX_INERTIA, MAX_LENGTH, MAX_MASS, MAX_SCALE, Reporter, within
 from .inertia import INERTIA, tensor_problem
-from .rest_pose import ONE, ZERO, LinkShapes
+from .rest_pose import ONE, LinkShapes
 from .urdf_vocabulary import COLLISION, GEOMETRY, INERTIAL, LINK, VISUAL
 
 _LINK_PARTS = LINK.lookup
@@ -34,8 +34,14 @@ def plainly_clean(element, report: Reporter, materials: set[str], top_level: set
     proved here"."""
     if not LINK.attrs_ok(element.keys()):
         return None
+    # The walk gathers the texts of the link's numbers, the numbers are then read all at
+    # once (two calls per link rather than one per attribute: on a robot whose every
+    # number differs, the calls were most of this pass) and judged by where they sit.
+    triples: list[str] = []  # origins' xyz and rpy, a box's size, a mesh's scale
+    singles: list[str] = []  # the mass and six moments, a radius, a length
     defined: list[str] = []
     inertial = None
+    # (kind, shape element, where its numbers start: in the numbers of triples, in singles)
     bodies = []
     for part in element:
         tag = part.tag
@@ -49,18 +55,41 @@ def plainly_clean(element, report: Reporter, materials: set[str], top_level: set
         if tag == "inertial":
             if inertial is not None or is_root:
                 return None
-            inertial = _inertial(part, report, moving)
-            if inertial is None:
+            inertial = (part, 3 * len(triples), len(singles))
+            if not _inertial(part, triples, singles):
                 return None
         else:
-            body = _body(part, tag, report, materials, top_level, defined)
-            if body is None:
+            at = 3 * len(triples), len(singles)
+            shape = _body(part, tag, report, materials, top_level, defined, triples, singles)
+            if shape is None:
                 return None
-            bodies.append(body)
+            bodies.append((tag, shape, *at))
     if moving and inertial is None:
         return None
+    numbers = report.triples(triples)
+    if numbers is None or not within(numbers, _TRIPLE_BOUND):
+        return None
+    single = report.singles(singles)
+    if single is None:
+        return None
+    if inertial is not None:
+        inertial = _inertia(inertial, numbers, single, moving)
+        if inertial is None:
+            return None
+    read = []
+    for kind, shape, at, at_single in bodies:
+        dims = _dims(shape, numbers, at + 6, single, at_single)
+        if dims is None:
+            return None
+        read.append((kind, shape, numbers[at:at + 3], numbers[at + 3:at + 6], dims))
     materials.update(defined)
-    return LinkShapes(bodies, inertial)
+    return LinkShapes(read, inertial)
+
+
+# Every number read as one of three is a length, an angle or a scale: the smallest of
+# their bounds is theirs (a bound in between would only send a link to the full checks).
+_TRIPLE_BOUND = min(MAX_LENGTH, MAX_ANGLE, MAX_SCALE)
+_NO_TURN = "0 0 0"  # an absent xyz or rpy, read with the others
 
 
 def _parts(element, spec) -> dict | None:
@@ -78,93 +107,101 @@ def _parts(element, spec) -> dict | None:
     return parts
 
 
-def _origin(origin, report: Reporter) -> tuple | None:
-    """(xyz, rpy) of an <origin> (zeros where absent), or None where one is not sound."""
+def _origin(origin, triples: list[str]) -> None:
+    """The texts of an <origin>'s xyz and rpy (zeros where absent) onto ``triples``."""
     if origin is None:
-        return ZERO, ZERO
-    xyz, rpy = origin.get("xyz"), origin.get("rpy")
-    xyz = ZERO if xyz is None else report.values(xyz, 3)
-    if xyz is None or not within(xyz, MAX_LENGTH):
-        return None
-    rpy = ZERO if rpy is None else report.values(rpy, 3)
-    if rpy is None or not within(rpy, MAX_ANGLE):
-        return None
-    return xyz, rpy
+        triples += (_NO_TURN, _NO_TURN)
+        return
+    get = origin.get
+    triples += (get("xyz", _NO_TURN), get("rpy", _NO_TURN))
 
 
-def _inertial(inertial, report: Reporter, moving: bool) -> tuple | None:
-    """(element, mass, six moments, rpy) of a sound <inertial>, else None."""
+def _inertial(inertial, triples: list[str], singles: list[str]) -> bool:
+    """The texts of a usual <inertial>'s numbers onto the lists; False if it is not one."""
     parts = _parts(inertial, INERTIAL)
     if parts is None:
-        return None
-    origin = _origin(parts.get("origin"), report)
-    if origin is None:
-        return None
+        return False
     mass, inertia = parts.get("mass"), parts.get("inertia")
     if mass is None or inertia is None:
+        return False
+    _origin(parts.get("origin"), triples)
+    get = inertia.get
+    singles += (mass.get("value"), *[get(name) for name in INERTIA])
+    return True
+
+
+def _inertia(inertial: tuple, numbers: tuple, single: tuple, moving: bool) -> tuple | None:
+    """(element, mass, six moments, rpy) of an <inertial> whose numbers are sound, else
+    None; ``inertial`` is (element, where its numbers start: in the numbers of the triples,
+    in the singles)."""
+    element, at, at_single = inertial
+    mass = single[at_single]
+    if not 0 <= mass <= MAX_MASS or (moving and mass == 0):
         return None
-    value = report.value(mass.get("value"))
-    if value is None or value < 0 or (moving and value == 0) or not within((value,), MAX_MASS):
+    moments = single[at_single + 1:at_single + 7]
+    if not within(moments, MAX_INERTIA) or tensor_problem(*moments) is not None:
         return None
-    get, number = inertia.get, report.value
-    moments = tuple([number(get(name)) for name in INERTIA])
-    if None in moments or not within(moments, MAX_INERTIA) or \
-            tensor_problem(*moments) is not None:
-        return None
-    return inertial, value, moments, origin[1]
+    return element, mass, moments, numbers[at + 3:at + 6]
 
 
 def _body(body, kind: str, report: Reporter, materials: set[str], top_level: set,
-          defined: list[str]) -> tuple | None:
-    """(kind, shape element, xyz, rpy, dims) of a sound <visual> or <collision>."""
+          defined: list[str], triples: list[str], singles: list[str]):
+    """The shape element of a usual <visual> or <collision>, the texts of its numbers
+    onto the lists; None if it is not one."""
     parts = _parts(body, VISUAL if kind == "visual" else COLLISION)
     if parts is None:
-        return None
-    origin = _origin(parts.get("origin"), report)
-    if origin is None:
         return None
     geometry = parts.get("geometry")
     if geometry is None or len(geometry) != 1:
         return None
-    dims = _shape(geometry[0], report)
-    if dims is None:
+    shape = geometry[0]
+    tag = shape.tag
+    attrs_ok = _SHAPE_ATTRS_OK.get(tag)
+    if attrs_ok is None or len(shape) or not attrs_ok(shape.keys()):
         return None
     material = parts.get("material")
     if material is not None and not _material(material, report, materials, top_level,
                                               defined):
         return None
-    return kind, geometry[0], origin[0], origin[1], dims
-
-
-def _shape(shape, report: Reporter) -> tuple | None:
-    """The numbers of a sound shape: a box's size, a cylinder's (radius, length), a
-    sphere's (radius,), a mesh's scale; None where it is not sound."""
-    tag = shape.tag
-    attrs_ok = _SHAPE_ATTRS_OK.get(tag)
-    if attrs_ok is None or len(shape) or not attrs_ok(shape.keys()):
-        return None
+    _origin(parts.get("origin"), triples)
     get = shape.get
     if tag == "box":
-        size = report.values(get("size"), 3)
-        return size if size is not None and min(size) > 0 and max(size) <= MAX_LENGTH \
-            else None
+        size = get("size")
+        if size is None:
+            return None
+        triples.append(size)
+    elif tag == "cylinder":
+        singles += (get("radius"), get("length"))
+    elif tag == "sphere":
+        singles.append(get("radius"))
+    else:  # A mesh: whether its file exists and loads is check_meshes' business.
+        if get("filename") is None:
+            return None
+        scale = get("scale")
+        if scale is not None:
+            triples.append(scale)
+    return shape
+
+
+def _dims(shape, numbers: tuple, at: int, single: tuple, at_single: int) -> tuple | None:
+    """The numbers of a sound shape: a box's size, a cylinder's (radius, length), a
+    sphere's (radius,), a mesh's scale; None where it is not sound. Every number in
+    ``numbers`` is already within its bound."""
+    tag = shape.tag
+    if tag == "box":
+        size = numbers[at:at + 3]
+        return size if min(size) > 0 else None
     if tag == "cylinder":
-        radius, length = report.value(get("radius")), report.value(get("length"))
-        return (radius, length) if (radius is not None and length is not None
-                                    and 0 < radius <= MAX_LENGTH
+        radius, length = single[at_single:at_single + 2]
+        return (radius, length) if (0 < radius <= MAX_LENGTH
                                     and 0 < length <= MAX_LENGTH) else None
     if tag == "sphere":
-        radius = report.value(get("radius"))
-        return (radius,) if radius is not None and 0 < radius <= MAX_LENGTH else None
-    # A mesh: whether its file exists and loads is check_meshes' business.
-    scale = get("scale")
-    if get("filename") is None:
-        return None
-    if scale is None:
+        radius = single[at_single]
+        return (radius,) if 0 < radius <= MAX_LENGTH else None
+    if shape.get("scale") is None:
         return ONE
-    values = report.values(scale, 3)
-    return values if values is not None and 0 not in values and \
-        within(values, MAX_SCALE) else None
+    scale = numbers[at:at + 3]
+    return scale if 0 not in scale else None
 
 
 def _material(material, report: Reporter, materials: set[str], top_level: set,

@@ -41,7 +41,7 @@ INERTIA_BELOW_SHAPE = 10.0
 INERTIA_BELOW_BOX = 100.0
 WHEEL_ABOVE = 1.25
 WHEEL_BELOW = 0.05
-_PARALLEL = 0.99  # |cos| between a cylinder's axis and the axle to call them parallel
+PARALLEL = 0.99  # |cos| between a cylinder's axis and the axle to call them parallel
 
 
 def check_plausibility(robot, tree, pose: RestPose, report: Reporter) -> None:
@@ -210,9 +210,9 @@ def _wheel(name: str, shapes: list[Shape], tree) -> tuple | None:
             return axis, shape.size[0]
         rotation = shape.placed[0]  # the cylinder's axis is its frame's z
         along = abs(rotation[2] * axis[0] + rotation[5] * axis[1] + rotation[8] * axis[2])
-        return (axis, shape.size[0]) if along > _PARALLEL else None
+        return (axis, shape.size[0]) if along > PARALLEL else None
     along = max(range(3), key=lambda i: abs(axis[i]))
-    if abs(axis[along]) < _PARALLEL:
+    if abs(axis[along]) < PARALLEL:
         return None
     low, high = _local_union(shapes)
     across = [high[i] - low[i] for i in range(3) if i != along]

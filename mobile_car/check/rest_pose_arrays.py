@@ -99,6 +99,27 @@ def _numbers(texts: list, width: int) -> np.ndarray:
     return np.array(words, dtype=float).reshape(-1, width)
 
 
+def _origin(joint) -> tuple | None:
+    """(xyz, rpy) of a joint's <origin> read here, zeros where absent; None where one is
+    not three numbers as ``float`` reads them."""
+    origin = joint.parts.get("origin")
+    if origin is None:
+        return ZERO, ZERO
+    read = []
+    for text in (origin.get("xyz"), origin.get("rpy")):
+        if text is None:
+            read.append(ZERO)
+            continue
+        words = text.split()
+        try:
+            read.append(tuple(map(float, words)))
+        except ValueError:
+            return None
+        if len(words) != 3:
+            return None
+    return read[0], read[1]
+
+
 def _compose(parent: np.ndarray, rotation: np.ndarray, shift: np.ndarray) -> tuple:
     """Every link's pose in the root's frame from its pose in its parent's (doubling:
     each pose to its ancestor composed with that ancestor's, until every ancestor is the
@@ -115,32 +136,39 @@ def _compose(parent: np.ndarray, rotation: np.ndarray, shift: np.ndarray) -> tup
 _TAGS = {"box": 0, "cylinder": 1, "sphere": 2, "mesh": 3}
 
 
-def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict) -> ArraysPose | None:
+def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict,
+                     origins: dict | None = None) -> ArraysPose | None:
     """The ArraysPose of a robot whose tree is sound, from what each link holds (the
-    LinkShapes in ``shapes_of``, by link name); None where a joint's origin does not read
-    as ``float`` reads it (then :func:`.rest_pose.rest_pose` decides, element by element)."""
+    LinkShapes in ``shapes_of``, by link name) and the joints' origins read already
+    (``origins``: joint -> (xyz, rpy), as check_joints returns them; the others are read
+    here); None where a joint's origin does not read as ``float`` reads it (then
+    :func:`.rest_pose.rest_pose` decides, element by element)."""
     names = {link.name: index for index, link in enumerate(robot.links)}
     count = len(names)
+    origins = origins or {}
     parent = np.arange(count)
-    joint_xyz, joint_rpy, children, turning, axes = [], [], [], [], []
+    joint_origins, children, turning, axes = [], [], [], []
     for joints in tree.children.values():
         for joint in joints:
             child = names[joint.child]
             parent[child] = names[joint.parent]
             children.append(child)
-            origin = joint.parts.get("origin")
-            joint_xyz.append(None if origin is None else origin.get("xyz"))
-            joint_rpy.append(None if origin is None else origin.get("rpy"))
+            origin = origins.get(joint)
+            if origin is None:
+                origin = _origin(joint)
+                if origin is None:
+                    return None
+            joint_origins.append(origin)
             if joint.type == "continuous":
                 turning.append(child)
                 axis = joint.parts.get("axis")
                 axes.append("1 0 0" if axis is None else axis.get("xyz", "0 0 0"))
     try:
-        joint_rotation = _rotations(_numbers(joint_rpy, 3))
-        joint_shift = _numbers(joint_xyz, 3)
         axes = _numbers(axes, 3)
     except ValueError:
         return None
+    joint_origins = np.array(joint_origins, dtype=float).reshape(-1, 6)
+    joint_rotation, joint_shift = _rotations(joint_origins[:, 3:6]), joint_origins[:, 0:3]
     bodies, links, tags, numbers, meshes = [], [], [], [], {}
     inertial_rows, inertials = [], []
     for index, link in enumerate(robot.links):
@@ -192,7 +220,7 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict) -> ArraysP
                       bodies, tags, dims)
     doubtful = _doubtful(pose, links, count, np.array(turning, dtype=int), axes,
                          np.array(inertial_rows, dtype=int),
-                         [held.inertial for held in inertials])
+                         [held.inertial for held in inertials], body_rotation)
     shapes: dict[str, list] = {}
     for i in np.flatnonzero(doubtful[links]).tolist():
         shapes.setdefault(bodies[i][0], []).append(pose.shape(i))
@@ -204,9 +232,11 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict) -> ArraysP
 
 
 def _doubtful(pose: ArraysPose, links: np.ndarray, count: int, turning: np.ndarray,
-              axes: np.ndarray, rows: np.ndarray, inertials: list) -> np.ndarray:
+              axes: np.ndarray, rows: np.ndarray, inertials: list,
+              body_rotation: np.ndarray) -> np.ndarray:
     """Per link: True where its inertia is within _SLACK of a W213 or W214 bound, or
-    beyond one (its own judgement then decides)."""
+    beyond one (its own judgement then decides). ``body_rotation``: each shape's
+    rotation in its link's frame."""
     if not len(pose.tags):
         return np.zeros(count, dtype=bool)
     collision = np.array([body[1] == "collision" for body in pose.bodies], dtype=bool)
@@ -250,6 +280,11 @@ def _doubtful(pose: ArraysPose, links: np.ndarray, count: int, turning: np.ndarr
         wheel[turning] = True
         axle = np.zeros((count, 3))
         axle[turning] = axes / np.linalg.norm(axes, axis=1, keepdims=True)
+        # One cylinder is a wheel only turning about its own axis (its frame's z): one
+        # clearly across its axle is judged by W213 alone, above (plausibility._wheel).
+        # Without this, every such link of a CAD export was handed over to be cleared.
+        along = np.abs(np.einsum("ni,ni->n", body_rotation[one][:, :, 2], axle))
+        wheel &= ~((shapes_of == 1) & (tag == 1) & (along < rules.PARALLEL - 1e-9))
         across = np.abs(axle).argmax(axis=1)
         spread = np.where(np.arange(3) == across[:, None], 0.0, extent).max(axis=1) / 2
         r = np.where((shapes_of == 1) & ((tag == 1) | (tag == 2)), radius, spread)

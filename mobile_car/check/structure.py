@@ -32,10 +32,16 @@ def check_names(robot: Robot, report: Reporter) -> None:
 MOVING_TYPES = frozenset({"revolute", "continuous", "prismatic", "floating", "planar"})
 
 
-def moving_links(tree: KinematicTree) -> set[str]:
-    """Links carried by a joint that is not fixed: these need mass and inertia."""
-    return {child for child, joints in tree.parent_joints.items() for joint in joints
-            if joint.type in MOVING_TYPES}
+def moving_links(tree: KinematicTree) -> frozenset[str]:
+    """Links carried by a joint that is not fixed: these need mass and inertia. Worked out
+    once per tree: the link checks, the masses and the plausibility rules all ask (a
+    hundredth of a second each on a 20,000-link tree)."""
+    moving = tree.__dict__.get("_moving_links")
+    if moving is None:
+        moving = tree._moving_links = frozenset([
+            child for child, joints in tree.parent_joints.items() for joint in joints
+            if joint.type in MOVING_TYPES])
+    return moving
 
 
 def check_tree(robot: Robot, tree: KinematicTree, report: Reporter) -> None:

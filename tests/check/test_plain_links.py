@@ -343,6 +343,41 @@ def test_an_oddly_spelled_list_is_read_as_urdfdom_reads_it(place, text, monkeypa
     assert _check(data, True, monkeypatch) == _check(data, False, monkeypatch)
 
 
+# A link's lists are read together (Reporter.triples): two that miscount alike, one short
+# and one long, make the right count between them, and must still be reported.
+MISCOUNTED = {
+    "origin xyz short, rpy long": lambda root: root.find(f"{SHELL}/origin").attrib.update(
+        {"xyz": "0 0", "rpy": "0.1 0 1.5708 0"}),
+    "inertial origin long, box short": lambda root: [
+        _set(f"{INERTIAL}/origin", "xyz", "0 0 0.1 0")(root),
+        _set(f"{UPPER}/visual[2]/geometry/box", "size", "0.05 0.05")(root)],
+    "scale short, collision origin long": lambda root: [
+        _set(f"{UPPER}/collision/geometry/mesh", "scale", "5 5")(root),
+        _set(f"{UPPER}/collision/origin", "xyz", "0 0 0.1 1")(root)],
+}
+
+
+@pytest.mark.parametrize("name", sorted(MISCOUNTED))
+def test_lists_that_miscount_each_other_out_are_reported_alike_either_way(name, monkeypatch):
+    data = _mutated(MISCOUNTED[name])
+    quick = _check(data, True, monkeypatch)
+    assert [rule for rule, _line, _message in quick] == ["E114", "E114"]
+    assert quick == _check(data, False, monkeypatch)
+
+
+def test_lists_that_miscount_each_other_out_fail_the_proof_of_the_quick_reading():
+    """The control: read together, the two lists do give six numbers; the proof is what
+    sends the document to urdfdom's reading."""
+    from mobile_car.check.context import Reporter
+
+    report = Reporter("robot.urdf")
+    assert report.triples(["0 0", "0.1 0 1.5708 0"]) == (0, 0, 0.1, 0, 1.5708, 0)
+    assert not report.numbers_confirmed()
+    sound = Reporter("robot.urdf")
+    assert sound.triples(["0 0 0.1", "0 1.5708 0"]) == (0, 0, 0.1, 0, 1.5708, 0)
+    assert sound.numbers_confirmed()
+
+
 @settings(max_examples=150, deadline=None,
           suppress_health_check=[HealthCheck.function_scoped_fixture])  # _check undoes its patches
 @given(place=st.sampled_from(sorted(NUMBER_PLACES) + sorted(LIST_PLACES)),

@@ -220,20 +220,16 @@ def write_stack(folder, sections, sim, distro: str = "jazzy", control=None,
                 inputs=()) -> list[Path]:
     """Write each fragment into ``folder`` (created), each file atomically; a fragment
     without content is not written (a robot without a lidar has no laser_filters.yaml).
-    ``inputs``: files this run read (the package's own YAML), never written over."""
+    ``inputs``: files this run read (the package's own YAML), never written over: refused
+    before any file is written."""
     from ..atomic import atomic_write
-    from ..errors import InputError
+    from ..load.outputs import refuse_overwriting_each
 
     folder = Path(folder)
-    read = {Path(p).resolve() for p in inputs}
-    written = []
-    for name, (header, document) in stack_documents(sections, sim, distro, control).items():
-        target = folder / name
-        if target.resolve() in read:
-            raise InputError("is an input of this run (the package's own YAML): "
-                             "choose another --stack folder", file=str(target))
-        written.append(atomic_write(target, yaml_text(header, document)))
-    return written
+    documents = stack_documents(sections, sim, distro, control)
+    targets = [folder / name for name in documents]
+    refuse_overwriting_each(targets, inputs, "a file this run read (the package's own YAML)")
+    return [atomic_write(target, yaml_text(*documents[target.name])) for target in targets]
 
 
 def section(context) -> Section:

@@ -14,7 +14,7 @@ from sim.robot_makers import ackermann, mecanum, two_wheeler
 from sim.test_sim_real_robots import FOLDER, needs_folder
 from specs.stack_package import checked_and_model, write_package
 
-from mobile_car.errors import InputError
+from mobile_car.errors import InputError, UsageError
 from mobile_car.specs.figures import Figure, Section
 from mobile_car.specs.stack import (
     controller_fragment,
@@ -168,9 +168,10 @@ def test_stack_writes_each_file_loadable_and_never_over_an_input(models, tmp_pat
         assert yaml.safe_load(path.read_text()) == documents[path.name][1]
         assert path.read_text().startswith("# ")
     earlier = (folder / "nav2.yaml").read_bytes()
-    with pytest.raises(InputError) as error:
+    with pytest.raises(UsageError) as error:
         write_stack(folder, [body(radius=0.3)], sim, inputs=[folder / "nav2.yaml"])
-    assert error.value.message.startswith("is an input of this run")
+    assert error.value.message.startswith("would overwrite ")
+    assert "nav2.yaml, a file this run read (the package's own YAML)" in error.value.message
     assert (folder / "nav2.yaml").read_bytes() == earlier
     # a file where the folder should be: one error, nothing half-written
     blocked = tmp_path / "plain_file"

@@ -76,7 +76,6 @@ def _density(name: str, mass: float, shapes, mesh_bounds: dict, report: Reporter
     if shapes.twin is not None and any(body[1].tag == "mesh" for body in shapes.bodies):
         shapes = own_elements(shapes)  # a mesh's bounds are known by its own element
     bodies = [b for b in shapes.bodies if b[0] == "collision"]
-    kind = bodies[0][0] if bodies else None
     largest, smallest = 0.0, 0.0  # the volume the shapes could have at most, at least
     across = 0.0
     for _kind, shape, _xyz, _rpy, dims in bodies:
@@ -91,27 +90,22 @@ def _density(name: str, mass: float, shapes, mesh_bounds: dict, report: Reporter
             largest += volume
             smallest = max(smallest, volume)
             continue
-        box = own_box(tag, dims, shape, mesh_bounds)
+        box = own_box(tag, dims, shape, mesh_bounds)  # (a mesh: the primitives are above)
         if box is None:
             return  # a mesh of unknown size, a size not positive: no volume to judge by
         low, high = box[1]
         across = max(across, *(h - lo for lo, h in zip(low, high, strict=True)))
-        if tag == "mesh":
-            x, y, z = box[0]
-            largest += x * y * z
-            continue
-        volume = _volume(tag, dims)
-        largest += volume
-        smallest = max(smallest, volume)  # shapes may overlap: the largest one at least
+        x, y, z = box[0]
+        largest += x * y * z  # its box: a mesh's volume is at most that
     if largest <= 0 or across < PLACEHOLDER:
         return
     if mass / largest > DENSEST:
-        report.add("E119", _mass_element(shapes), f"link '{name}': {mass:g} kg in its {kind} "
+        report.add("E119", _mass_element(shapes), f"link '{name}': {mass:g} kg in its collision "
                    f"shapes of {_litres(largest)} is {mass / largest:.3g} kg/m³ at least, "
                    f"denser than any material (osmium: 22 590 kg/m³; the bound is {DENSEST:g}): a "
                    "unit or a digit wrong?")
     elif smallest > 0 and mass > TOKEN_MASS and mass / smallest < LIGHTEST:
-        report.add("E119", _mass_element(shapes), f"link '{name}': {mass:g} kg in its {kind} "
+        report.add("E119", _mass_element(shapes), f"link '{name}': {mass:g} kg in its collision "
                    f"shapes of {_litres(smallest)} or more is {mass / smallest:.3g} kg/m³ at most, "
                    f"lighter than any solid (air: 1.2 kg/m³; the bound is {LIGHTEST:g}): "
                    "a unit or a digit wrong?")

@@ -213,10 +213,10 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
     shape = _compile(spec, loaded.label)
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)
-    drive, why = fit_drive(mj, shape, data, joints, sources, lowest_points(mj, shape, data))
+    points = lowest_points(mj, shape, data)
+    drive, why = fit_drive(mj, shape, data, joints, sources, points)
     mass = float(shape.body_mass.sum())
     add_motors(mj, spec, drive, mass)
-    points = lowest_points(mj, shape, data)
     springs = _springs(mj, spec, shape, data, prepared, drive, mass, points)
     if drive is not None:  # sim's castor friction and round tyres: what --verify judges
         rest = {s.joint: s.rest for s in springs}  # (the castors sim finds at that rest)

@@ -205,7 +205,7 @@ def choose_drive(tree: Tree, actuated: set[str], left=None, right=None,
     source = GEOMETRY if chosen == "found from the tree" else "--drive " + kind
     if kind == "ackermann":
         if found != "ackermann":
-            raise UsageError(f"--drive ackermann: {_no_ackermann(tree, lefts, rights)}")
+            raise UsageError(f"--drive ackermann: {_no_ackermann(tree, tree.steering)}")
         driven = [w for w in tree.wheels if w.steering is None or w.joint in actuated]
         free = [w for w in tree.wheels if w not in driven]
         return Drive("ackermann", _side(driven, 1), _side(driven, -1), free,
@@ -282,12 +282,7 @@ def _from_declaration(tree: Tree, declaration) -> tuple[Drive | None, str | None
             if why is not None:
                 return None, f"{why} ({declaration.source})"
             return _bicycle(tree, steering, driven, "declared", sources), None
-        tree_steering = tree.steering
-        tree.steering = steering
-        try:
-            why = _no_ackermann(tree, _side(tree.wheels, 1), _side(tree.wheels, -1))
-        finally:
-            tree.steering = tree_steering
+        why = _no_ackermann(tree, steering)
         if why is not None:
             return None, f"{why} ({declaration.source})"
         free = [w for w in tree.wheels if w not in driven]
@@ -399,8 +394,7 @@ def _named(tree: Tree, lefts: list[str], rights: list[str], kind: str | None) ->
         kind = ("ackermann" if ackermann else "differential" if len(left) == len(right) == 1
                 else "skid-steer")
     if kind == "ackermann" and not ackermann:
-        raise UsageError("--drive ackermann: " + _no_ackermann(
-            tree, _side(tree.wheels, 1), _side(tree.wheels, -1)))
+        raise UsageError("--drive ackermann: " + _no_ackermann(tree, tree.steering))
     if kind == "differential" and (len(left), len(right)) != (1, 1):
         raise UsageError("--drive differential drives one wheel a side: name one joint "
                          "each with --left and --right")
@@ -466,7 +460,7 @@ def _why_not(tree: Tree) -> str | None:
 def _kind_of(tree: Tree, lefts, rights, declared=()) -> str | None:
     steered = [w for w in tree.wheels if w.steering is not None]
     if steered or tree.odd_steering:
-        if _no_ackermann(tree, lefts, rights) is None:
+        if _no_ackermann(tree, tree.steering) is None:
             return "ackermann"
         return "bicycle" if _no_bicycle(tree) is None else None
     if len(lefts) == len(rights) == 2 and (has_rollers(tree)
@@ -479,12 +473,12 @@ def _kind_of(tree: Tree, lefts, rights, declared=()) -> str | None:
     return None
 
 
-def _no_ackermann(tree: Tree, lefts, rights) -> str | None:
-    """Why the steering is not one Ackermann pair in front, or None when it is."""
+def _no_ackermann(tree: Tree, steering: list[Steering]) -> str | None:
+    """Why ``steering`` (the tree's, or the joints a declaration names) is not one
+    Ackermann pair in front, or None when it is."""
     if tree.odd_steering:
         return (f"steering joint {', '.join(tree.odd_steering)} turns several wheels at once, "
                 "not one Ackermann pair")
-    steering = tree.steering
     if not steering:
         return ("no steering joints: no revolute joint about an upright axis above a wheel")
     sides = sorted(np.sign(s.y) for s in steering)
@@ -527,7 +521,7 @@ def _no_bicycle(tree: Tree) -> str | None:
 
 def _no_kind(tree: Tree, lefts, rights) -> str:
     if any(w.steering for w in tree.wheels) or tree.odd_steering:
-        return (f"{_no_ackermann(tree, lefts, rights)}: not a drive kind mcar sim drives "
+        return (f"{_no_ackermann(tree, tree.steering)}: not a drive kind mcar sim drives "
                 f"({', '.join(KINDS)})")
     names = (f"{', '.join(w.joint for w in lefts) or 'none'} / "
              f"{', '.join(w.joint for w in rights) or 'none'}")

@@ -35,11 +35,12 @@ ASSUMED = ("uniform density over the shapes (overlaps count twice), about the de
 
 def section(context) -> Section:
     """The inertia section of a :class:`mobile_car.specs.context.SpecsContext`."""
-    return inertia_section(context.checked)
+    return inertia_section(context.checked, context.options.get("proof", True))
 
 
-def inertia_section(checked) -> Section:
-    """The inertia section of a CheckResult (``checked.robot``: the URDF as read)."""
+def inertia_section(checked, proof: bool = True) -> Section:
+    """The inertia section of a CheckResult (``checked.robot``: the URDF as read);
+    ``proof`` False: no MuJoCo proof (``--no-proof``, diff and sweep)."""
     from . import solids
 
     found = Section("inertia")
@@ -82,9 +83,10 @@ def inertia_section(checked) -> Section:
         if hulls:
             source += f"; not watertight, its convex hull taken: {', '.join(hulls)}"
         paths = [meshes[b[1]].path if b[1].tag == "mesh" else None for b in bodies]
-        proof = _proof(bodies, paths, [s.hull for s in placed], mass, (xyz, rpy), values)
+        proven = _proof(bodies, paths, [s.hull for s in placed], mass, (xyz, rpy),
+                        values) if proof else None
         found.figures.append(Figure(f"inertia.{link.name}", f"inertia of {link.name}",
-                                    values, "kg m²", source, ASSUMED, proof))
+                                    values, "kg m²", source, ASSUMED, proven))
         if _placeholder(bodies, meshes):
             continue
         _judge(link, values, tensor, refused.get(link.name), (xyz, rpy, mass),

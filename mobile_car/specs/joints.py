@@ -48,12 +48,13 @@ MOVING = ("revolute", "prismatic", "continuous")
 
 def section(context) -> Section:
     """The joints section of a :class:`mobile_car.specs.context.SpecsContext`."""
-    return joints_section(context.checked, context.sim)
+    return joints_section(context.checked, context.sim, context.options.get("proof", True))
 
 
-def joints_section(checked, sim=None) -> Section:
+def joints_section(checked, sim=None, proof: bool = True) -> Section:
     """The joints section of a CheckResult; ``sim``: sim's SimModel at rest (its drive's
-    wheels left out, its springs, its lean), or None (every moving joint, upright)."""
+    wheels left out, its springs, its lean), or None (every moving joint, upright);
+    ``proof`` False: no MuJoCo run holding the joint (``--no-proof``, diff and sweep)."""
     from ..sim.model import SimModelError, jointed_model
 
     found = Section("joints")
@@ -102,7 +103,7 @@ def joints_section(checked, sim=None) -> Section:
             f"MuJoCo's gravity load (qfrc_bias at rest), worst of {tried} poses: {shown}",
             "joints before it at 0, the body as it rests; the joints beyond it each at its "
             "lower, middle and upper limit (continuous: every quarter turn)",
-            held_load(search, joint.name, pose, load, unit)))
+            held_load(search, joint.name, pose, load, unit) if proof else None))
         found.figures.append(Figure(
             f"joints.{joint.name}.effort", f"declared effort of {joint.name}", effort, unit,
             f"<limit effort> of joint {joint.name} ({limit_at})" if effort is not None else

@@ -276,3 +276,12 @@ def test_the_tensor_is_given_in_the_declared_inertial_axes(tmp_path):
     close(found.figure("inertia.block").value, box_six(3, 0.2, 0.3, 0.1))
     assert not found.diagnostics  # declared right, in those axes
     assert found.figure("inertia.block").proof.agrees
+
+
+def test_without_proofs_mujoco_is_not_asked(primitives):
+    """--no-proof (and diff and sweep) ask for the figures only: the same tensors, no proof."""
+    robot = check_input(RobotInput(primitives.path))
+    proven, bare = inertia_section(robot), inertia_section(robot, proof=False)
+    assert [(f.key, f.value) for f in bare.figures] == [(f.key, f.value) for f in proven.figures]
+    assert all(f.proof is not None for f in proven.figures)
+    assert all(f.proof is None for f in bare.figures)

@@ -216,3 +216,12 @@ def test_gravity_leans_as_the_robot_rests(tmp_path):
         search = PoseSearch(model, {}, [math.cos(lean / 2), math.sin(lean / 2), 0, 0])
         load, _pose, _tried = search.worst("lift_joint")
         assert load == pytest.approx(5 * G * share, abs=1e-9)
+
+
+def test_without_proofs_no_joint_is_held_in_mujoco(tmp_path):
+    """--no-proof (and diff and sweep) ask for the figures only: the same load, no proof."""
+    robot = checked(tmp_path, "lift.urdf", lift(mass=5.0, effort=60.0))
+    proven, bare = joints_section(robot), joints_section(robot, proof=False)
+    assert [(f.key, f.value) for f in bare.figures] == [(f.key, f.value) for f in proven.figures]
+    assert proven.figure("joints.lift_joint.gravity").proof is not None
+    assert all(f.proof is None for f in bare.figures)

@@ -115,6 +115,7 @@ class SimModel:
     rest: RestPose | None = None  # how the geometry rests (leaning on a low castor)
     control: object = None  # skid-steer: its control package's ControlConfig, if found
     rollers: object = None  # mecanum: .rollers.Rollers, to align before every step
+    friction: dict[str, float] = field(default_factory=dict)  # link -> its <gazebo> mu1
     # wheel link -> (radius, half length) of each collision cylinder its tyre sphere stands
     # for (round tyres, above): the shape the wheel has, for what is measured of it at rest
     tyres: dict[str, list] = field(default_factory=dict)
@@ -225,7 +226,8 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
                     clearance=clearance,
                     floor_geom=model.geom("mcar_floor").id, notes=notes, mass=mass, held=held,
                     springs=springs, start=start, ground_geoms=ground_geoms,
-                    support_geoms=supports, rest=rest, rollers=aligned, tyres=tyres)
+                    support_geoms=supports, rest=rest, rollers=aligned, tyres=tyres,
+                    friction=friction)
 
 
 def _tyre_cylinders(mj, shape, drive) -> dict[str, list]:

@@ -30,17 +30,12 @@ def statics_section(checked, sim, options: dict | None = None) -> Section:
     """The statics of a checked robot (a CheckResult) and sim's model of it at rest;
     ``options``: ``friction`` (the tyres' mu where the description gives none),
     ``proof`` (False: no MuJoCo runs)."""
-    from lxml import etree
-
-    from ..sim.model import gazebo_friction
     from .support import stance
 
     options = options or {}
     if sim is None:  # (the body section's notes say why MuJoCo has no model of it)
         return Section("statics", notes=["no statics: MuJoCo has no model of the robot"])
-    root = etree.fromstring(checked.loaded.urdf, etree.XMLParser(resolve_entities=False,
-                                                                  no_network=True))
-    found = stance(sim, gazebo_friction(root), options.get("friction"))
+    found = stance(sim, sim.friction, options.get("friction"))
     result = Section("statics", notes=list(found.notes))
     statics = Statics(found, sim)
     result.figures = statics.figures()

@@ -28,10 +28,9 @@ def computed(checked, options: dict | None = None) -> SpecsContext:
     changed, or why there is none) open the body section's notes."""
     options = dict(options or {})
     sim, notes = specs_model(checked, **{k: options[k] for k in MODEL_OPTIONS if k in options})
-    context = SpecsContext(checked, sim, None, options)
-    context.body = body.section(context)
+    context = SpecsContext(checked, sim, options)
+    context.sections = [body.section(context)]
     context.body.notes[:0] = notes
-    context.sections = [context.body]
     for name in PARTS:
         context.sections.append(_part(name).section(context))
     return context

@@ -19,6 +19,10 @@ class SpecsContext:
 
     checked: object
     sim: object
-    body: object = None
     options: dict = field(default_factory=dict)
     sections: list = field(default_factory=list)
+
+    @property
+    def body(self):
+        """The body Section: the first computed, every other starts from it."""
+        return self.sections[0]

@@ -9,9 +9,7 @@ from __future__ import annotations
 import math
 
 from .figures import Figure, Section
-from .outline import DIRECTIONS, footprint, hull, radii
-
-__all__ = ["footprint", "hull", "radii", "section"]
+from .outline import DIRECTIONS, footprint, radii
 
 REST = "the robot at rest on the floor, as mcar sim releases it"
 # key -> (label, unit) of every body figure but the loads (``loads.<link>``, N)

@@ -99,10 +99,6 @@ def tensor_about(solids: list[Solid], mass: float, xyz: tuple, rpy: tuple) -> np
     return density * (r.T @ total @ r)
 
 
-def centroid(solids: list[Solid]) -> np.ndarray:
-    volume = sum(s.volume for s in solids)
-    return sum(s.volume * s.centroid for s in solids) / volume
-
 
 def six(tensor) -> list[float]:
     """[ixx, ixy, ixz, iyy, iyz, izz], URDF's order; a product of inertia under 1e-12 of

@@ -168,8 +168,8 @@ def package_control(checked, sim):
 
 def _body_figures(sim) -> list:
     """The body figures W513 needs: specs' own outline and radius."""
-    from .body import footprint, radii
     from .figures import Figure, Section
+    from .outline import footprint, radii
 
     points = footprint(sim)
     outer, _inner = radii(points)

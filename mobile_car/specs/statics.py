@@ -17,8 +17,6 @@ from .slopes import grip as grip_along
 AZIMUTH_STEP = 15       # deg between the tip polar's rays
 DIRECTIONS = {"forward": 0, "left": 90, "backward": 180, "right": 270}
 GRAVITY = 9.81
-EASY_SLOPE = 5.0        # deg: a robot that cannot climb this (W503) ...
-DEFAULT_FRICTION = 1.0  # mu of tyres the description and options say nothing of (MuJoCo's)
 
 
 def section(context) -> Section:

@@ -294,15 +294,15 @@ def test_a_mecanum_controllers_kinematics_and_names(run_mcar, tmp_path):
         "wheels stand 0.4 m from the root frame along x plus along y (+10.0%) [W510]"]
 
 
-def test_check_takes_the_outline_from_specs_body(cli, tmp_path, monkeypatch):
-    """check's W513 asks specs-core's body module for the robot's outline and radius
-    (here a stand-in giving a 0.3 m square and its 0.2121 m radius)."""
+def test_check_takes_the_outline_from_specs_outline(cli, tmp_path, monkeypatch):
+    """check's W513 asks specs' outline module (body.footprint's) for the robot's outline
+    and radius (here a stand-in giving a 0.3 m square and its 0.2121 m radius)."""
     import types
 
-    fake = types.ModuleType("mobile_car.specs.body")
+    fake = types.ModuleType("mobile_car.specs.outline")
     fake.footprint = lambda sim: [(0.15, -0.15), (0.15, 0.15), (-0.15, 0.15), (-0.15, -0.15)]
     fake.radii = lambda points: (max((x * x + y * y) ** 0.5 for x, y in points), 0.15)
-    monkeypatch.setitem(sys.modules, "mobile_car.specs.body", fake)
+    monkeypatch.setitem(sys.modules, "mobile_car.specs.outline", fake)
     monkeypatch.chdir(tmp_path)
     write_package(tmp_path, two_wheeler(), {
         CONTROL: diff_control(),

@@ -17,9 +17,9 @@ from specs.robots import BALL_AT, BALL_MASS, BODY, BODY_AT, BODY_MASS, WHEEL_MAS
 from mobile_car.check.checker import check_input
 from mobile_car.load.inputs import RobotInput
 from mobile_car.load.robot import LoadOptions
-from mobile_car.specs.body import hull, radii
 from mobile_car.specs.compute import compute
 from mobile_car.specs.loads import by_statics
+from mobile_car.specs.outline import hull, radii
 
 G = 9.81
 

@@ -363,3 +363,16 @@ def _exit_code_of(error: BaseException) -> int:
     streams.say(f"mcar: internal error: {type(error).__name__}: {shown(str(error))} "
                 "(set MCAR_DEBUG=1 for a traceback, and please report it)")
     return EXIT_USAGE
+
+
+def start_probe(stack, renderer: str):
+    """Try OpenGL in its drawing process now, while the robots load and their figures are
+    computed (mcar diff --picture, mcar specs --picture); ``stack`` (an ExitStack) ends
+    it if it is not used. None for the ray-casting renderer."""
+    if renderer == "raycast":
+        return None
+    from mobile_car.render.backend import GLProbe
+
+    probe = GLProbe()
+    stack.callback(probe.cancel)
+    return probe

@@ -20,6 +20,7 @@ from .common import (
     prepared_load,
     print_warning,
     robot_options,
+    start_probe,
     stdin_for,
 )
 
@@ -173,7 +174,7 @@ def _compare(words, tolerance, package_paths, sets, config_files, picture=None,
         if picture and len(pairs) != 1:
             raise UsageError(f"--picture draws one robot, but {len(pairs)} robot files are "
                              "compared; name one robot file")
-        probe = _start_probe(stack, renderer) if picture else None
+        probe = start_probe(stack, renderer) if picture else None
         diffs = []
         with prepared_load(selection, mappings, package_paths, sets, config_files) as options:
             dimension_args = options.overrides.mappings if options.overrides else {}
@@ -200,16 +201,6 @@ def _specs_diff(loaded, facts, tolerance):
     old, new = (specs_sections(robot) for robot in loaded)
     return compare_specs(old, new, tolerance, facts[0].label, facts[1].label)
 
-
-def _start_probe(stack, renderer: str):
-    """Try OpenGL in a child process while the robots load (see mcar render)."""
-    if renderer == "raycast":
-        return None
-    from mobile_car.render.backend import GLProbe
-
-    probe = GLProbe()
-    stack.callback(probe.cancel)
-    return probe
 
 
 def _draw(picture: str, loaded, diff, renderer: str, probe) -> None:

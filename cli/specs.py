@@ -19,9 +19,10 @@ from .common import (
     handle_errors,
     load_inputs,
     robot_options,
+    start_probe,
 )
 from .sim import drive_options, drive_setting, require_both_sides
-from .specs_picture import check_picture_name, picture_options, start_probe, write_picture
+from .specs_picture import check_picture_name, picture_options, write_picture
 from .specs_stack import stack_options, write_stack_files
 
 HELP = f"""What the robot can do: its size, weight and balance, the slopes it stands

@@ -2,8 +2,8 @@
 
 The command registers the options with :func:`picture_options`, refuses a bad name with
 :func:`check_picture_name` before any work, may start the renderer early with
-:func:`start_probe` (OpenGL's context is made on the other core while the figures are
-computed), and calls :func:`write_picture` with the Sections it computed. Nothing heavy
+:func:`.common.start_probe` (as mcar diff does), and calls :func:`write_picture` with the
+Sections it computed. Nothing heavy
 is imported until a picture is asked for.
 """
 
@@ -44,18 +44,6 @@ def check_picture_name(picture: str | None) -> None:
         raise UsageError(f"--picture {picture}: mcar specs draws PNG pictures, not {shown}; "
                          f"name it {Path(picture).with_suffix('.png')}")
 
-
-def start_probe(stack, renderer: str):
-    """Try OpenGL in its drawing process now, while the robot loads and its figures are
-    computed (as mcar render and mcar diff do); ``stack`` (an ExitStack) ends it if it
-    is not used. None for the ray-casting renderer."""
-    if renderer == "raycast":
-        return None
-    from mobile_car.render.backend import GLProbe
-
-    probe = GLProbe()
-    stack.callback(probe.cancel)
-    return probe
 
 
 def write_picture(picture: str, sections, checked=None, renderer: str = "auto",

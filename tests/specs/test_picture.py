@@ -215,12 +215,8 @@ def test_the_robot_is_drawn_under_the_figures(cart_views):
 
 
 def test_the_options_write_the_picture_atomically(cart, tmp_path, monkeypatch):
-    from mobile_car.cli.specs_picture import (
-        check_picture_name,
-        picture_options,
-        start_probe,
-        write_picture,
-    )
+    from mobile_car.cli.common import start_probe
+    from mobile_car.cli.specs_picture import check_picture_name, picture_options, write_picture
 
     from mobile_car.errors import RendererUnavailableError
 

@@ -27,6 +27,7 @@ from ..check.mujoco_inertia import refusals
 from ..check.rest_pose import ZERO, link_shapes, own_box
 from ..check.urdf_model import parse_number
 from .figures import Figure, Section
+from .lookup import written_at
 
 FACTOR = 3.0  # a declared principal moment over FACTOR times, or under 1/FACTOR, the geometry's
 ASSUMED = ("uniform density over the shapes (overlaps count twice), about the declared "
@@ -46,6 +47,7 @@ def inertia_section(checked, proof: bool = True) -> Section:
     found = Section("inertia")
     report = Reporter(checked.file, checked.where)
     meshes = {m.element: m for m in checked.mesh_files}
+    bounds = {element: mesh.bounds for element, mesh in meshes.items()}
     refused = {r.link: r for r in refusals(checked.robot.element, massless=False)}
     for link in checked.robot.links:
         inertial = link.inertial
@@ -75,7 +77,7 @@ def inertia_section(checked, proof: bool = True) -> Section:
         tensor = solids.tensor_about(placed, mass, xyz, rpy)
         values = solids.six(tensor)
         hulls = [_named(b[1]) for b, s in zip(bodies, placed, strict=True) if s.hull]
-        where = _place(checked, inertial.get("mass", link.element))
+        where = written_at(checked, inertial.get("mass", link.element))
         shown = ", ".join(_named(b[1]) for b in bodies)
         source = f"{kind} geometry ({shown}), declared mass {mass:g} kg ({where})"
         if kind == "visual":
@@ -87,10 +89,10 @@ def inertia_section(checked, proof: bool = True) -> Section:
                         values) if proof else None
         found.figures.append(Figure(f"inertia.{link.name}", f"inertia of {link.name}",
                                     values, "kg m²", source, ASSUMED, proven))
-        if _placeholder(bodies, meshes):
+        if _placeholder(bodies, bounds):
             continue
         _judge(link, values, tensor, refused.get(link.name), (xyz, rpy, mass),
-               _place(checked, link.parts["inertial"]), report)
+               written_at(checked, link.parts["inertial"]), report)
     found.diagnostics = report.diagnostics
     return found
 
@@ -110,10 +112,10 @@ def _proof(bodies, paths, hulls, mass, origin, values):
                      f"MuJoCo was not given the meshes: {why}")
 
 
-def _placeholder(bodies: list, meshes: dict) -> bool:
+def _placeholder(bodies: list, bounds: dict) -> bool:
     """Whether the shapes all fit in a PLACEHOLDER cube: a stand-in for a sensor or a
-    mount, not a claim about the part's size (as mass-implausible judges them, E119)."""
-    bounds = {element: mesh.bounds for element, mesh in meshes.items()}
+    mount, not a claim about the part's size (as mass-implausible judges them, E119);
+    ``bounds``: each mesh element's box."""
     across = 0.0
     for _kind, shape, _xyz, _rpy, dims in bodies:
         box = own_box(shape.tag, dims, shape, bounds)
@@ -162,10 +164,6 @@ def _named(shape) -> str:
         return f"mesh {shape.get('filename')}"
     return f"<{shape.tag}>"
 
-
-def _place(checked, element) -> str:
-    file, line, _note = checked.where(element)
-    return f"{file}:{line}" if line is not None else file
 
 
 def _judge(link, values: list, tensor, refusal, inertial: tuple, block_at: str,

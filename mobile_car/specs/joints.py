@@ -34,6 +34,7 @@ from ..check.context import Reporter
 from ..check.urdf_model import parse_number
 from .figures import Figure, Section
 from .joints_proof import held_load
+from .lookup import written_at
 
 STEP_DEG = 5.0
 COARSE_DEG = 15.0
@@ -77,7 +78,7 @@ def joints_section(checked, sim=None, proof: bool = True) -> Section:
         limit = joint.parts.get("limit")
         effort = parse_number(limit.get("effort")) if limit is not None else None
         unit = "N" if joint.type == "prismatic" else "N·m"
-        limit_at = _place(checked, limit if limit is not None else joint.element)
+        limit_at = written_at(checked, limit if limit is not None else joint.element)
         if joint.name in search.followers:
             found.notes.append(f"joint {joint.name} follows joint "
                                f"{search.followers[joint.name][0]} (<mimic>): not judged "
@@ -157,10 +158,6 @@ def _position(name: str, value: float, kind: str) -> str:
         return f"{name} {value:.4g} m"
     return f"{name} {math.degrees(value):.4g}°"
 
-
-def _place(checked, element) -> str:
-    file, line, _note = checked.where(element)
-    return f"{file}:{line}" if line is not None else file
 
 
 class PoseSearch:

@@ -1,6 +1,7 @@
 """Figures read back out of the sections computed so far, by key: what the stack's
 fragments (:mod:`.stack`) and the comparison of the package's YAML (:mod:`.stack_check`)
-both start from."""
+both start from; and where in the user's files an element was written, as the sources of
+figures name it (:func:`written_at`)."""
 
 from __future__ import annotations
 
@@ -31,3 +32,10 @@ def blocked_sectors(sections) -> dict[str, list[tuple[float, float]]]:
             if sectors:
                 found[name] = sectors
     return found
+
+
+def written_at(checked, element) -> str:
+    """``FILE:LINE`` where ``element`` of a checked robot was written (through the source
+    map: the xacro line the user edits), ``FILE`` where no line is known."""
+    file, line, _note = checked.where(element)
+    return f"{file}:{line}" if line is not None else file

@@ -235,6 +235,12 @@ def corners(wheels) -> dict[str, object] | None:
     return dict(zip(CORNERS, (lefts[0], rights[0], lefts[1], rights[1]), strict=True))
 
 
+def center_projection(wheels) -> float:
+    """lx + ly: the wheels' mean distance from the root frame's origin along x plus along
+    y (mecanum_drive_controller's ``sum_of_robot_center_projection_on_X_Y_axis``)."""
+    return sum(abs(w.x) + abs(w.y) for w in wheels) / len(wheels)
+
+
 def usual_x(corner: str) -> tuple[float, float]:
     """The grip axis of the usual X pattern at ``corner``."""
     h = math.sqrt(0.5)

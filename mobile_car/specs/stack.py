@@ -161,17 +161,16 @@ def _mecanum(drive, radius):
     """mecanum_drive_controller's names; ``sum_of_robot_center_projection_on_X_Y_axis`` is
     lx + ly, the wheels' mean distance from the root frame's origin along x and along y
     (base_frame_offset 0: the root frame is the robot's centre)."""
+    from ..sim.mecanum import center_projection, corners
+
     wheels = drive.left + drive.right
-    lx = sum(abs(w.x) for w in wheels) / len(wheels)
-    ly = sum(abs(w.y) for w in wheels) / len(wheels)
-    params = {}
-    for side, group in (("left", drive.left), ("right", drive.right)):
-        front, rear = sorted(group, key=lambda w: -w.x)[:2]
-        params[f"front_{side}_wheel_command_joint_name"] = front.joint
-        params[f"rear_{side}_wheel_command_joint_name"] = rear.joint
+    by_corner = corners(wheels)  # (sim drives as mecanum only four wheels two a side)
+    params = {f"{corner}_wheel_command_joint_name": by_corner[corner].joint
+              for corner in ("front_left", "rear_left", "front_right", "rear_right")}
     params["kinematics"] = {"base_frame_offset": {"x": 0.0, "y": 0.0, "theta": 0.0},
                             "wheels_radius": _round(radius),
-                            "sum_of_robot_center_projection_on_X_Y_axis": _round(lx + ly)}
+                            "sum_of_robot_center_projection_on_X_Y_axis":
+                                _round(center_projection(wheels))}
     return ("mecanum_drive_controller", "mecanum_drive_controller/MecanumDriveController",
             params)
 

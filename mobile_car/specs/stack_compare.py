@@ -109,8 +109,9 @@ def _mecanum_kinematics(path, keys, drive, radius) -> list[Diagnostic]:
     found = _radius(path, inner, radius)
     key = "sum_of_robot_center_projection_on_X_Y_axis"
     value = _number(inner, key)
-    wheels = drive.left + drive.right
-    lx_ly = sum(abs(w.x) + abs(w.y) for w in wheels) / len(wheels)
+    from ..sim.mecanum import center_projection
+
+    lx_ly = center_projection(drive.left + drive.right)
     if value is not None and _differs(value, lx_ly):
         found.append(_at("W510", path, inner[key][0],
                          f"{key} {value:g} m, but the wheels stand {lx_ly:.4g} m from the "
@@ -152,12 +153,10 @@ def _names(path, keys, drive, joints) -> list[Diagnostic]:
 
 
 def _corners(drive) -> dict[str, str]:
-    """front_left, rear_left, front_right, rear_right -> the mecanum wheel's joint."""
-    corners = {}
-    for side, group in (("left", drive.left), ("right", drive.right)):
-        ordered = sorted(group, key=lambda w: -w.x)
-        corners[f"front_{side}"], corners[f"rear_{side}"] = ordered[0].joint, ordered[-1].joint
-    return corners
+    """front_left, front_right, rear_left, rear_right -> the mecanum wheel's joint."""
+    from ..sim.mecanum import corners
+
+    return {corner: wheel.joint for corner, wheel in corners(drive.left + drive.right).items()}
 
 
 def _separation(path, keys, drive, track, notes) -> list[Diagnostic]:

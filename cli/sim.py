@@ -9,6 +9,7 @@ import click
 
 from mobile_car.errors import EXIT_PROBLEMS, UsageError, combine_exit_codes
 from mobile_car.names import json_safe, shown
+from mobile_car.packages.package_config import DRIVE_KINDS
 
 from . import streams
 from .common import (
@@ -24,7 +25,6 @@ from .common import (
 )
 
 SCENARIO_NAMES = ("drop", "drive", "spin", "turn", "strafe")
-DRIVE_KINDS = ("differential", "skid-steer", "ackermann", "mecanum", "bicycle")
 
 HELP = f"""Simulate the robot in MuJoCo, headless, and check that it stands, drives
 straight and turns as its geometry says.

@@ -53,7 +53,7 @@ _SCHEMA = {"robots": {"include": list, "exclude": list},
            "export": {"formats": list, "robots": list}, "ci": {"strict": bool},
            "assets": {"paths": list}}
 EXPORT_FORMATS = ("mjcf", "usd", "urdf", "sdf")  # as mobile_car.export.FORMATS
-# as mobile_car.sim.drives.KINDS
+# the drive kinds mcar sim drives (sim/drives.py), --drive and mcar.yaml sim.drive name
 DRIVE_KINDS = ("differential", "skid-steer", "ackermann", "mecanum", "bicycle")
 DRIVE_KEYS = ("kind", "left", "right")
 

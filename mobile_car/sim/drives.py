@@ -48,6 +48,7 @@ import numpy as np
 
 from ..check.urdf_model import parse_number
 from ..errors import UsageError
+from ..packages.package_config import DRIVE_KINDS as KINDS
 from .drive_parts import Drive, Steering, Tree, Wheel
 from .mecanum import (
     bare_hubs,
@@ -59,7 +60,6 @@ from .mecanum import (
     mecanum_drive,
 )
 
-KINDS = ("differential", "skid-steer", "ackermann", "mecanum", "bicycle")
 UPRIGHT = 0.9       # |z| of an axis in the root frame above which a hinge steers (or swivels)
 SIDE_EPSILON = 1e-6  # m: a wheel closer than this to the centre line is on neither side
 ACKERMANN_X_TOLERANCE = 0.05  # of the wheelbase: the steering pivots stand side by side

@@ -56,7 +56,6 @@ NOSLIP_ITERATIONS = 10
 TOLERANCE = 1.0                  # deg
 CHUNK = 5                        # steps between the checks (5 ms: 0.01° of slope)
 GRAVITY = 9.81
-RUNS = {"forward": 0, "left": 90, "backward": 180, "right": 270}
 
 
 @dataclasses.dataclass
@@ -70,16 +69,17 @@ class Tilt:
 def prove_tilt(sim, found, section, statics) -> list[Tilt]:
     """Tilt the robot towards forward, left, backward, right and the azimuths of its
     statics.stand and statics.slide figures; fill the figures' proofs. ``statics``: the
-    computed angles (rad) by azimuth (deg), ``.tip(a)`` and ``.slide(a)``."""
+    computed angles (rad) by azimuth (deg), ``.tip(a)`` and ``.slide(a)``, the named
+    ``.directions`` and the azimuths of the stand and slide figures (``.stand_at``,
+    ``.slide_at``)."""
     value = {f.key: f for f in section.figures}
-    stand_at = _azimuth(value["statics.stand"].source)
-    slide_at = _azimuth(value["statics.slide"].source)
-    azimuths = dict.fromkeys([*RUNS.values(), stand_at, slide_at])
+    stand_at, slide_at = statics.stand_at, statics.slide_at
+    azimuths = dict.fromkeys([*statics.directions.values(), stand_at, slide_at])
     runs = {}
     for azimuth in azimuths:
         tip, slide = statics.tip(azimuth), statics.slide(azimuth)
         runs[azimuth] = tilt(sim, found, azimuth, math.degrees(min(tip, slide)))
-    for name, azimuth in RUNS.items():
+    for name, azimuth in statics.directions.items():
         figure = value[f"statics.tip.{name}"]
         figure.proof = _tip_proof(runs[azimuth], figure.value,
                                   math.degrees(statics.slide(azimuth)))
@@ -123,12 +123,6 @@ def _said(run: Tilt) -> str:
                 f"{run.angle:.2f}°" if run.angle is not None else "the run went astray")
     return (f"tilted towards azimuth {run.azimuth:g}° it {run.event} at {run.angle:.2f}° "
             f"({run.seconds:.1f} s simulated)")
-
-
-def _azimuth(source: str) -> float:
-    """The azimuth a figure's source names ("... towards azimuth 90°")."""
-    text = source.split("towards azimuth ", 1)[1]
-    return float(text.split("°", 1)[0])
 
 
 def proof_model(sim, found, resting: bool = True):

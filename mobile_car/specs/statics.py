@@ -53,19 +53,27 @@ def statics_section(checked, sim, options: dict | None = None) -> Section:
 
 
 class Statics:
-    """The figures of one stance; angles kept in rad until shown."""
+    """The figures of one stance; angles kept in rad until shown. After :meth:`figures`,
+    ``slide_at`` and ``stand_at`` are the azimuths (deg) of the statics.slide and
+    statics.stand figures, which the tilt proof runs towards."""
+
+    directions = DIRECTIONS  # the tip figures' (and the tilt proof's) named azimuths
 
     def __init__(self, found, sim):
         self.found, self.sim = found, sim
         self.polygon = hull(found.points)
         self.com = found.com
+        self._slides: dict[float, float] = {}  # azimuth (deg) -> slide angle: a search each
+        self.slide_at = self.stand_at = None
 
     def tip(self, azimuth_deg: float) -> float:
         return tip_angle(self.polygon, self.com, math.radians(azimuth_deg))
 
     def slide(self, azimuth_deg: float) -> float:
-        return slide_angle(self.found.contacts, self.polygon, self.com,
-                           math.radians(azimuth_deg))
+        if azimuth_deg not in self._slides:
+            self._slides[azimuth_deg] = slide_angle(self.found.contacts, self.polygon,
+                                                    self.com, math.radians(azimuth_deg))
+        return self._slides[azimuth_deg]
 
     def figures(self) -> list[Figure]:
         found, com = self.found, self.com
@@ -87,7 +95,7 @@ class Statics:
                           f"{tip_source}: the nearest edge, towards azimuth "
                           f"{math.degrees(where):.1f}°", "the wheels held"))
         slides = {a: self.slide(a) for a in range(0, 360, AZIMUTH_STEP)}
-        worst = min(slides, key=slides.get)
+        worst = self.slide_at = min(slides, key=slides.get)
         out.append(Figure("statics.slide", "slides at", _deg(slides[worst]), "deg",
                           f"the contacts' friction at their share of the load holds the "
                           f"slope's pull (forces and turning balanced) up to tan θ, worst "
@@ -95,7 +103,7 @@ class Statics:
                           "the drive wheels braked; free wheels roll, swivel castors turn"))
         stands = {a: min(slides[a], self.tip(a)) for a in slides}
         stands[round(math.degrees(where))] = min(least, self.slide(math.degrees(where)))
-        low = min(stands, key=stands.get)
+        low = self.stand_at = min(stands, key=stands.get)
         what = "tips" if self.tip(low) <= slides.get(low, math.inf) else "slides"
         out.append(Figure("statics.stand", "steepest slope it stands on", _deg(stands[low]),
                           "deg", f"the least of tip-over and slide angles: {what} towards "

@@ -1,5 +1,5 @@
 """Robots whose statics are known in closed form, and the one way the statics tests make
-sim's model of a robot (check, then build, as ``mcar sim`` does). Lengths in m, masses
+sim's model of a robot (check, then specs' model, as ``mcar specs`` does). Lengths in m, masses
 in kg, angles in degrees."""
 
 from __future__ import annotations
@@ -12,21 +12,17 @@ from mobile_car.load.inputs import RobotInput
 from mobile_car.load.robot import LoadOptions
 
 
-def checked_and_sim(path: Path, package_paths=(), effort=None):
-    """(CheckResult, SimModel at rest) of the robot file ``path``."""
+def checked_and_sim(path: Path, package_paths=()):
+    """(CheckResult, SimModel at rest) of the robot file ``path``: the model mcar specs
+    computes its figures on (specs/model.specs_model)."""
     from mobile_car.check.checker import check_input
-    from mobile_car.sim.mecanum import yaml_declarations
-    from mobile_car.sim.model import build_model
-    from mobile_car.sim.prepare import declarations
+    from mobile_car.specs.model import specs_model
 
     checked = check_input(RobotInput(Path(path)),
                           LoadOptions(package_paths=[Path(p) for p in package_paths]))
     assert checked.failure is None and not checked.errors, checked.diagnostics
-    loaded = checked.loaded
-    declared, _unread, _reads = declarations(checked)
-    mecanum, _ = yaml_declarations(loaded)
-    sim = build_model(loaded.urdf, checked.file, loaded.base, loaded.search, effort=effort,
-                      declared=declared, mecanum=mecanum)
+    sim, notes = specs_model(checked)
+    assert sim is not None, notes
     return checked, sim
 
 

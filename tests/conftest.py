@@ -257,3 +257,10 @@ def gazebo(gazebo_helper, monkeypatch) -> dict:
     (for run_mcar's env=)."""
     monkeypatch.setenv("MCAR_SDFORMAT", str(gazebo_helper))
     return {"MCAR_SDFORMAT": str(gazebo_helper)}
+
+
+def line_of(source, text: str) -> int:
+    """The number of the first line of ``source`` (a file's Path, or the text itself)
+    holding ``text``: where a test expects a message to point."""
+    content = source.read_text() if isinstance(source, Path) else source
+    return next(n for n, line in enumerate(content.splitlines(), 1) if text in line)

@@ -7,7 +7,7 @@ import json
 import re
 
 import pytest
-from conftest import REPO
+from conftest import REPO, line_of
 from lxml import etree
 
 CAR = REPO / "urdf" / "mobile_robot.xacro"
@@ -16,8 +16,6 @@ CAR_MASS = 0.70564  # kg: docs/diff.md's example
 DROPPING = REPO / "tests" / "gazebo" / "cases" / "massless_middle_link.urdf"
 
 
-def line_of(path, text: str) -> int:
-    return next(n for n, line in enumerate(path.read_text().splitlines(), 1) if text in line)
 
 
 @pytest.fixture(scope="module")

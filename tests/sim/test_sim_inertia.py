@@ -9,6 +9,7 @@ import math
 import re
 
 import pytest
+from conftest import line_of
 from sim.robot_makers import (
     massless_frame,
     non_positive_antenna,
@@ -21,8 +22,6 @@ from mobile_car.sim.engine import mujoco as engine
 ANTENNA_MOMENTS = "-3.535e-08, 3.501e-08, 9.087e-08"
 
 
-def line_of(text: str, pattern: str) -> int:
-    return next(n for n, line in enumerate(text.splitlines(), 1) if pattern in line)
 
 
 @pytest.fixture(scope="module")

@@ -9,6 +9,7 @@ sim could not drive fails (exit 1) unless only drop was asked for."""
 from __future__ import annotations
 
 import pytest
+from conftest import line_of
 from sim.robot_makers import (
     ACKERMANN_CONTROLLER,
     bicycle_model,
@@ -54,9 +55,6 @@ def made(tmp_path_factory):
     return paths
 
 
-def line_of(path, text: str) -> int:
-    """The line of ``path`` holding ``text`` (first)."""
-    return next(n for n, line in enumerate(path.read_text().splitlines(), 1) if text in line)
 
 
 def statuses(entry) -> dict[str, str]:

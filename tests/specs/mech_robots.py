@@ -105,5 +105,3 @@ def written(folder: Path, name: str, text: str) -> Path:
     return path
 
 
-def line_of(text: str, pattern: str) -> int:
-    return next(n for n, line in enumerate(text.splitlines(), 1) if pattern in line)

@@ -8,7 +8,8 @@ import math
 from pathlib import Path
 
 import pytest
-from specs.mech_robots import box_inertia, line_of, written
+from conftest import line_of
+from specs.mech_robots import box_inertia, written
 
 from mobile_car.check.checker import check_input
 from mobile_car.load.inputs import RobotInput

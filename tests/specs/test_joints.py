@@ -7,7 +7,8 @@ import math
 from pathlib import Path
 
 import pytest
-from specs.mech_robots import G, arm, lift, line_of, steering, written
+from conftest import line_of
+from specs.mech_robots import G, arm, lift, steering, written
 
 from mobile_car.check.checker import check_input
 from mobile_car.load.inputs import RobotInput

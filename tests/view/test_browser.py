@@ -122,11 +122,16 @@ def test_the_page_draws_the_robot_and_a_slider_moves_it(served, page):
     _until(lambda _: abs(served.joint_values()["shoulder"] - 0.75) < 1e-9,
            "the server sees shoulder = 0.75 from the page")
     assert served.joint_values()["wrist"] == 0.0
-    # The link moved on the server, which is what every page then draws.
+    # The link moved on the server, which is what every page then draws (the slider's
+    # value is set before its callback poses the links: wait for the pose, not the value).
     from viser.transforms import SO3
 
-    turned = SO3(np.asarray(served.frames["upper_arm"].wxyz)).as_matrix()
-    assert np.isclose(turned[0, 0], np.cos(0.75)) and np.isclose(turned[0, 2], np.sin(0.75))
+    def turned(_) -> bool:
+        matrix = SO3(np.asarray(served.frames["upper_arm"].wxyz)).as_matrix()
+        return bool(np.isclose(matrix[0, 0], np.cos(0.75))
+                    and np.isclose(matrix[0, 2], np.sin(0.75)))
+
+    _until(turned, "the server turns upper_arm by shoulder = 0.75")
 
 
 def test_a_dimension_typed_on_the_page_rebuilds_the_robot_and_its_yaml_shows(car, page):

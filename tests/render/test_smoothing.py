@@ -56,7 +56,7 @@ def coloured_box(kind: str) -> trimesh.Trimesh:
 def test_the_same_corners_normals_and_colours_as_trimesh(mesh):
     expected = corners(trimesh.graph.smooth_shade(mesh, angle=ANGLE, facet_minarea=None))
     got = corners(smooth_shade(mesh, ANGLE))
-    for want, have in zip(expected, got):
+    for want, have in zip(expected, got, strict=True):
         assert want.shape == have.shape
         assert np.array_equal(want, have)
 

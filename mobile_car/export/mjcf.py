@@ -11,8 +11,8 @@ description only (``inertiafromgeom`` off). Then, the choices of an export for p
   (URDF's and Gazebo's default); a converted mesh without a URDF material keeps its
   own colour;
 * friction from the description's ``<gazebo reference><mu1>``, with a contact priority
-  so that the part's own value wins, and a part of ``<mu1>0`` touching through a
-  frictionless contact (``condim 1``), as sim has it; on a vehicle, sim's castor
+  so that the part's own value wins, and a part of ``<mu1>`` 0 (or under 0.001) touching
+  through a frictionless contact (``condim 1``), as sim has it; on a vehicle, sim's castor
   friction where none is given and each wheel's collision cylinder a sphere of its
   radius (a round tyre), as ``mcar sim`` has them, so that ``--verify`` judges the model sim judged;
 * on a vehicle, sim's springs (:mod:`mobile_car.sim.springs`): a wheel-drop or suspension
@@ -173,9 +173,9 @@ def before_mujoco(root) -> list:
 
 def _complete(mj, spec, prepared, loaded, options, mended_first):
     from ..sim.model import (
-        FRICTIONLESS,
         TIMESTEP,
         add_floor,
+        frictionless,
         lowest_points,
         resting_parts,
         rolling_contacts,
@@ -201,7 +201,7 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
         if mu is not None:
             geom.friction = [mu, geom.friction[1], geom.friction[2]]
             geom.priority = 1
-            if mu <= FRICTIONLESS:  # sim's frictionless contact: see FRICTIONLESS
+            if frictionless(mu):  # sim's frictionless contact
                 geom.condim = 1
     root_body = spec.worldbody.first_body()
     if root_body is None:

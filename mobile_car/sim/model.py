@@ -73,17 +73,26 @@ CASTOR_TIE = 0.001
 CASTOR_WORDS = ("castor", "caster", "ball")
 # The wheels' contact while dropped (time constant s, damping ratio): see resting_tyres.
 RESTING_SOLREF = [0.005, 1.0]
-# A part of <mu1> 0 touches through a frictionless contact (condim 1): MuJoCo's pyramid of
-# friction directions collapses at mu 0 onto the normal, four copies of one row, and the
-# solver went astray: a two-wheeler on frictionless wheels ended upside down in drop, and
-# Kobuki, whose castors say mu1 0, spun 254% faster than its wheels allow and drifted
-# 889 mm (thrown 12 m up at 0.95 s), or passed, as a 1e-17 rad tilt of its start decided.
-FRICTIONLESS = 0.0
-# rad: a revolute joint limited to ± this or more turns without end (swerve bases: 1e16)
-UNLIMITED = 1e6
+# A part of <mu1> under this touches through a frictionless contact (condim 1): MuJoCo's
+# pyramid of friction directions collapses at mu 0 onto the normal, four copies of one
+# row, and the solver went astray: a two-wheeler on frictionless wheels ended upside down
+# in drop, and Kobuki, whose castors say mu1 0, spun 254% faster than its wheels allow
+# and drifted 889 mm (thrown 12 m up at 0.95 s), or passed, as a 1e-17 rad tilt of its
+# start decided. Nearly collapsed, it goes as astray: Neobotix MPO-700's wheels (mu1
+# 0.0001, for Gazebo's planar_move) threw the 180 kg robot 4.7 m up in drop; at 5e-5 5 m,
+# at 2e-4 to 5e-4 it hopped 2-4 mm, from 1e-3 it rests. Friction under 0.1% of the load
+# changes no figure sim measures.
+FRICTIONLESS = 1e-3
 # mu of a castor whose description gives none: a ball that rolls freely, modelled as
 # sliding (the bundled car's caster_friction).
 CASTOR_FRICTION = 0.01
+# rad: a revolute joint limited to ± this or more turns without end (swerve bases: 1e16)
+UNLIMITED = 1e6
+
+
+def frictionless(mu: float) -> bool:
+    """Whether a part of this <mu1> touches through a frictionless contact (FRICTIONLESS)."""
+    return mu < FRICTIONLESS
 
 
 class SimModelError(McarError):
@@ -178,7 +187,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
             if mu is not None:
                 geom.friction = [mu, geom.friction[1], geom.friction[2]]
                 geom.priority = 1
-                if mu <= 0:  # see FRICTIONLESS
+                if frictionless(mu):
                     geom.condim = 1
     shape = _compile(spec, label)  # once with the description's own shapes, to look at
     data = mj.MjData(shape)

@@ -61,6 +61,7 @@ from .resting import RestPose, rest_pose
 from .rollers import Rollers, add_rollers, roller_bodies
 from .servos import DriveSources, add_motors, fit_drive
 from .springs import apply_springs, gazebo_joint_blocks, make_springs, sprung_joints
+from .vehicle import UNLIMITED
 
 TIMESTEP = 0.001
 # Above the floor by this much, a part does not rest on it (contacts, ground parts).
@@ -86,8 +87,6 @@ FRICTIONLESS = 1e-3
 # mu of a castor whose description gives none: a ball that rolls freely, modelled as
 # sliding (the bundled car's caster_friction).
 CASTOR_FRICTION = 0.01
-# rad: a revolute joint limited to ± this or more turns without end (swerve bases: 1e16)
-UNLIMITED = 1e6
 
 
 def frictionless(mu: float) -> bool:

@@ -12,7 +12,8 @@ description only (``inertiafromgeom`` off). Then, the choices of an export for p
   own colour;
 * friction from the description's ``<gazebo reference><mu1>``, with a contact priority
   so that the part's own value wins, and a part of ``<mu1>`` 0 (or under 0.001) touching
-  through a frictionless contact (``condim 1``), as sim has it; on a vehicle, sim's castor
+  through a frictionless contact (``condim 1``), and MuJoCo's elliptic cone for a robot
+  declaring a ``<mu1>`` over 1, as sim has them; on a vehicle, sim's castor
   friction where none is given and each wheel's collision cylinder a sphere of its
   radius (a round tyre), as ``mcar sim`` has them, so that ``--verify`` judges the model sim judged;
 * on a vehicle, sim's springs (:mod:`mobile_car.sim.springs`): a wheel-drop or suspension
@@ -175,6 +176,7 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
     from ..sim.model import (
         TIMESTEP,
         add_floor,
+        friction_cone,
         frictionless,
         lowest_points,
         resting_parts,
@@ -210,6 +212,7 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
         root_body.add_freejoint(name=FREE_JOINT)
     spec.option.timestep = TIMESTEP
     spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
+    spec.option.cone = friction_cone(mj, sources.friction)  # as sim has it
     shape = _compile(spec, loaded.label)
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)

@@ -22,6 +22,9 @@ from sim.robot_makers import (
 FRICTIONLESS = """
   <gazebo reference="{0}"><mu1>0</mu1><mu2>0</mu2></gazebo>
   <gazebo reference="{1}"><mu1>0</mu1><mu2>0</mu2></gazebo>"""
+GRIPPY = """
+  <gazebo reference="{0}"><mu1>100</mu1><mu2>100</mu2></gazebo>
+  <gazebo reference="{1}"><mu1>100</mu1><mu2>100</mu2></gazebo>"""
 MIMIC = """
   <joint name="flap_joint" type="revolute">
     <parent link="base_link"/><child link="flap_link"/><origin xyz="0.05 0 0.06"/>
@@ -55,7 +58,9 @@ def robots(tmp_path_factory):
                 "wheel_left_link", "wheel_right_link")),
             "frictionless balls": castors_fore_and_aft().replace("</robot>", FRICTIONLESS.format(
                 "caster_front_link", "caster_back_link") + "</robot>"),
-            "planar base": planar_base()}
+            "planar base": planar_base(),
+            "grippy wheels": two_wheeler(extra=GRIPPY.format(
+                "wheel_left_link", "wheel_right_link"))}
     paths = {}
     for name, text in made.items():
         paths[name] = folder / (name.replace(" ", "_") + ".urdf")
@@ -168,6 +173,19 @@ def test_nearly_frictionless_fixed_wheels_rest(cli, robots):
     assert result.exit_code == 0, drop["message"]
     assert drop["status"] == "passed" and drop["message"] == "ok"
     assert _figures(drop)["speed"] < 0.002 and _figures(drop)["roll"] < 1
+
+
+def test_grippy_wheels_drive_as_tyres_of_mu_1_do(cli, robots):
+    """<mu1>100</mu1> on the wheels (Neobotix MP-400): MuJoCo's pyramid of friction at mu
+    100 laid the two-wheeler on its nose in drop and spun MP-400's wheels without moving
+    it; through the elliptic cone more grip changes nothing on a level floor."""
+    result = cli("sim", robots["grippy wheels"], "--format", "json")
+    (entry,) = json.loads(result.stdout)["files"]
+    assert result.exit_code == 0, [s["message"] for s in entry["scenarios"]]
+    drop, drive, spin = entry["scenarios"]
+    assert _figures(drop)["pitch"] < 1
+    assert _figures(drive)["distance error"] < 1  # %
+    assert _figures(spin)["yaw rate error"] < 1
 
 
 def test_a_revolute_wheel_limited_to_1e16_is_a_wheel(cli, robots):

@@ -431,8 +431,22 @@ def prepare_urdf(root, base: Path, search) -> list[str]:
             link = collision.getparent()
             notes.append(f"link {link.get('name')}: collision mesh {filename} left out: {why}")
             link.remove(collision)
+    unique_geom_names(root)
     _compiler_options(root)
     return notes
+
+
+def unique_geom_names(root) -> None:
+    """Drop the name of a <collision> or <visual> that repeats an earlier one's: MuJoCo
+    makes that geom unnamed anyway, and says so on its own stderr, past mcar's messages
+    ("WARNING: Geom with duplicate name 'caster_wheel' encountered in URDF": Neobotix
+    MP-400's four castors, three such lines in every mcar specs and export)."""
+    seen = set()
+    for element in root.iter("collision", "visual"):
+        name = element.get("name")
+        if name is not None and name in seen:
+            del element.attrib["name"]
+        seen.add(name)
 
 
 def _compiler_options(root) -> None:

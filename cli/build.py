@@ -45,7 +45,9 @@ urdf/wheel/test_wheel.urdf.xacro -> build/wheel/test_wheel.urdf.
 
 $(find PKG) works without ROS: PKG is looked up in the package holding INPUT, then
 --package-path, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH, and the bundled
-mobile_car_description. package:// URIs are left as they are; absolute paths that
+mobile_car_description; a file the package's source folder lacks is looked up
+where its CMakeLists.txt installs it from ($(find PKG)/urdf/x.xacro of a package
+that installs description/urdf). package:// URIs are left as they are; absolute paths that
 $(find) put into attributes are written back as package:// URIs, so the output is
 the same on every machine. NAME:=VALUE sets a <xacro:arg>; a name the files never
 declare is an error (plain xacro ignores it silently).

@@ -112,6 +112,9 @@ class _Session:
         self.stderr = io.StringIO()
         self.macros: set[str] = set()  # every macro defined, for unprefixed calls
         self.origins = OriginRecorder()
+        # Files named as their package installs them -> the source files read instead
+        # (_installed): xacro.load_yaml records the name it was given after opening it.
+        self.mapped: dict[str, str] = {}
         self._subst_saved = None
 
     def _find(self, name: str) -> str:
@@ -120,6 +123,8 @@ class _Session:
         return str(path)
 
     def _parse(self, inp, filename=None):
+        if inp is None and filename:
+            filename = self._installed(filename)
         self.parsing.append(filename)
         if inp is None and filename:  # xacro would read the whole file, even /dev/zero
             try:
@@ -135,12 +140,27 @@ class _Session:
         self.parsing.pop()
         return result
 
-    @staticmethod
-    def _open(file, mode="r"):
+    def _installed(self, filename: str) -> str:
+        """``filename``, or the source file it names where the package it lies in
+        installs another folder there (``$(find PKG)/urdf/x.xacro`` of a package that
+        installs ``description/urdf``); xacro's records of the file are mended to match,
+        so errors and --deps name the file that was read."""
+        source = self.search.installed_source(os.path.join(xacro.root_dir, filename))
+        if source is None:
+            return filename
+        self.mapped[filename] = str(source)
+        for stack in (xacro.filestack, xacro.all_includes):
+            if stack and stack[-1] == filename:
+                stack[-1] = str(source)
+        return str(source)
+
+    def _open(self, file, mode="r"):
         """xacro's own ``open()`` (``xacro.load_yaml``, and parse where the hook above
         read nothing): a FIFO or device named there is refused, not waited on."""
         if set(mode) - set("rbt"):
             return open(file, mode)  # noqa: SIM115 - xacro closes it
+        if isinstance(file, (str, os.PathLike)):  # xacro.load_yaml's $(find PKG)/config
+            file = self._installed(os.fspath(file))
         handle = open_regular(file)
         return handle if "b" in mode else io.TextIOWrapper(handle)
 
@@ -406,7 +426,7 @@ def _expand(source: Path, mappings: dict[str, str], search: PackageSearch,
         except (Exception, RecursionError) as exc:  # xacro raises many kinds; all become one
             error = error_from(exc, session.parsing, source, session.origins.active_calls())
         origins = session.origins.collect(doc) if error is None else None
-        includes = [Path(p) for p in dict.fromkeys(xacro.all_includes)]
+        includes = [Path(session.mapped.get(p, p)) for p in dict.fromkeys(xacro.all_includes)]
         deps = includes if text is not None else [source, *includes]
     # What the files name, and what the expansion looked up (a name computed in them).
     known = known_args(deps) | (_args_in(text.decode("utf-8", errors="replace"))

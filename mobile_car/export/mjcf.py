@@ -11,8 +11,9 @@ description only (``inertiafromgeom`` off). Then, the choices of an export for p
   (URDF's and Gazebo's default); a converted mesh without a URDF material keeps its
   own colour;
 * friction from the description's ``<gazebo reference><mu1>``, with a contact priority
-  so that the part's own value wins, and a part of ``<mu1>0`` touching through a
-  frictionless contact (``condim 1``), as sim has it; on a vehicle, sim's castor
+  so that the part's own value wins, and a part of ``<mu1>`` 0 (or under 0.001) touching
+  through a frictionless contact (``condim 1``), and MuJoCo's elliptic cone for a robot
+  declaring a ``<mu1>`` over 1, as sim has them; on a vehicle, sim's castor
   friction where none is given and each wheel's collision cylinder a sphere of its
   radius (a round tyre), as ``mcar sim`` has them, so that ``--verify`` judges the model sim judged;
 * on a vehicle, sim's springs (:mod:`mobile_car.sim.springs`): a wheel-drop or suspension
@@ -132,7 +133,10 @@ def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = Fal
 def mujoco_spec(mj, prepared: Prepared, label: str):
     """MuJoCo's reading of the prepared URDF (visuals and every link kept), its meshes
     found in the assets' folder."""
+    from ..sim.model import unique_geom_names
+
     root = prepared.root
+    unique_geom_names(root)
     extension = etree.SubElement(root, "mujoco")
     etree.SubElement(extension, "compiler", discardvisual="false", fusestatic="false",
                      inertiafromgeom="false", balanceinertia="false", strippath="false")
@@ -173,9 +177,10 @@ def before_mujoco(root) -> list:
 
 def _complete(mj, spec, prepared, loaded, options, mended_first):
     from ..sim.model import (
-        FRICTIONLESS,
         TIMESTEP,
         add_floor,
+        friction_cone,
+        frictionless,
         lowest_points,
         resting_parts,
         rolling_contacts,
@@ -201,7 +206,7 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
         if mu is not None:
             geom.friction = [mu, geom.friction[1], geom.friction[2]]
             geom.priority = 1
-            if mu <= FRICTIONLESS:  # sim's frictionless contact: see FRICTIONLESS
+            if frictionless(mu):  # sim's frictionless contact
                 geom.condim = 1
     root_body = spec.worldbody.first_body()
     if root_body is None:
@@ -210,6 +215,7 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
         root_body.add_freejoint(name=FREE_JOINT)
     spec.option.timestep = TIMESTEP
     spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
+    spec.option.cone = friction_cone(mj, sources.friction)  # as sim has it
     shape = _compile(spec, loaded.label)
     data = mj.MjData(shape)
     mj.mj_kinematics(shape, data)

@@ -218,6 +218,18 @@ class PackageSearch:
             return description_dir()
         return None
 
+    def installed_source(self, path: str | os.PathLike) -> Path | None:
+        """The source file a missing ``path`` below a found package's folder names as
+        that package installs it (:mod:`.install_layout`): ``$(find PKG)/urdf/x`` of a
+        package that installs ``description/urdf``. None for any other path."""
+        from .install_layout import source_of
+
+        path = Path(path)
+        for name, root in self._cache.items():
+            if root in path.parents and not path.exists():
+                return source_of(root, name, path.relative_to(root).as_posix())
+        return None
+
     def resolve_uri(self, uri: str, base: Path | None = None) -> Path:
         """A mesh or file URI (``package://``, ``file://``, an absolute or a relative path)
         as a path, confined to :meth:`allowed_roots` (every symlink followed):

@@ -39,6 +39,7 @@ from ..packages.search import PackageSearch
 from .assembly import Piece, link_poses, pieces, unit_primitive
 from .frames import axis_boxes, axis_length, chosen_frames, labels
 from .pose import joint_positions
+from .smoothing import smooth_shade
 
 # Faces meeting at less than this angle are shaded as one smooth surface (cylinder
 # sides, spheres); sharper edges (box corners, cylinder rims) stay crisp.
@@ -228,7 +229,7 @@ def _smooth_corners(mesh: trimesh.Trimesh) -> tuple[np.ndarray, np.ndarray, np.n
         mesh.vertices, mesh.faces, colours))).hexdigest()
     cached = _SMOOTHED.get(key)
     if cached is None:
-        smooth = trimesh.graph.smooth_shade(mesh, angle=SMOOTH_ANGLE, facet_minarea=None)
+        smooth = smooth_shade(mesh, SMOOTH_ANGLE)
         corners = smooth.faces.reshape(-1)
         cached = (smooth.vertices[corners], smooth.vertex_normals[corners],
                   smooth.visual.vertex_colors[corners, :4] / 255.0)

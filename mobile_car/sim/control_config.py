@@ -30,6 +30,7 @@ CONTROL_SUFFIXES = ("_control", "_controller", "_controllers")
 KEY = "wheel_separation_multiplier"
 MAX_FILES = 20  # YAML files looked at in one control package
 _PACKAGE_URI = re.compile(rb"package://([A-Za-z0-9_]+(?:_description|_base))/")
+_PARAMETERS = re.compile(rb"<parameters>([^<]{1,4096})</parameters>")
 
 
 class ControlConfig(Value):
@@ -84,7 +85,7 @@ def find_controllers(loaded) -> tuple[list, list[str], list[Path]]:
 
 
 def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
-                     folders=("config", "")):
+                     folders=("config", ""), named_only: bool = True):
     """Each control package's YAML files (at most MAX_FILES), nearest package first. A
     file that is a link out of the repository holding its package (or into its ``.git``)
     is not read, and said in ``problems``: a pull request commits
@@ -92,9 +93,15 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
     would print the token. ``suffixes``, ``folders``: the sibling packages looked in
     (``X`` + suffix; None: the description package itself) and their folders holding the
     YAML ("": the package's own folder), for the other readers of a robot's ROS
-    configuration (Nav2's parameters in ``X_navigation/params``: specs.stack_check)."""
+    configuration (Nav2's parameters in ``X_navigation/params``: specs.stack_check).
+
+    ``named_only``: where the robot names some of a package's files as its controllers'
+    parameters (``<parameters>`` of its ros2_control or Gazebo plugin), only those: the
+    others configure another variant (ROSbot: mecanum_drive_controller.yaml beside the
+    diff_drive_controller.yaml its plain wheels name)."""
     from ..packages.asset_roots import link_out_of, repository_of
 
+    named = _named_parameters(loaded) if named_only else set()
     for name in _description_packages(loaded):
         stem = next(name[: -len(s)] for s in SUFFIXES if name.endswith(s))
         for suffix in suffixes:
@@ -110,7 +117,25 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
                     kept.append(path)
                 else:
                     problems.append(f"{display_path(path)}: not read ({why})")
-            yield kept
+            chosen = [path for path in kept if path.resolve() in named]
+            yield chosen or kept
+
+
+def _named_parameters(loaded) -> set[Path]:
+    """The real paths of the YAML files the URDF's ``<parameters>`` name (an absolute
+    path, as ``$(find PKG)`` writes it, or a ``package://`` URI)."""
+    named = set()
+    for text in _PARAMETERS.findall(loaded.urdf):
+        value = text.decode("utf-8", "replace").strip()
+        if value.startswith("package://"):
+            name, _, inner = value[len("package://"):].partition("/")
+            root = loaded.search.find_if_any(name)
+            path = None if root is None else root / inner
+        else:
+            path = Path(value) if value.startswith("/") else None
+        if path is not None:
+            named.add(path.resolve())
+    return named
 
 
 def _description_packages(loaded) -> list[str]:

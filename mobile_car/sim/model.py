@@ -61,6 +61,7 @@ from .resting import RestPose, rest_pose
 from .rollers import Rollers, add_rollers, roller_bodies
 from .servos import DriveSources, add_motors, fit_drive
 from .springs import apply_springs, gazebo_joint_blocks, make_springs, sprung_joints
+from .vehicle import UNLIMITED
 
 TIMESTEP = 0.001
 # Above the floor by this much, a part does not rest on it (contacts, ground parts).
@@ -73,17 +74,40 @@ CASTOR_TIE = 0.001
 CASTOR_WORDS = ("castor", "caster", "ball")
 # The wheels' contact while dropped (time constant s, damping ratio): see resting_tyres.
 RESTING_SOLREF = [0.005, 1.0]
-# A part of <mu1> 0 touches through a frictionless contact (condim 1): MuJoCo's pyramid of
-# friction directions collapses at mu 0 onto the normal, four copies of one row, and the
-# solver went astray: a two-wheeler on frictionless wheels ended upside down in drop, and
-# Kobuki, whose castors say mu1 0, spun 254% faster than its wheels allow and drifted
-# 889 mm (thrown 12 m up at 0.95 s), or passed, as a 1e-17 rad tilt of its start decided.
-FRICTIONLESS = 0.0
-# rad: a revolute joint limited to ± this or more turns without end (swerve bases: 1e16)
-UNLIMITED = 1e6
+# A part of <mu1> under this touches through a frictionless contact (condim 1): MuJoCo's
+# pyramid of friction directions collapses at mu 0 onto the normal, four copies of one
+# row, and the solver went astray: a two-wheeler on frictionless wheels ended upside down
+# in drop, and Kobuki, whose castors say mu1 0, spun 254% faster than its wheels allow
+# and drifted 889 mm (thrown 12 m up at 0.95 s), or passed, as a 1e-17 rad tilt of its
+# start decided. Nearly collapsed, it goes as astray: Neobotix MPO-700's wheels (mu1
+# 0.0001, for Gazebo's planar_move) threw the 180 kg robot 4.7 m up in drop; at 5e-5 5 m,
+# at 2e-4 to 5e-4 it hopped 2-4 mm, from 1e-3 it rests. Friction under 0.1% of the load
+# changes no figure sim measures.
+FRICTIONLESS = 1e-3
 # mu of a castor whose description gives none: a ball that rolls freely, modelled as
 # sliding (the bundled car's caster_friction).
 CASTOR_FRICTION = 0.01
+
+
+# A <mu1> over this sends MuJoCo's default pyramid of friction astray the other way: a
+# two-wheeler of <mu1>1.5 drove 1.2% short (0.4% at 1), at 2 3.4%, from 3 it fell on its
+# nose in drop; Neobotix MP-400's wheels (mu1 100, 1000 N·m motors) spun without moving
+# it. A robot declaring one touches through MuJoCo's elliptic cone, Coulomb's law itself:
+# at mu 3 and 100 the two-wheeler drove as at 1.
+PYRAMID_MU = 1.0
+
+
+def friction_cone(mj, friction: dict[str, float]):
+    """MuJoCo's friction cone for a robot of these declared <mu1>s (link -> mu): its
+    default pyramid, elliptic where one is over PYRAMID_MU."""
+    if any(mu > PYRAMID_MU for mu in friction.values()):
+        return mj.mjtCone.mjCONE_ELLIPTIC
+    return mj.mjtCone.mjCONE_PYRAMIDAL
+
+
+def frictionless(mu: float) -> bool:
+    """Whether a part of this <mu1> touches through a frictionless contact (FRICTIONLESS)."""
+    return mu < FRICTIONLESS
 
 
 class SimModelError(McarError):
@@ -168,6 +192,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     spec.compiler.discardvisual = False  # (the URDF's visuals are gone; keep the floor's look)
     spec.option.timestep = TIMESTEP
     spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
+    spec.option.cone = friction_cone(mj, friction)
     add_floor(spec, mj)
     for geom in spec.geoms:
         if geom.name != "mcar_floor":
@@ -178,7 +203,7 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
             if mu is not None:
                 geom.friction = [mu, geom.friction[1], geom.friction[2]]
                 geom.priority = 1
-                if mu <= 0:  # see FRICTIONLESS
+                if frictionless(mu):
                     geom.condim = 1
     shape = _compile(spec, label)  # once with the description's own shapes, to look at
     data = mj.MjData(shape)
@@ -406,8 +431,22 @@ def prepare_urdf(root, base: Path, search) -> list[str]:
             link = collision.getparent()
             notes.append(f"link {link.get('name')}: collision mesh {filename} left out: {why}")
             link.remove(collision)
+    unique_geom_names(root)
     _compiler_options(root)
     return notes
+
+
+def unique_geom_names(root) -> None:
+    """Drop the name of a <collision> or <visual> that repeats an earlier one's: MuJoCo
+    makes that geom unnamed anyway, and says so on its own stderr, past mcar's messages
+    ("WARNING: Geom with duplicate name 'caster_wheel' encountered in URDF": Neobotix
+    MP-400's four castors, three such lines in every mcar specs and export)."""
+    seen = set()
+    for element in root.iter("collision", "visual"):
+        name = element.get("name")
+        if name is not None and name in seen:
+            del element.attrib["name"]
+        seen.add(name)
 
 
 def _compiler_options(root) -> None:

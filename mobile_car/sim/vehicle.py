@@ -14,7 +14,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..check.urdf_model import parse_number
 from .lint import link_mass
+
+# rad: a revolute joint limited to ± this or more turns without end, as urdfdom and KDL
+# read it (swerve bases and Neobotix's MP-400 and MP-500 write ±1e16): sim simulates it
+# continuous (model.as_urdfdom_reads), so it is a wheel here too
+UNLIMITED = 1e6
 
 
 @dataclass(frozen=True)
@@ -32,7 +38,7 @@ def not_a_vehicle(robot) -> NotAVehicle | None:
     fails it. Mass is not asked for here: a car that lost an <inertial> must fail (E305),
     not go unsimulated."""
     colliding = {link.name for link in robot.links if link.collisions}
-    wheels = {j.child for j in robot.joints if j.type == "continuous" and j.child in colliding}
+    wheels = {j.child for j in robot.joints if turns_without_end(j) and j.child in colliding}
     kind = lacks(colliding, wheels)
     if kind == "no wheels":
         return NotAVehicle(kind, _no_wheels(robot))
@@ -42,6 +48,18 @@ def not_a_vehicle(robot) -> NotAVehicle | None:
         return NotAVehicle(kind, f"only {', '.join(sorted(wheels))} have collision geometry, "
                                  "no castor or body")
     return None
+
+
+def turns_without_end(joint) -> bool:
+    """A continuous joint, or a revolute one limited to ±UNLIMITED or more."""
+    if joint.type == "continuous":
+        return True
+    limit = joint.parts.get("limit") if joint.type == "revolute" else None
+    if limit is None:
+        return False
+    lower = parse_number(limit.get("lower") or "0")
+    upper = parse_number(limit.get("upper") or "0")
+    return None not in (lower, upper) and lower <= -UNLIMITED and upper >= UNLIMITED
 
 
 def lacks(colliding: set[str], wheels: set[str]) -> str | None:

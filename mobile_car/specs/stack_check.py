@@ -53,7 +53,8 @@ def find_package_yaml(loaded) -> Found:
     found = Found()
     controls = [p for files in control_packages(loaded, found.problems) for p in files]
     navigation = [p for files in control_packages(loaded, found.problems,
-                                                  NAVIGATION_SUFFIXES, NAVIGATION_FOLDERS)
+                                                  NAVIGATION_SUFFIXES, NAVIGATION_FOLDERS,
+                                                  named_only=False)
                   for p in files]
     found.read = list(dict.fromkeys(controls + navigation))  # (an edit may make one relevant)
     found.absent = _absent_siblings(loaded)

@@ -313,3 +313,30 @@ def test_check_takes_the_outline_from_specs_outline(cli, tmp_path, monkeypatch):
         "bot_navigation/params/nav2.yaml:4: warning: robot_radius 0.2 m, but the robot "
         "reaches 0.212 m from its root (body.radius.circumscribed): Nav2 would plan paths it "
         "cannot fit through [W513]"]
+
+
+def _naming(parameters: str) -> str:
+    """The Gazebo plugin's <parameters>, as a robot names its controllers' file."""
+    return ('<gazebo><plugin filename="gz_ros2_control-system" '
+            'name="gz_ros2_control::GazeboSimROS2ControlPlugin">'
+            f"<parameters>{parameters}</parameters></plugin></gazebo>")
+
+
+@pytest.mark.parametrize("named", ["{root}/bot_control/config/control.yaml",
+                                   "package://bot_control/config/control.yaml", None])
+def test_the_controller_file_the_robot_names_is_compared_not_its_siblings(
+        run_mcar, tmp_path, named):
+    """ROSbot's control package holds mecanum_drive_controller.yaml and
+    diff_drive_controller.yaml, one per variant; its plain-wheeled URDF names the latter,
+    whose figures match, and was warned about the former's wheel_radius."""
+    variant = diff_control(radius=0.03).replace("diff_cont", "mecanum_cont")
+    extra = "" if named is None else _naming(named.format(root=tmp_path))
+    write_package(tmp_path, two_wheeler(extra=extra),
+                  {CONTROL: diff_control(), "bot_control/config/variant.yaml": variant})
+    result = check(run_mcar, tmp_path)
+    assert result.returncode == 0, result.stderr
+    expected = [] if named else [
+        "bot_control/config/variant.yaml:6: warning: wheel_radius 0.03 m, but the drive "
+        "wheels' collision radius is 0.033 m (-9.1%): the robot would drive faster or "
+        "slower than commanded [W511]"]
+    assert warnings(result, "W511") == expected

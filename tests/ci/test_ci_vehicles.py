@@ -125,3 +125,28 @@ def test_a_mistake_in_mcar_yaml_stops_ci_before_anything_is_built(run_mcar, odd_
     assert result.stderr.strip().endswith(
         "mcar.yaml:2: error: unknown key 'sim.skipp': sim takes skip, drive")
     assert not (tmp_path / "out").exists()
+
+
+def test_wheels_on_revolute_joints_limited_to_1e16_are_simulated_as_sim_does(
+        run_mcar, tmp_path):
+    """Neobotix MP-400 and swerve bases limit their wheels' revolute joints to ±1e16:
+    urdfdom, KDL and mcar sim turn them without end, but ci called the robot "not a
+    vehicle: no wheels" and passed it unsimulated."""
+    from sim.robot_makers import two_wheeler
+
+    unlimited = two_wheeler(limit='\n    <limit lower="-1e16" upper="1e16" effort="1" '
+                                  'velocity="20"/>').replace('type="continuous"',
+                                                             'type="revolute"')
+    package = make_package(tmp_path / "neo_description", "neo_description",
+                           {"base.urdf": unlimited})
+    report = tmp_path / "report.xml"
+    result = run_mcar("ci", package, "--no-render", "--build-dir", tmp_path / "build",
+                      "--junit-xml", report, cwd=tmp_path, timeout=300)
+    found = cases(report)
+    assert result.returncode == 0, result.stderr
+    for name in ("lint", "drop", "drive", "spin"):
+        case = found[(f"mcar.sim.{name}", "base.urdf")]
+        assert case.find("failure") is None and case.find("skipped") is None
+    assert "not a vehicle" not in result.stderr
+    (row,) = result.stdout.splitlines()[1:]
+    assert " differential 3/3 " in row

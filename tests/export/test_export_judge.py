@@ -211,3 +211,50 @@ def test_a_castor_of_mu1_0_touches_frictionless_in_the_export_as_in_sim(run_mcar
     xml.write_text(xml.read_text().replace(' condim="1"', ""))
     assert re.match(r".*out: spin failed as mcar sim judges it: .*yaw rate error \d+\.\d+ % ",
                     _verify_again(tmp_path / "out", exported))
+
+
+def test_nearly_frictionless_fixed_wheels_touch_frictionless_in_the_export_as_in_sim(
+        run_mcar, tmp_path):
+    # Neobotix's planar_move bases: wheels of <mu1>0.0001 on fixed joints. MuJoCo's nearly
+    # collapsed friction pyramid threw MPO-700 4.7 m up; sim and the file touch through
+    # a frictionless contact. (--verify drops only a vehicle: dropped here.)
+    import mujoco
+    from sim.robot_makers import planar_base
+
+    def fastest_after_drop(text: str) -> float:
+        model = mujoco.MjModel.from_xml_string(text)  # (no meshes: primitives only)
+        data = mujoco.MjData(model)
+        data.qpos[2] = 0.005
+        mujoco.mj_step(model, data, nstep=1000)
+        fastest = 0.0
+        for _ in range(1000):
+            mujoco.mj_step(model, data)
+            fastest = max(fastest, float(abs(data.qvel[:3]).max()))
+        return fastest
+
+    result = _export(run_mcar, tmp_path, planar_base())
+    assert result.returncode == 0, result.stderr
+    text = (tmp_path / "out/planar_base.xml").read_text()
+    wheels = [line for line in text.splitlines() if 'friction="0.0001"' in line]
+    assert len(wheels) == 4 and all('condim="1"' in line for line in wheels)
+    assert fastest_after_drop(text) < 0.002
+    # Control: the same file with the pyramid of friction (no condim 1) bounces.
+    assert fastest_after_drop(text.replace(' condim="1"', "")) > 0.1
+
+
+def test_grippy_wheels_export_the_elliptic_cone_sim_drives_them_with(run_mcar, tmp_path):
+    # <mu1>100</mu1> tyres: sim's contacts go through MuJoCo's elliptic cone (its pyramid
+    # at mu 100 laid the robot on its nose), and so do the file's; a robot of mu 1 keeps
+    # MuJoCo's default, written as before.
+    from sim.robot_makers import two_wheeler
+
+    grippy = "".join(f'<gazebo reference="wheel_{side}_link"><mu1>100</mu1><mu2>100</mu2>'
+                     "</gazebo>" for side in ("left", "right"))
+    result = _export(run_mcar, tmp_path, two_wheeler(extra=grippy))
+    assert result.returncode == 0, result.stderr
+    assert "mcar export: verified: drive passed as mcar sim judges it" in result.stderr
+    option = re.search(r"<option [^>]*>", (tmp_path / "out/two_wheeler.xml").read_text())
+    assert 'cone="elliptic"' in option.group(0)
+    plain = _export(run_mcar, tmp_path, two_wheeler(), out="plain")
+    assert plain.returncode == 0, plain.stderr
+    assert "cone=" not in (tmp_path / "plain/two_wheeler.xml").read_text()

@@ -727,3 +727,23 @@ def kobuki_like(back_lift: float = 0.002, castor_mu: float | None = 0.0) -> str:
   </gazebo>""")
     parts.append("\n</robot>\n")
     return "".join(parts)
+
+
+def planar_base(mu: str = "0.0001") -> str:
+    """Neobotix MPO-700 as Gazebo's planar_move has it: a 5 kg box on four wheels on fixed
+    joints whose <mu1> is nearly 0, so that nothing but the plugin moves it."""
+    parts = ['<?xml version="1.0"?>\n<robot name="planar_base">\n  <link name="base_link">'
+             '<collision><origin xyz="0 0 0.25"/><geometry><box size="0.6 0.4 0.2"/>'
+             '</geometry></collision><inertial><origin xyz="0 0 0.07"/><mass value="5"/>'
+             '<inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>'
+             '</link>']
+    for name, x, y in (("fl", 0.24, 0.23), ("fr", 0.24, -0.23), ("rl", -0.24, 0.23),
+                       ("rr", -0.24, -0.23)):
+        parts.append(f"""
+  <joint name="{name}_joint" type="fixed"><parent link="base_link"/>
+    <child link="{name}_wheel_link"/><origin xyz="{x} {y} 0.09" rpy="1.5708 0 0"/></joint>
+  <link name="{name}_wheel_link"><collision><geometry><cylinder radius="0.09" length="0.03"/>
+    </geometry></collision><inertial><mass value="0.3"/><inertia ixx="0.001" ixy="0" ixz="0"
+    iyy="0.001" iyz="0" izz="0.001"/></inertial></link>
+  <gazebo reference="{name}_wheel_link"><mu1>{mu}</mu1><mu2>{mu}</mu2></gazebo>""")
+    return "".join(parts) + "\n</robot>\n"

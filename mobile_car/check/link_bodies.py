@@ -30,8 +30,11 @@ from .urdf_vocabulary import LINK
 # Links looked at before giving up comparing, on a robot with fewer than 10% repeats.
 _TRIAL = 500
 # Links from which a robot's links are proved plain once per skeleton: below, the plans
-# cost more than they save.
+# cost more than they save. From TWINS_FROM (checker.LARGE_ROBOT: the rest pose is worked
+# out with numpy, which maps back to a link's own elements only the shapes it names), a
+# link is given the elements of the first of its skeleton, its own as their twin.
 SKELETONS_FROM = 200
+TWINS_FROM = 2000
 
 
 def check_link_bodies(links: list[Link], report: Reporter, materials: set[str],
@@ -45,7 +48,7 @@ def check_link_bodies(links: list[Link], report: Reporter, materials: set[str],
     # A clean content's shapes are those of every link with that content.
     clean: dict = {}
     compare, repeats = True, 0
-    skeletons = Skeletons() if len(links) >= SKELETONS_FROM else None
+    skeletons = Skeletons(len(links) >= TWINS_FROM) if len(links) >= SKELETONS_FROM else None
     for count, link in enumerate(links):
         element = link.element
         if count == _TRIAL and repeats * 10 < _TRIAL:

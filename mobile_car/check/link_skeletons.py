@@ -39,8 +39,12 @@ class Skeletons:
     """The plans of one robot's link skeletons, by skeleton (None: not written the usual
     way, or not readable this way)."""
 
-    def __init__(self):
+    def __init__(self, twins: bool = False):
         self._plans: dict = {}
+        # Whether a link may be given the elements of the first of its skeleton, its own
+        # element as their twin (rest_pose.LinkShapes), rather than its own: on a robot
+        # whose rest pose maps back only the shapes it names (rest_pose_arrays.py).
+        self.twins = twins
         self.open = True  # False once _PLANS_KEPT skeletons were met: no use asking
 
     def clean(self, element, text: str, report: Reporter, materials: set[str],
@@ -51,7 +55,7 @@ class Skeletons:
         skeleton = '"'.join(pieces[::2])
         plan = self._plans.get(skeleton, _UNKNOWN)
         if plan is _UNKNOWN:
-            plan = self._plans[skeleton] = _Plan.of(element, len(pieces))
+            plan = self._plans[skeleton] = _Plan.of(element, len(pieces), self.twins)
             self.open = len(self._plans) < _PLANS_KEPT
         if plan is None or len(pieces) != plan.pieces:
             return None
@@ -65,19 +69,23 @@ class _Plan:
     their index, in document order; the one past the last is an absent xyz or rpy), and
     where its shapes and inertial sit among its elements (child indices from the link)."""
 
-    __slots__ = ("pieces", "triples", "singles", "bodies", "inertial", "colours")
+    __slots__ = ("pieces", "triples", "singles", "bodies", "inertial", "colours", "twins",
+                 "model")
 
     def __init__(self, pieces: int, triples: list, singles: list, bodies: list,
-                 inertial: tuple | None, colours: list):
+                 inertial: tuple | None, colours: list, twins: bool):
         self.pieces = pieces  # of the serialisation split at its quotes
         self.triples = triples
         self.singles = singles
         self.bodies = bodies  # (kind, path of its shape, shape tag, scaled, at, at_single)
         self.inertial = inertial  # (index of the <inertial>, at, at_single) or None
         self.colours = colours  # (index of the name, of the rgba or None)
+        # A mesh is known by its own element (its file's bounds): no twins then.
+        self.twins = twins and all(body[2] != "mesh" for body in bodies)
+        self.model = None  # (bodies, inertial) of the first link found clean: see twins
 
     @classmethod
-    def of(cls, element, pieces: int) -> _Plan | None:
+    def of(cls, element, pieces: int, twins: bool) -> _Plan | None:
         """The plan of ``element``'s skeleton, its serialisation split at its quotes into
         ``pieces``; None if it is not written the usual way or its quotes are not only
         delimiters."""
@@ -107,7 +115,7 @@ class _Plan:
                   for kind, shape, tag, scaled, at, at_single in bodies]
         if inertial is not None:
             inertial = (marked.index(inertial[0]), *inertial[1:])
-        return cls(pieces, triples, singles, bodies, inertial, colours)
+        return cls(pieces, triples, singles, bodies, inertial, colours, twins)
 
     def read(self, element, values: list, report: Reporter, materials: set[str],
              top_level: set, moving: bool, is_root: bool) -> LinkShapes | None:
@@ -117,15 +125,24 @@ class _Plan:
             if "&" in name:
                 return None  # escaped: the walk reads the name as lxml does
             colours.append((name, None if rgba is None else values[rgba]))
-        bodies = []
-        for kind, (body, geometry, shape), tag, scaled, at, at_single in self.bodies:
-            bodies.append((kind, element[body][geometry][shape], tag, scaled, at, at_single))
-        inertial = self.inertial
-        if inertial is not None:
-            inertial = (element[inertial[0]], *inertial[1:])
+        model = self.model
+        if model is None:
+            bodies = []
+            for kind, (body, geometry, shape), tag, scaled, at, at_single in self.bodies:
+                bodies.append((kind, element[body][geometry][shape], tag, scaled, at,
+                               at_single))
+            inertial = self.inertial
+            if inertial is not None:
+                inertial = (element[inertial[0]], *inertial[1:])
+        else:
+            bodies, inertial = model
         gathered = ([values[i] for i in self.triples], [values[i] for i in self.singles],
                     bodies, inertial, colours)
-        return judge(gathered, report, materials, top_level, moving, is_root)
+        held = judge(gathered, report, materials, top_level, moving, is_root,
+                     None if model is None else element)
+        if held is not None and model is None and self.twins:
+            self.model = bodies, inertial
+        return held
 
 
 def _path(shape) -> tuple[int, int, int]:

@@ -88,10 +88,11 @@ def gather(element) -> tuple | None:
 
 
 def judge(gathered: tuple, report: Reporter, materials: set[str], top_level: set,
-          moving: bool, is_root: bool) -> LinkShapes | None:
+          moving: bool, is_root: bool, twin=None) -> LinkShapes | None:
     """The :class:`~.rest_pose.LinkShapes` of a link :func:`gather` found written the
     usual way, if its numbers and materials are sound in its place (moving or not, the
-    root or not, after the materials defined so far); else None."""
+    root or not, after the materials defined so far); else None. ``twin``: the link's own
+    element, when the elements gathered are another link's (:mod:`.link_skeletons`)."""
     triples, singles, bodies, inertial, colours = gathered
     if (moving and inertial is None) or (is_root and inertial is not None):
         return None
@@ -116,7 +117,7 @@ def judge(gathered: tuple, report: Reporter, materials: set[str], top_level: set
             return None
         read.append((kind, shape, numbers[at:at + 3], numbers[at + 3:at + 6], dims))
     materials.update(defined)
-    return LinkShapes(read, inertial)
+    return LinkShapes(read, inertial, twin)
 
 
 # Every number read as one of three is a length, an angle or a scale: the smallest of

@@ -81,11 +81,20 @@ ROBOT = b"""<?xml version="1.0"?>
 """
 
 
-def _check(data: bytes, quick: bool, monkeypatch, base: Path = BASE) -> list[tuple]:
+def _check(data: bytes, quick: bool, monkeypatch, base: Path = BASE,
+           large: bool = False) -> list[tuple]:
     """Every diagnostic of ``data`` as (rule, line, message), with or without shortcuts;
     with them, links are proved plain both once per skeleton (link_skeletons.py, on
-    however few links) and link by link, and must be found alike, the robot's size too
-    (the numbers each way read)."""
+    however few links, later ones given the first one's elements as twins) and link by
+    link, and must be found alike, the robot's size too (the numbers each way read).
+    ``large``: the rest pose worked out as for a large robot (rest_pose_arrays.py)."""
+    with monkeypatch.context() as patch:
+        if large:
+            patch.setattr(checker, "LARGE_ROBOT", 0)
+        return _check_each_way(data, quick, patch, base)
+
+
+def _check_each_way(data: bytes, quick: bool, monkeypatch, base: Path) -> list[tuple]:
     if quick:
         by_skeleton = _checked(data, base, monkeypatch, skeletons_from=0)
         assert by_skeleton == _checked(data, base, monkeypatch, skeletons_from=10 ** 9)
@@ -107,6 +116,7 @@ def _checked(data: bytes, base: Path, monkeypatch, skeletons_from: int) -> tuple
     with monkeypatch.context() as patch:
         patch.setattr(check_context, "_CLEAN", set())  # no verdicts from earlier tests
         patch.setattr(link_bodies, "SKELETONS_FROM", skeletons_from)
+        patch.setattr(link_bodies, "TWINS_FROM", skeletons_from)
         result = checker.check_urdf_data(data, "robot.urdf", base=base,
                                          search=PackageSearch(origin=base / "robot.urdf"))
     return [(d.rule, d.line, d.message) for d in result.diagnostics], result.extents
@@ -433,10 +443,13 @@ MORE_VALUE_CHANGES = {
 }
 
 
-def _repeated(change=None, copies: int = 3) -> bytes:
-    """ROBOT with ``copies`` more links written as 'upper' is, before it (each mass its
-    own), on revolute joints; then ``change`` applied: 'upper' is the last of its kind."""
+def _repeated(change=None, copies: int = 3, prepare=None) -> bytes:
+    """ROBOT (``prepare`` applied) with ``copies`` more links written as 'upper' is, before
+    it (each mass its own), on revolute joints; then ``change`` applied: 'upper' is the
+    last of its kind."""
     root = etree.fromstring(ROBOT)
+    if prepare is not None:
+        prepare(root)
     upper = root.find(UPPER)
     for number in range(copies):
         link = etree.fromstring(etree.tostring(upper))
@@ -456,13 +469,15 @@ def _skeleton(link) -> str:
     return re.sub(r'"[^"]*"', '""', etree.tostring(link, encoding="unicode", with_tail=False))
 
 
-def test_links_that_share_a_skeleton_are_clean_and_read_once_each(monkeypatch):
+@pytest.mark.parametrize("large", [False, True], ids=["rest pose", "rest pose arrays"])
+def test_links_that_share_a_skeleton_are_clean_and_read_once_each(large, monkeypatch):
     data = _repeated()
     root = etree.fromstring(data)
     assert len({_skeleton(link) for link in root.iterfind("link[@name]")
                 if link.get("name").startswith("upper")}) == 1
     assert len({etree.tostring(link) for link in root.iterfind("link")}) == 7  # no twins
-    assert _check(data, True, monkeypatch) == _check(data, False, monkeypatch) == []
+    assert _check(data, True, monkeypatch, large=large) == \
+        _check(data, False, monkeypatch, large=large) == []
     from mobile_car.check.context import Reporter
     from mobile_car.check.link_skeletons import Skeletons
     from mobile_car.check.plain_links import plainly_clean
@@ -481,18 +496,20 @@ def test_links_that_share_a_skeleton_are_clean_and_read_once_each(monkeypatch):
     assert len(skeletons._plans) == 1
 
 
+@pytest.mark.parametrize("large", [False, True], ids=["rest pose", "rest pose arrays"])
 @pytest.mark.parametrize("name", VALUE_CHANGES + sorted(MORE_VALUE_CHANGES))
-def test_a_link_whose_skeleton_was_proved_is_still_judged_by_its_values(name, monkeypatch):
+def test_a_link_whose_skeleton_was_proved_is_still_judged_by_its_values(name, large,
+                                                                         monkeypatch):
     change = MORE_VALUE_CHANGES.get(name) or STRUCTURE[name]
     data = _repeated(change)
     root = etree.fromstring(data)
     kept, changed = root.find("link[@name='upper_0']"), root.find(UPPER)
     assert _skeleton(kept) == _skeleton(changed) or name == "quote inside a number"
-    quick = _check(data, True, monkeypatch)
+    quick = _check(data, True, monkeypatch, large=large)
     assert [line for _rule, line, _message in quick
             if line is not None and line >= changed.sourceline], \
         f"{name}: nothing reported in the changed link"
-    assert quick == _check(data, False, monkeypatch)
+    assert quick == _check(data, False, monkeypatch, large=large)
 
 
 @pytest.mark.parametrize("place", sorted(name for name, (path, _attr)
@@ -550,3 +567,19 @@ def test_a_link_with_a_quote_outside_its_values_is_left_to_the_walk(odd):
     else:
         upper[-1].tail = ' "a note" '
     assert clean(upper) is None
+
+
+@pytest.mark.parametrize("large", [False, True], ids=["rest pose", "rest pose arrays"])
+def test_a_message_on_a_later_link_of_a_skeleton_names_its_own_line(large, monkeypatch):
+    """Sound but implausible (a mass no solid of its size has: E119, W213), the last link
+    of the skeleton is named at its own lines, not at the first link's, whose elements it
+    was given (its twin; not where a mesh is: its file's bounds are known by its own)."""
+    box = etree.fromstring('<box size="0.1 0.1 0.2"/>')
+    data = _repeated(_set(f"{INERTIAL}/mass", "value", "50000"), prepare=lambda root: (
+        root.find(f"{UPPER}/collision/geometry").replace(
+            root.find(f"{UPPER}/collision/geometry/mesh"), box)))
+    inertial = etree.fromstring(data).find(INERTIAL)
+    quick = _check(data, True, monkeypatch, large=large)
+    assert [(rule, line) for rule, line, _message in quick] == \
+        [("E119", inertial.find("mass").sourceline), ("W213", inertial.find("inertia").sourceline)]
+    assert quick == _check(data, False, monkeypatch, large=large)

@@ -8,7 +8,7 @@ question of its skeleton alone; it is asked once per skeleton, of a copy of the 
 with every value replaced by a marker, which also tells where each text the proof reads
 sits among the values. Every other link with that skeleton has only its values split out
 of its serialisation and judged by the same code (:func:`.plain_links.judge`): the walk
-of ~20 elements through lxml's proxies (most of the cost of a large robot's links) is
+of a dozen elements through lxml's proxies (most of the cost of a large robot's links) is
 left out.
 
 Why the same skeleton means the same elements with the values in the same places: in

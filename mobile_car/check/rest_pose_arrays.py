@@ -25,6 +25,7 @@ from itertools import chain
 import numpy as np
 
 from . import plausibility as rules
+from .joint_skeletons import AXIS_XYZ
 from .rest_pose import ZERO, Shape, frame_of, own_box, own_elements
 
 _SLACK = 1.01  # candidates a hair beyond each bound: the link's own judgement decides
@@ -100,6 +101,18 @@ def _numbers(texts: list, width: int) -> np.ndarray:
     return np.array(words, dtype=float).reshape(-1, width)
 
 
+def _axis_text(joint) -> str:
+    """The text of a joint's axis as urdfdom reads it: 1 0 0 without an <axis>, 0 0 0 for
+    one without xyz (a joint read by its skeleton has it read already)."""
+    if joint.tags is not None:
+        if "axis" not in joint.tags:
+            return "1 0 0"
+        text = joint.texts[AXIS_XYZ]
+        return "0 0 0" if text is None else text
+    axis = joint.parts.get("axis")
+    return "1 0 0" if axis is None else axis.get("xyz", "0 0 0")
+
+
 def _rows(rows: list, width: int) -> np.ndarray:
     """(n, width) from n sequences of ``width`` floats each: one flat pass, which np.array
     over a list of tuples is not (it first works out their nesting), a few hundredths of a
@@ -170,8 +183,7 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict,
             joint_origins.append(origin)
             if joint.type == "continuous":
                 turning.append(child)
-                axis = joint.parts.get("axis")
-                axes.append("1 0 0" if axis is None else axis.get("xyz", "0 0 0"))
+                axes.append(_axis_text(joint))
     try:
         axes = _numbers(axes, 3)
     except ValueError:

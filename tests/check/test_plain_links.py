@@ -20,7 +20,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from lxml import etree
 
-from mobile_car.check import checker, link_bodies
+from mobile_car.check import checker, joint_skeletons, link_bodies, urdf_reader
 from mobile_car.check import context as check_context
 from mobile_car.check import joints as check_joints
 from mobile_car.packages.search import PackageSearch
@@ -85,8 +85,9 @@ def _check(data: bytes, quick: bool, monkeypatch, base: Path = BASE,
            large: bool = False) -> list[tuple]:
     """Every diagnostic of ``data`` as (rule, line, message), with or without shortcuts;
     with them, links are proved plain both once per skeleton (link_skeletons.py, on
-    however few links, later ones given the first one's elements as twins) and link by
-    link, and must be found alike, the robot's size too (the numbers each way read).
+    however few links, later ones given the first one's elements as twins; joints read
+    by theirs, joint_skeletons.py) and link by link, and must be found alike, the
+    robot's size too (the numbers each way read).
     ``large``: the rest pose worked out as for a large robot (rest_pose_arrays.py)."""
     with monkeypatch.context() as patch:
         if large:
@@ -117,6 +118,7 @@ def _checked(data: bytes, base: Path, monkeypatch, skeletons_from: int) -> tuple
         patch.setattr(check_context, "_CLEAN", set())  # no verdicts from earlier tests
         patch.setattr(link_bodies, "SKELETONS_FROM", skeletons_from)
         patch.setattr(link_bodies, "TWINS_FROM", skeletons_from)
+        patch.setattr(urdf_reader, "SKELETONS_FROM", skeletons_from)
         result = checker.check_urdf_data(data, "robot.urdf", base=base,
                                          search=PackageSearch(origin=base / "robot.urdf"))
     return [(d.rule, d.line, d.message) for d in result.diagnostics], result.extents
@@ -458,8 +460,9 @@ def _repeated(change=None, copies: int = 3, prepare=None) -> bytes:
         upper.addprevious(link)
         root.append(etree.fromstring(
             f'<joint name="turn_{number}" type="revolute"><parent link="tool"/>'
-            f'<child link="upper_{number}"/><axis xyz="0 0 1"/>'
-            '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'))
+            f'<child link="upper_{number}"/><origin xyz="0 0 0.{number + 1}" rpy="0 0 0"/>'
+            f'<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" '
+            f'velocity="{number + 1}"/><dynamics damping="0.1"/></joint>'))
     if change is not None:
         change(root)
     return etree.tostring(root)
@@ -583,3 +586,60 @@ def test_a_message_on_a_later_link_of_a_skeleton_names_its_own_line(large, monke
     assert [(rule, line) for rule, line, _message in quick] == \
         [("E119", inertial.find("mass").sourceline), ("W213", inertial.find("inertia").sourceline)]
     assert quick == _check(data, False, monkeypatch, large=large)
+
+
+# Joints read by their skeleton (joint_skeletons.py): the last of three alike, changed.
+TURN = "joint[@name='turn_2']"
+JOINT_VALUE_CHANGES = {
+    "limit lower above upper": lambda root: root.find(f"{TURN}/limit").attrib.update(
+        {"lower": "2", "upper": "1"}),
+    "velocity unreadable": _set(f"{TURN}/limit", "velocity", "fast"),
+    "effort spelled with an underscore": _set(f"{TURN}/limit", "effort", "1_0"),
+    "zero axis": _set(f"{TURN}/axis", "xyz", "0 0 0"),
+    "axis unreadable": _set(f"{TURN}/axis", "xyz", "0 0"),
+    "origin beyond 1e6 m": _set(f"{TURN}/origin", "xyz", "1e300 0 0"),
+    "rpy unreadable": _set(f"{TURN}/origin", "rpy", "0 0 x"),
+    "rpy infinite": _set(f"{TURN}/origin", "rpy", "0 0 1e400"),
+    "dynamics unreadable": _set(f"{TURN}/dynamics", "damping", "a lot"),
+    "parent undefined": _set(f"{TURN}/parent", "link", "torso"),
+    "parent named with an escape": _set(f"{TURN}/parent", "link", "tool&"),
+    "child empty": _set(f"{TURN}/child", "link", ""),
+    "unknown type": _set(TURN, "type", "ball"),
+    "name taken": _set(TURN, "name", "turn_0"),
+}
+
+
+@pytest.mark.parametrize("large", [False, True], ids=["rest pose", "rest pose arrays"])
+@pytest.mark.parametrize("name", sorted(JOINT_VALUE_CHANGES))
+def test_a_joint_read_by_its_skeleton_is_judged_by_its_values(name, large, monkeypatch):
+    data = _repeated(JOINT_VALUE_CHANGES[name])
+    root = etree.fromstring(data)
+    kept, changed = root.find("joint[@name='turn_0']"), root.findall("joint")[-1]
+    assert _skeleton(kept) == _skeleton(changed)
+    quick = _check(data, True, monkeypatch, large=large)
+    assert [line for _rule, line, _message in quick
+            if line is not None and line >= changed.sourceline], \
+        f"{name}: nothing reported at the changed joint"
+    assert quick == _check(data, False, monkeypatch, large=large)
+
+
+def test_joints_read_by_their_skeleton_hold_what_lxml_reads(monkeypatch):
+    """Names, parts and the texts the quick proof reads, as the element-by-element
+    reading has them; a joint written otherwise (a quote in a comment) is read so."""
+    root = etree.fromstring(_repeated(lambda root: root.find(
+        "joint[@name='turn_1']").append(etree.Comment(' "a note" '))))
+    monkeypatch.setattr(urdf_reader, "SKELETONS_FROM", 0)
+    by_skeleton = urdf_reader.read_robot(root).joints
+    monkeypatch.setattr(urdf_reader, "SKELETONS_FROM", 10 ** 9)
+    by_element = urdf_reader.read_robot(root).joints
+    assert [joint.tags is not None for joint in by_skeleton] == \
+        [True, True, True, True, False, True]  # shoulder, wrist, mount, turn_0, 1, 2
+    for joint, control in zip(by_skeleton, by_element, strict=True):
+        assert (joint.name, joint.type, joint.parent, joint.child) == \
+            (control.name, control.type, control.parent, control.child)
+        assert joint.parts == control.parts
+        if joint.tags is not None:
+            assert joint.tags == set(control.parts)
+            assert joint.texts == tuple(None if part not in control.parts else
+                                        control.parts[part].get(attr)
+                                        for part, attr in joint_skeletons.TEXTS)

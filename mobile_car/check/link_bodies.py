@@ -19,7 +19,6 @@ from lxml import etree
 
 from .context import Reporter
 from .inertia import check_inertia
-from .link_skeletons import Skeletons
 from .links import check_links
 from .plain_links import plainly_clean
 from .rest_pose import LinkShapes, link_shapes
@@ -48,7 +47,12 @@ def check_link_bodies(links: list[Link], report: Reporter, materials: set[str],
     # A clean content's shapes are those of every link with that content.
     clean: dict = {}
     compare, repeats = True, 0
-    skeletons = Skeletons(len(links) >= TWINS_FROM) if len(links) >= SKELETONS_FROM else None
+    skeletons = None
+    if len(links) >= SKELETONS_FROM:
+        # Imported here: a small robot's check (most runs) does without the module.
+        from .link_skeletons import Skeletons
+
+        skeletons = Skeletons(len(links) >= TWINS_FROM)
     for count, link in enumerate(links):
         element = link.element
         if count == _TRIAL and repeats * 10 < _TRIAL:

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 from lxml import etree
 
-from .joint_skeletons import JointSkeletons
 from .urdf_vocabulary import COLLISION, GEOMETRY, INERTIAL, JOINT, LINK, MATERIAL, ROBOT, VISUAL
 
 # Children of <robot> (links, joints, materials) from which joints are read by their
@@ -160,7 +159,12 @@ def read_robot(root) -> Robot:
     if not ROBOT.attrs_ok(root.keys()):
         notes.attributes.append(root)
     links, joints = robot.links, robot.joints
-    skeletons = JointSkeletons(_quiet_parts) if len(root) >= SKELETONS_FROM else None
+    skeletons = None
+    if len(root) >= SKELETONS_FROM:
+        # Imported here: a small robot's reading (most runs) does without the module.
+        from .joint_skeletons import JointSkeletons
+
+        skeletons = JointSkeletons(_quiet_parts)
     for top in root:
         tag = top.tag
         if tag == "link":

@@ -58,15 +58,47 @@ def _plainly_sound(joint: Joint, link_names: set, report: Reporter) -> tuple | N
     time on a robot whose every number differs). None only says "not proved here": the
     checks below decide.
     Each condition mirrors one of them; tests/check/test_plain_links.py holds the two alike."""
-    kind, parent, child, parts = joint.type, joint.parent, joint.child, joint.parts
+    kind, parent, child = joint.type, joint.parent, joint.child
     if (kind not in JOINT_TYPES or not parent or not child or parent not in link_names
-            or child not in link_names or not _PLAIN_PARTS.issuperset(parts)):
+            or child not in link_names):
         return None
-    value, values = report.value, report.values
-    xyz = rpy = _ZERO
-    origin = parts.get("origin")
+    tags = joint.tags
+    if tags is not None:  # read by its skeleton: the texts come read
+        if not _PLAIN_PARTS.issuperset(tags):
+            return None
+        return _sound(kind, "origin" in tags, "axis" in tags, "limit" in tags,
+                      "dynamics" in tags, joint.texts, report)
+    parts = joint.parts
+    if not _PLAIN_PARTS.issuperset(parts):
+        return None
+    origin, axis = parts.get("origin"), parts.get("axis")
+    limit, dynamics = parts.get("limit"), parts.get("dynamics")
+    xyz_text = rpy_text = axis_text = effort = velocity = lower = upper = damping = \
+        friction = None
     if origin is not None:
         xyz_text, rpy_text = origin.get("xyz"), origin.get("rpy")
+    if axis is not None:
+        axis_text = axis.get("xyz")
+    if limit is not None:
+        get = limit.get
+        effort, velocity, lower, upper = (get("effort"), get("velocity"), get("lower"),
+                                          get("upper"))
+    if dynamics is not None:
+        damping, friction = dynamics.get("damping"), dynamics.get("friction")
+    return _sound(kind, origin is not None, axis is not None, limit is not None,
+                  dynamics is not None, (xyz_text, rpy_text, axis_text, effort, velocity,
+                                         lower, upper, damping, friction), report)
+
+
+def _sound(kind: str, has_origin: bool, has_axis: bool, has_limit: bool,
+           has_dynamics: bool, texts: tuple, report: Reporter) -> tuple | None:
+    """_plainly_sound's verdict on the texts of a joint's numbers (in the order of
+    joint_skeletons.TEXTS, None where absent), given which parts it has."""
+    xyz_text, rpy_text, axis_text, effort, velocity, lower_text, upper_text, damping, \
+        friction = texts
+    value, values = report.value, report.values
+    xyz = rpy = _ZERO
+    if has_origin:
         if xyz_text is not None:
             xyz = values(xyz_text, 3)
             if xyz is None or not within(xyz, MAX_LENGTH):
@@ -75,25 +107,19 @@ def _plainly_sound(joint: Joint, link_names: set, report: Reporter) -> tuple | N
             rpy = values(rpy_text, 3)
             if rpy is None or not within(rpy, MAX_ANGLE):
                 return None
-    axis = parts.get("axis")
-    if axis is not None:
-        text = axis.get("xyz")
-        if text is None:
+    if has_axis:
+        if axis_text is None:
             if kind in _AXIS_TYPES:
                 return None
         else:
-            direction = values(text, 3)
+            direction = values(axis_text, 3)
             if direction is None or not within(direction, MAX_LENGTH) or \
                     (kind in _AXIS_TYPES and math.hypot(*direction) < 1e-12):
                 return None
-    limit = parts.get("limit")
-    if limit is None:
+    if not has_limit:
         if kind in _LIMITED_TYPES:
             return None
     else:
-        get = limit.get
-        lower_text, upper_text, effort, velocity = (get("lower"), get("upper"), get("effort"),
-                                                    get("velocity"))
         if effort is None or velocity is None or value(effort) is None or \
                 value(velocity) is None:
             return None
@@ -104,9 +130,7 @@ def _plainly_sound(joint: Joint, link_names: set, report: Reporter) -> tuple | N
         if lower > upper and (kind in _LIMITED_TYPES
                               or (lower_text is not None and upper_text is not None)):
             return None
-    dynamics = parts.get("dynamics")
-    if dynamics is not None:
-        damping, friction = dynamics.get("damping"), dynamics.get("friction")
+    if has_dynamics:
         if damping is None and friction is None:
             return None
         if (damping is not None and value(damping) is None) or \

@@ -8,7 +8,8 @@ clean too: every check of a link's content depends on that content, on those two
 and on the materials defined before it in the same robot, which only grow. Such a link is
 not read again: serialising it to compare (libxml2, in C) costs a tenth of reading it. A
 robot that turns out not to repeat itself is not compared any further. A link written the
-usual way is proved clean by :mod:`mobile_car.check.plain_links`; only the others are read into
+usual way is proved clean by :mod:`mobile_car.check.plain_links` (on a large robot, once per
+skeleton: :mod:`mobile_car.check.link_skeletons`); only the others are read into
 :class:`~mobile_car.check.urdf_reader.Link` parts and put through every check, with messages.
 """
 
@@ -27,6 +28,12 @@ from .urdf_vocabulary import LINK
 
 # Links looked at before giving up comparing, on a robot with fewer than 10% repeats.
 _TRIAL = 500
+# Links from which a robot's links are proved plain once per skeleton: below, the plans
+# cost more than they save. From TWINS_FROM (checker.LARGE_ROBOT: the rest pose is worked
+# out with numpy, which maps back to a link's own elements only the shapes it names), a
+# link is given the elements of the first of its skeleton, its own as their twin.
+SKELETONS_FROM = 200
+TWINS_FROM = 2000
 
 
 def check_link_bodies(links: list[Link], report: Reporter, materials: set[str],
@@ -40,11 +47,20 @@ def check_link_bodies(links: list[Link], report: Reporter, materials: set[str],
     # A clean content's shapes are those of every link with that content.
     clean: dict = {}
     compare, repeats = True, 0
+    skeletons = None
+    if len(links) >= SKELETONS_FROM:
+        # Imported here: a small robot's check (most runs) does without the module.
+        from .link_skeletons import Skeletons
+
+        skeletons = Skeletons(len(links) >= TWINS_FROM)
     for count, link in enumerate(links):
         element = link.element
         if count == _TRIAL and repeats * 10 < _TRIAL:
             compare = False  # serialising every link would cost more than it saves
-        key = (_content(element), link.name in moving, link.name == root) if compare else None
+        if skeletons is not None and not skeletons.open:
+            skeletons = None
+        text = _serialised(element) if compare or skeletons is not None else None
+        key = (_content(text), link.name in moving, link.name == root) if compare else None
         known = clean.get(key) if key is not None else None
         if known is not None:
             repeats += 1
@@ -52,8 +68,13 @@ def check_link_bodies(links: list[Link], report: Reporter, materials: set[str],
                 notes.attributes.append(element)
             held[link.name] = LinkShapes(known.bodies, known.inertial, element)
             continue
-        shapes = plainly_clean(element, report, materials, top_level, link.name in moving,
-                               root is not None and link.name == root)
+        shapes = None
+        if skeletons is not None:
+            shapes = skeletons.clean(element, text, report, materials, top_level,
+                                     link.name in moving, root is not None and link.name == root)
+        if shapes is None:
+            shapes = plainly_clean(element, report, materials, top_level, link.name in moving,
+                                   root is not None and link.name == root)
         if shapes:  # (None, or False where a test turns the quick proof off)
             held[link.name] = clean[key] = shapes
             continue
@@ -68,9 +89,13 @@ def check_link_bodies(links: list[Link], report: Reporter, materials: set[str],
     return held
 
 
-def _content(element) -> bytes:
-    text = etree.tostring(element, with_tail=False)
-    return text[text.index(b">") + 1:]
+def _serialised(element) -> str:
+    return etree.tostring(element, encoding="unicode", with_tail=False)
+
+
+def _content(text: str) -> str:
+    """What lies between a serialised link's start tag and its end."""
+    return text[text.index(">") + 1:]
 
 
 def _counts(report: Reporter, notes: Anomalies) -> tuple[int, int, int, int]:

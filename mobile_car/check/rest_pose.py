@@ -38,8 +38,9 @@ class LinkShapes:
         self.bodies = bodies
         self.inertial = inertial
         # The link's own element when the elements above are those of an earlier link
-        # whose content is byte for byte the same (link_bodies.py): the numbers are the
-        # same, a message must name this link's lines (own_elements).
+        # whose content is byte for byte the same (link_bodies.py) or whose skeleton is,
+        # without a mesh (link_skeletons.py): the numbers above are this link's, a
+        # message must name this link's lines (own_elements).
         self.twin = twin
 
 

@@ -20,10 +20,12 @@ link of a small robot, so the verdicts and messages are the same
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from itertools import chain
 
 import numpy as np
 
 from . import plausibility as rules
+from .joint_skeletons import AXIS_XYZ
 from .rest_pose import ZERO, Shape, frame_of, own_box, own_elements
 
 _SLACK = 1.01  # candidates a hair beyond each bound: the link's own judgement decides
@@ -99,6 +101,26 @@ def _numbers(texts: list, width: int) -> np.ndarray:
     return np.array(words, dtype=float).reshape(-1, width)
 
 
+def _axis_text(joint) -> str:
+    """The text of a joint's axis as urdfdom reads it: 1 0 0 without an <axis>, 0 0 0 for
+    one without xyz (a joint read by its skeleton has it read already)."""
+    if joint.tags is not None:
+        if "axis" not in joint.tags:
+            return "1 0 0"
+        text = joint.texts[AXIS_XYZ]
+        return "0 0 0" if text is None else text
+    axis = joint.parts.get("axis")
+    return "1 0 0" if axis is None else axis.get("xyz", "0 0 0")
+
+
+def _rows(rows: list, width: int) -> np.ndarray:
+    """(n, width) from n sequences of ``width`` floats each: one flat pass, which np.array
+    over a list of tuples is not (it first works out their nesting), a few hundredths of a
+    second on 20,000 links."""
+    return np.fromiter(chain.from_iterable(rows), dtype=float,
+                       count=width * len(rows)).reshape(-1, width)
+
+
 def _origin(joint) -> tuple | None:
     """(xyz, rpy) of a joint's <origin> read here, zeros where absent; None where one is
     not three numbers as ``float`` reads them."""
@@ -161,13 +183,12 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict,
             joint_origins.append(origin)
             if joint.type == "continuous":
                 turning.append(child)
-                axis = joint.parts.get("axis")
-                axes.append("1 0 0" if axis is None else axis.get("xyz", "0 0 0"))
+                axes.append(_axis_text(joint))
     try:
         axes = _numbers(axes, 3)
     except ValueError:
         return None
-    joint_origins = np.array(joint_origins, dtype=float).reshape(-1, 6)
+    joint_origins = _rows(list(chain.from_iterable(joint_origins)), 3).reshape(-1, 6)
     joint_rotation, joint_shift = _rotations(joint_origins[:, 3:6]), joint_origins[:, 0:3]
     bodies, links, tags, numbers, meshes = [], [], [], [], {}
     inertial_rows, inertials = [], []
@@ -197,7 +218,7 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict,
     rotation[children], shift[children] = joint_rotation, joint_shift
     rotation, shift = _compose(parent, rotation, shift)
     links, tags = np.array(links, dtype=int), np.array(tags, dtype=int)
-    numbers = np.array(numbers, dtype=float).reshape(-1, 9)
+    numbers = _rows(numbers, 9)
     body_shift, body_rotation = numbers[:, 0:3], _rotations(numbers[:, 3:6])
     dims = numbers[:, 6:9]
     # A shape's box in its own frame: a box's size, a cylinder's (r, length, r) as
@@ -267,8 +288,8 @@ def _doubtful(pose: ArraysPose, links: np.ndarray, count: int, turning: np.ndarr
     if not len(rows):
         return doubtful
     mass = np.array([inertial[1] for inertial in inertials], dtype=float)
-    moments = np.array([inertial[2] for inertial in inertials], dtype=float)
-    turn = _rotations(np.array([inertial[3] for inertial in inertials], dtype=float))
+    moments = _rows([inertial[2] for inertial in inertials], 6)
+    turn = _rotations(_rows([inertial[3] for inertial in inertials], 3))
     ixx, ixy, ixz, iyy, iyz, izz = moments.T
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = (ixx + iyy + izz) / (mass * per_kg[rows])

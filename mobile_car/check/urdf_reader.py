@@ -3,8 +3,10 @@ first child of each name indexed (urdfdom reads only that one).
 
 Every element of the robot is visited exactly once, here, and what does not fit the
 URDF vocabulary (:mod:`mobile_car.check.urdf_vocabulary`) is noted on the way: unknown
-children, unknown attributes, repeated children. :mod:`mobile_car.check.schema` turns
-those notes into warnings; the other checks read the indexes. One pass matters: on a
+children, unknown attributes, repeated children (a large robot's joints whose skeleton
+holds nothing to note are read from their values instead: joint_skeletons.py).
+:mod:`mobile_car.check.schema` turns those notes into warnings; the other checks read the
+indexes. One pass matters: on a
 20,000-link robot each extra Python walk over the elements costs a tenth of check_urdf's
 whole run.
 """
@@ -14,6 +16,10 @@ from __future__ import annotations
 from lxml import etree
 
 from .urdf_vocabulary import COLLISION, GEOMETRY, INERTIAL, JOINT, LINK, MATERIAL, ROBOT, VISUAL
+
+# Children of <robot> (links, joints, materials) from which joints are read by their
+# skeleton (joint_skeletons.py): below, the plans cost more than they save.
+SKELETONS_FROM = 400
 
 # The classes here are plain classes with slots, not dataclasses: never compared, and a
 # dataclass costs every run that imports it the compiling of its methods (values.py).
@@ -97,16 +103,28 @@ class Link:
 
 
 class Joint:
-    __slots__ = ("name", "type", "parent", "child", "element", "parts")
+    __slots__ = ("name", "type", "parent", "child", "element", "_parts", "tags", "texts")
 
     def __init__(self, name: str | None, type: str | None, parent: str | None,
-                 child: str | None, element: etree._Element, parts: dict):
+                 child: str | None, element: etree._Element, parts: dict | None,
+                 tags: frozenset | None = None, texts: tuple | None = None):
         self.name = name
         self.type = type
         self.parent = parent
         self.child = child
         self.element = element
-        self.parts = parts  # name -> the first child element of that name
+        self._parts = parts  # None: not indexed yet (read by its skeleton: nothing to note)
+        # Read by its skeleton (joint_skeletons.py): the names of its parts, and the texts
+        # joint_skeletons.TEXTS names (None where absent); else None.
+        self.tags = tags
+        self.texts = texts
+
+    @property
+    def parts(self) -> dict:
+        """Name -> the first child element of that name."""
+        if self._parts is None:
+            self._parts = _index(self.element, JOINT, Anomalies())
+        return self._parts
 
     @property
     def line(self) -> int:
@@ -141,11 +159,24 @@ def read_robot(root) -> Robot:
     if not ROBOT.attrs_ok(root.keys()):
         notes.attributes.append(root)
     links, joints = robot.links, robot.joints
+    skeletons = None
+    if len(root) >= SKELETONS_FROM:
+        # Imported here: a small robot's reading (most runs) does without the module.
+        from .joint_skeletons import JointSkeletons
+
+        skeletons = JointSkeletons(_quiet_parts)
     for top in root:
         tag = top.tag
         if tag == "link":
             links.append(Link(top.get("name"), top))
         elif tag == "joint":
+            if skeletons is not None and not skeletons.open:
+                skeletons = None
+            read = skeletons.read(top) if skeletons is not None else None
+            if read is not None:
+                name, kind, parent, child, tags, texts = read
+                joints.append(Joint(name, kind, parent, child, top, None, tags, texts))
+                continue
             if not JOINT.attrs_ok(top.keys()):
                 notes.attributes.append(top)
             parts = _index(top, JOINT, notes)
@@ -160,6 +191,15 @@ def read_robot(root) -> Robot:
         elif tag.__class__ is str:
             robot.others.append(top)
     return robot
+
+
+def _quiet_parts(joint) -> frozenset | None:
+    """The names of the parts of the ``<joint>`` ``joint`` if reading it notes nothing."""
+    if not JOINT.attrs_ok(joint.keys()):
+        return None
+    notes = Anomalies()
+    parts = _index(joint, JOINT, notes)
+    return None if notes.unknown or notes.attributes or notes.repeats else frozenset(parts)
 
 
 def _index(element, spec, notes: Anomalies) -> dict:

@@ -12,6 +12,7 @@ reported, so a test cannot pass by both ways finding nothing.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -19,7 +20,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from lxml import etree
 
-from mobile_car.check import checker, link_bodies
+from mobile_car.check import checker, joint_skeletons, link_bodies, urdf_reader
 from mobile_car.check import context as check_context
 from mobile_car.check import joints as check_joints
 from mobile_car.packages.search import PackageSearch
@@ -80,22 +81,47 @@ ROBOT = b"""<?xml version="1.0"?>
 """
 
 
-def _check(data: bytes, quick: bool, monkeypatch, base: Path = BASE) -> list[tuple]:
-    """Every diagnostic of ``data`` as (rule, line, message), with or without shortcuts."""
+def _check(data: bytes, quick: bool, monkeypatch, base: Path = BASE,
+           large: bool = False) -> list[tuple]:
+    """Every diagnostic of ``data`` as (rule, line, message), with or without shortcuts;
+    with them, links are proved plain both once per skeleton (link_skeletons.py, on
+    however few links, later ones given the first one's elements as twins; joints read
+    by theirs, joint_skeletons.py) and link by link, and must be found alike, the
+    robot's size too (the numbers each way read).
+    ``large``: the rest pose worked out as for a large robot (rest_pose_arrays.py)."""
+    with monkeypatch.context() as patch:
+        if large:
+            patch.setattr(checker, "LARGE_ROBOT", 0)
+        return _check_each_way(data, quick, patch, base)
+
+
+def _check_each_way(data: bytes, quick: bool, monkeypatch, base: Path) -> list[tuple]:
+    if quick:
+        by_skeleton = _checked(data, base, monkeypatch, skeletons_from=0)
+        assert by_skeleton == _checked(data, base, monkeypatch, skeletons_from=10 ** 9)
+        return by_skeleton[0]
+    with monkeypatch.context() as patch:
+        patch.setattr(link_bodies, "plainly_clean", lambda *args: False)
+        patch.setattr(check_joints, "_plainly_sound", lambda *args: False)
+        full = checker._check_document
+
+        def never_quick(*args, quick_numbers):
+            return full(*args, quick_numbers=False)
+
+        patch.setattr(checker, "_check_document", never_quick)
+        return _checked(data, base, patch, skeletons_from=10 ** 9)[0]
+
+
+def _checked(data: bytes, base: Path, monkeypatch, skeletons_from: int) -> tuple:
+    """(every diagnostic as (rule, line, message), the robot's extents)."""
     with monkeypatch.context() as patch:
         patch.setattr(check_context, "_CLEAN", set())  # no verdicts from earlier tests
-        if not quick:
-            patch.setattr(link_bodies, "plainly_clean", lambda *args: False)
-            patch.setattr(check_joints, "_plainly_sound", lambda *args: False)
-            full = checker._check_document
-
-            def never_quick(*args, quick_numbers):
-                return full(*args, quick_numbers=False)
-
-            patch.setattr(checker, "_check_document", never_quick)
+        patch.setattr(link_bodies, "SKELETONS_FROM", skeletons_from)
+        patch.setattr(link_bodies, "TWINS_FROM", skeletons_from)
+        patch.setattr(urdf_reader, "SKELETONS_FROM", skeletons_from)
         result = checker.check_urdf_data(data, "robot.urdf", base=base,
                                          search=PackageSearch(origin=base / "robot.urdf"))
-    return [(d.rule, d.line, d.message) for d in result.diagnostics]
+    return [(d.rule, d.line, d.message) for d in result.diagnostics], result.extents
 
 
 def _mutated(change) -> bytes:
@@ -393,3 +419,227 @@ def test_the_check_corpus_is_reported_alike_either_way(case, monkeypatch):
     data = case.read_bytes()
     assert _check(data, True, monkeypatch, case.parent) == \
         _check(data, False, monkeypatch, case.parent)
+
+
+# Links written by one macro share a skeleton (link_skeletons.py): the first one's proof
+# holds for the others, whose values alone are read. A later link whose values are wrong
+# must be reported as the full checks report it.
+VALUE_CHANGES = ["mesh not found", "material never defined", "rgba above 1", "rgba below 0",
+                 "rgba not 4 numbers", "mass 0 on a moving link",
+                 "negative mass on a moving link", "inertia not positive definite",
+                 "triangle inequality broken", "zero box", "negative radius",
+                 "mesh scale 0", "xacro left in a value", "origin beyond 1e6 m",
+                 "rpy beyond 1e6 rad", "inertial origin beyond 1e6 m", "box beyond 1e6 m",
+                 "cylinder beyond 1e6 m", "mesh scale beyond 1e6", "mass beyond 1e6 kg",
+                 "inertia beyond 1e18"]
+MORE_VALUE_CHANGES = {
+    "escaped name never defined": _set(f"{UPPER}/visual[2]/material", "name", "a&b"),
+    # Serialised, the name is a&amp;b: what is defined is that text, not the name.
+    "name defined only as its escaped text": lambda root: [
+        root.insert(0, etree.fromstring('<material name="a&amp;amp;b"><color rgba="1 0 0 1"/>'
+                                        '</material>')),
+        _set(f"{UPPER}/visual[2]/material", "name", "a&b")(root)],
+    "newline inside a list": _set(f"{SHELL}/origin", "xyz", "0\n0 0.1"),
+    "quote inside a number": _set(f"{INERTIAL}/mass", "value", '1"5'),
+    "lists miscounted": MISCOUNTED["origin xyz short, rpy long"],
+}
+
+
+def _repeated(change=None, copies: int = 3, prepare=None) -> bytes:
+    """ROBOT (``prepare`` applied) with ``copies`` more links written as 'upper' is, before
+    it (each mass its own), on revolute joints; then ``change`` applied: 'upper' is the
+    last of its kind."""
+    root = etree.fromstring(ROBOT)
+    if prepare is not None:
+        prepare(root)
+    upper = root.find(UPPER)
+    for number in range(copies):
+        link = etree.fromstring(etree.tostring(upper))
+        link.set("name", f"upper_{number}")
+        link.find("inertial/mass").set("value", f"{1 + number / 10:g}")
+        upper.addprevious(link)
+        root.append(etree.fromstring(
+            f'<joint name="turn_{number}" type="revolute"><parent link="tool"/>'
+            f'<child link="upper_{number}"/><origin xyz="0 0 0.{number + 1}" rpy="0 0 0"/>'
+            f'<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" '
+            f'velocity="{number + 1}"/><dynamics damping="0.1"/></joint>'))
+    if change is not None:
+        change(root)
+    return etree.tostring(root)
+
+
+def _skeleton(link) -> str:
+    return re.sub(r'"[^"]*"', '""', etree.tostring(link, encoding="unicode", with_tail=False))
+
+
+@pytest.mark.parametrize("large", [False, True], ids=["rest pose", "rest pose arrays"])
+def test_links_that_share_a_skeleton_are_clean_and_read_once_each(large, monkeypatch):
+    data = _repeated()
+    root = etree.fromstring(data)
+    assert len({_skeleton(link) for link in root.iterfind("link[@name]")
+                if link.get("name").startswith("upper")}) == 1
+    assert len({etree.tostring(link) for link in root.iterfind("link")}) == 7  # no twins
+    assert _check(data, True, monkeypatch, large=large) == \
+        _check(data, False, monkeypatch, large=large) == []
+    from mobile_car.check.context import Reporter
+    from mobile_car.check.link_skeletons import Skeletons
+    from mobile_car.check.plain_links import plainly_clean
+
+    skeletons, report = Skeletons(), Reporter("robot.urdf")
+    for link in root.iterfind("link"):
+        if not link.get("name").startswith("upper"):
+            continue
+        text = etree.tostring(link, encoding="unicode", with_tail=False)
+        by_skeleton = skeletons.clean(link, text, report, {"grey"}, {"grey"}, True, False)
+        walked = plainly_clean(link, report, {"grey"}, {"grey"}, True, False)
+        assert by_skeleton is not None
+        assert by_skeleton.bodies == walked.bodies  # the same elements, the same numbers
+        assert by_skeleton.inertial == walked.inertial
+        assert by_skeleton.bodies[0][1] is walked.bodies[0][1]
+    assert len(skeletons._plans) == 1
+
+
+@pytest.mark.parametrize("large", [False, True], ids=["rest pose", "rest pose arrays"])
+@pytest.mark.parametrize("name", VALUE_CHANGES + sorted(MORE_VALUE_CHANGES))
+def test_a_link_whose_skeleton_was_proved_is_still_judged_by_its_values(name, large,
+                                                                         monkeypatch):
+    change = MORE_VALUE_CHANGES.get(name) or STRUCTURE[name]
+    data = _repeated(change)
+    root = etree.fromstring(data)
+    kept, changed = root.find("link[@name='upper_0']"), root.find(UPPER)
+    assert _skeleton(kept) == _skeleton(changed) or name == "quote inside a number"
+    quick = _check(data, True, monkeypatch, large=large)
+    assert [line for _rule, line, _message in quick
+            if line is not None and line >= changed.sourceline], \
+        f"{name}: nothing reported in the changed link"
+    assert quick == _check(data, False, monkeypatch, large=large)
+
+
+@pytest.mark.parametrize("place", sorted(name for name, (path, _attr)
+                                         in {**NUMBER_PLACES, **LIST_PLACES}.items()
+                                         if path.startswith(UPPER)))
+@pytest.mark.parametrize("text", ["1e400", "1_0", " 1", "nan", "0x1", "1 2", "1  2 3"],
+                         ids=repr)
+def test_an_odd_spelling_in_a_later_link_of_a_skeleton_is_read_as_urdfdom_reads_it(
+        place, text, monkeypatch):
+    data = _repeated(_set(*{**NUMBER_PLACES, **LIST_PLACES}[place], text))
+    assert _check(data, True, monkeypatch) == _check(data, False, monkeypatch)
+
+
+# Written unusually, the same skeleton notwithstanding: read link by link.
+UNUSUAL_REPEATS = {
+    "a quote in a comment": lambda root: root.find(UPPER).insert(
+        0, etree.Comment(' a "note" ')),
+    "a quote in a text": lambda root: setattr(root.find(f"{UPPER}/inertial"), "tail", ' " '),
+    "a name with an escaped character": lambda root: [
+        root.insert(0, etree.fromstring('<material name="a&amp;b"><color rgba="1 0 0 1"/>'
+                                        '</material>')),
+        _set(f"{UPPER}/visual[2]/material", "name", "a&b")(root)],
+    "a namespace declared in the link": lambda root: root.find(UPPER).append(
+        etree.fromstring('<visual xmlns:x="urn:x"><geometry><box size="1 1 1"/>'
+                         '</geometry></visual>')),
+}
+
+
+@pytest.mark.parametrize("name", sorted(UNUSUAL_REPEATS))
+def test_repeated_links_written_unusually_are_sound_either_way(name, monkeypatch):
+    data = _repeated(UNUSUAL_REPEATS[name])
+    assert _check(data, True, monkeypatch) == _check(data, False, monkeypatch)
+
+
+@pytest.mark.parametrize("odd", ["comment", "text"])
+def test_a_link_with_a_quote_outside_its_values_is_left_to_the_walk(odd):
+    """Its values cannot be told from its quotes: not read by skeleton at all, even where
+    (at its end) the quote would not shift them."""
+    from mobile_car.check.context import Reporter
+    from mobile_car.check.link_skeletons import Skeletons
+
+    def clean(link):
+        text = etree.tostring(link, encoding="unicode", with_tail=False)
+        return Skeletons().clean(link, text, Reporter("robot.urdf"), {"grey"}, {"grey"},
+                                 True, False)
+
+    upper = etree.fromstring(ROBOT).find(UPPER)
+    # Every xyz and rpy written: no value that is absent is read (from past the last).
+    upper.find("visual[2]").insert(0, etree.fromstring('<origin xyz="0 0 0"/>'))
+    for origin in upper.iter("origin"):
+        origin.set("rpy", origin.get("rpy", "0 0 0"))
+    assert clean(upper) is not None  # the control
+    if odd == "comment":
+        upper.append(etree.Comment(' "a note" '))
+    else:
+        upper[-1].tail = ' "a note" '
+    assert clean(upper) is None
+
+
+@pytest.mark.parametrize("large", [False, True], ids=["rest pose", "rest pose arrays"])
+def test_a_message_on_a_later_link_of_a_skeleton_names_its_own_line(large, monkeypatch):
+    """Sound but implausible (a mass no solid of its size has: E119, W213), the last link
+    of the skeleton is named at its own lines, not at the first link's, whose elements it
+    was given (its twin; not where a mesh is: its file's bounds are known by its own)."""
+    box = etree.fromstring('<box size="0.1 0.1 0.2"/>')
+    data = _repeated(_set(f"{INERTIAL}/mass", "value", "50000"), prepare=lambda root: (
+        root.find(f"{UPPER}/collision/geometry").replace(
+            root.find(f"{UPPER}/collision/geometry/mesh"), box)))
+    inertial = etree.fromstring(data).find(INERTIAL)
+    quick = _check(data, True, monkeypatch, large=large)
+    assert [(rule, line) for rule, line, _message in quick] == \
+        [("E119", inertial.find("mass").sourceline), ("W213", inertial.find("inertia").sourceline)]
+    assert quick == _check(data, False, monkeypatch, large=large)
+
+
+# Joints read by their skeleton (joint_skeletons.py): the last of three alike, changed.
+TURN = "joint[@name='turn_2']"
+JOINT_VALUE_CHANGES = {
+    "limit lower above upper": lambda root: root.find(f"{TURN}/limit").attrib.update(
+        {"lower": "2", "upper": "1"}),
+    "velocity unreadable": _set(f"{TURN}/limit", "velocity", "fast"),
+    "effort spelled with an underscore": _set(f"{TURN}/limit", "effort", "1_0"),
+    "zero axis": _set(f"{TURN}/axis", "xyz", "0 0 0"),
+    "axis unreadable": _set(f"{TURN}/axis", "xyz", "0 0"),
+    "origin beyond 1e6 m": _set(f"{TURN}/origin", "xyz", "1e300 0 0"),
+    "rpy unreadable": _set(f"{TURN}/origin", "rpy", "0 0 x"),
+    "rpy infinite": _set(f"{TURN}/origin", "rpy", "0 0 1e400"),
+    "dynamics unreadable": _set(f"{TURN}/dynamics", "damping", "a lot"),
+    "parent undefined": _set(f"{TURN}/parent", "link", "torso"),
+    "parent named with an escape": _set(f"{TURN}/parent", "link", "tool&"),
+    "child empty": _set(f"{TURN}/child", "link", ""),
+    "unknown type": _set(TURN, "type", "ball"),
+    "name taken": _set(TURN, "name", "turn_0"),
+}
+
+
+@pytest.mark.parametrize("large", [False, True], ids=["rest pose", "rest pose arrays"])
+@pytest.mark.parametrize("name", sorted(JOINT_VALUE_CHANGES))
+def test_a_joint_read_by_its_skeleton_is_judged_by_its_values(name, large, monkeypatch):
+    data = _repeated(JOINT_VALUE_CHANGES[name])
+    root = etree.fromstring(data)
+    kept, changed = root.find("joint[@name='turn_0']"), root.findall("joint")[-1]
+    assert _skeleton(kept) == _skeleton(changed)
+    quick = _check(data, True, monkeypatch, large=large)
+    assert [line for _rule, line, _message in quick
+            if line is not None and line >= changed.sourceline], \
+        f"{name}: nothing reported at the changed joint"
+    assert quick == _check(data, False, monkeypatch, large=large)
+
+
+def test_joints_read_by_their_skeleton_hold_what_lxml_reads(monkeypatch):
+    """Names, parts and the texts the quick proof reads, as the element-by-element
+    reading has them; a joint written otherwise (a quote in a comment) is read so."""
+    root = etree.fromstring(_repeated(lambda root: root.find(
+        "joint[@name='turn_1']").append(etree.Comment(' "a note" '))))
+    monkeypatch.setattr(urdf_reader, "SKELETONS_FROM", 0)
+    by_skeleton = urdf_reader.read_robot(root).joints
+    monkeypatch.setattr(urdf_reader, "SKELETONS_FROM", 10 ** 9)
+    by_element = urdf_reader.read_robot(root).joints
+    assert [joint.tags is not None for joint in by_skeleton] == \
+        [True, True, True, True, False, True]  # shoulder, wrist, mount, turn_0, 1, 2
+    for joint, control in zip(by_skeleton, by_element, strict=True):
+        assert (joint.name, joint.type, joint.parent, joint.child) == \
+            (control.name, control.type, control.parent, control.child)
+        assert joint.parts == control.parts
+        if joint.tags is not None:
+            assert joint.tags == set(control.parts)
+            assert joint.texts == tuple(None if part not in control.parts else
+                                        control.parts[part].get(attr)
+                                        for part, attr in joint_skeletons.TEXTS)

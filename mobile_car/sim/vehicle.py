@@ -26,12 +26,14 @@ from .lint import link_mass
 # read it (swerve bases and Neobotix's MP-400 and MP-500 write ±1e16): sim simulates it
 # continuous (model.as_urdfdom_reads), so it is a wheel here too
 UNLIMITED = 1e6
+FIXED_TO_THE_WORLD = "fixed to the world"  # a NotAVehicle kind: nothing to drop
 HORIZONTAL = 0.5  # |z| of a wheel's axis in the root frame below which it can roll (30°)
 
 
 @dataclass(frozen=True)
 class NotAVehicle:
-    kind: str    # "no wheels", "one wheel", "nothing but its wheels to stand on"
+    kind: str    # "no wheels", "one wheel", "nothing but its wheels to stand on",
+    #              FIXED_TO_THE_WORLD
     detail: str  # this robot's joints or links
 
     def __str__(self) -> str:
@@ -43,6 +45,9 @@ def not_a_vehicle(robot) -> NotAVehicle | None:
     bare base_link) is not one; a car whose castor is set too high still is, so that drop
     fails it. Mass is not asked for here: a car that lost an <inertial> must fail (E305),
     not go unsimulated."""
+    fixed = anchored(robot)
+    if fixed is not None:
+        return NotAVehicle(FIXED_TO_THE_WORLD, fixed)
     colliding = {link.name for link in robot.links if link.collisions}
     level = level_turning((j.type, j.parent, j.child, j.parts.get("origin"), axis_of(j))
                           for j in robot.joints)
@@ -69,6 +74,19 @@ def turns_without_end(joint) -> bool:
     lower = parse_number(limit.get("lower") or "0")
     upper = parse_number(limit.get("upper") or "0")
     return None not in (lower, upper) and lower <= -UNLIMITED and upper >= UNLIMITED
+def anchored(robot) -> str | None:
+    """How the robot is fixed to the world, or None: its root is a link named ``world``,
+    which Gazebo welds to its world (and MoveIt and robot_state_publisher take for the
+    fixed frame): franka's panda with ``gazebo:=true``, an arm on its table. Such a robot
+    is not dropped: it stands where it is bolted."""
+    children = {j.child for j in robot.joints}
+    if "world" in children:
+        return None
+    held = [j for j in robot.joints if j.parent == "world"]
+    if not held:
+        return None
+    return ", ".join(f"joint {j.name} ({j.type}) holds {j.child} to link 'world'"
+                     for j in held[:3]) + (", ..." if len(held) > 3 else "")
 
 
 def lacks(colliding: set[str], wheels: set[str]) -> str | None:

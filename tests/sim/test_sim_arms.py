@@ -42,3 +42,58 @@ def test_the_arms_export_is_no_vehicle_in_its_manifest(run_mcar, tmp_path):
     assert result.returncode == 0, result.stderr
     manifest = json.loads((tmp_path / "out/mcar-export.json").read_text())
     assert manifest["vehicle"] is False and manifest["drive"] is None
+
+
+def reaching_arm(world: bool) -> str:
+    """A 2 kg base with a 5 kg arm reaching 0.6 m out at its zero pose: on a floor it tips
+    onto its hand (a UR arm at 0). With ``world``, its root is a link named world, which
+    Gazebo welds in place (franka's panda with gazebo:=true)."""
+    anchor = ('<link name="world"/><joint name="world_joint" type="fixed"><parent '
+              'link="world"/><child link="base_link"/></joint>') if world else ""
+    return f"""<?xml version="1.0"?>
+<robot name="reach">{anchor}
+  <link name="base_link">
+    <collision><origin xyz="0 0 0.05"/><geometry><cylinder radius="0.06" length="0.1"/>
+    </geometry></collision>
+    <inertial><origin xyz="0 0 0.05"/><mass value="2"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+  </link>
+  <joint name="shoulder" type="revolute">
+    <parent link="base_link"/><child link="arm"/><origin xyz="0 0 0.1"/>
+    <axis xyz="0 1 0"/><limit lower="-1.5" upper="1.5" effort="100" velocity="1"/>
+  </joint>
+  <link name="arm">
+    <collision><origin xyz="0.35 0 0" rpy="0 1.5708 0"/><geometry>
+      <cylinder radius="0.03" length="0.6"/></geometry></collision>
+    <inertial><origin xyz="0.35 0 0"/><mass value="5"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.15" iyz="0" izz="0.15"/></inertial>
+  </link>
+</robot>
+"""
+
+
+def test_a_robot_fixed_to_the_world_is_not_dropped_nor_tilted(cli, run_mcar, tmp_path):
+    # Its drop used to fail: "pitch 1.07 deg (bound <= 1.00 deg)" (franka's panda), and
+    # specs judged slopes it cannot meet: it is bolted down.
+    robot = tmp_path / "reach.urdf"
+    robot.write_text(reaching_arm(world=True))
+    code, stderr, entry = sim(cli, robot)
+    why = ("not a vehicle: fixed to the world (joint world_joint (fixed) holds base_link to "
+           "link 'world')")
+    assert code == 0, stderr
+    assert entry["why_no_drive"] == why
+    assert [(s["name"], s["status"], s["message"]) for s in entry["scenarios"]] == [
+        (name, "skipped", why) for name in ("drop", "drive", "spin")]
+    result = run_mcar("specs", "reach.urdf", "--no-proof", "--format", "json", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert (f"reach.urdf: no statics: fixed to the world (joint world_joint (fixed) holds "
+            "base_link to link 'world')") in result.stderr
+    assert "W505" not in result.stderr
+
+
+def test_control_the_same_arm_on_the_floor_tips_and_fails_its_drop(cli, tmp_path):
+    robot = tmp_path / "reach.urdf"
+    robot.write_text(reaching_arm(world=False))
+    code, stderr, entry = sim(cli, robot)
+    assert code == 1
+    assert entry["scenarios"][0]["status"] == "failed"

@@ -86,7 +86,7 @@ def test_a_robot_fixed_to_the_world_is_not_dropped_nor_tilted(cli, run_mcar, tmp
         (name, "skipped", why) for name in ("drop", "drive", "spin")]
     result = run_mcar("specs", "reach.urdf", "--no-proof", "--format", "json", cwd=tmp_path)
     assert result.returncode == 0, result.stderr
-    assert (f"reach.urdf: no statics: fixed to the world (joint world_joint (fixed) holds "
+    assert ("reach.urdf: no statics: fixed to the world (joint world_joint (fixed) holds "
             "base_link to link 'world')") in result.stderr
     assert "W505" not in result.stderr
 

@@ -9,6 +9,7 @@ import click
 
 from mobile_car.atomic import atomic_write
 from mobile_car.errors import EXIT_OK, McarError, UsageError, combine_exit_codes
+from mobile_car.expand.xacro_warnings import merged_warnings
 from mobile_car.load.default_outputs import default_folder
 from mobile_car.load.inputs import display_path
 from mobile_car.names import shown
@@ -126,8 +127,8 @@ def _build_one(inp, options, stdin, output: str | None, deps: str | None,
     from mobile_car.load.robot import load_robot
 
     loaded = load_robot(inp, options, stdin)
-    for warning in loaded.warnings:
-        print_warning(inp.label, warning)
+    for warning in merged_warnings(loaded.warnings):
+        print_warning(inp.label, f"xacro: {warning}")
     writes = deps is None or (output is not None and output != "-")
     written = _output(loaded, output_format) if writes else b""
     if output is not None and output != "-":
@@ -204,8 +205,8 @@ def _build_into(inp, target: Path, options, deps: str | None, output_format: str
     except McarError as error:
         report(error)
         return error.exit_code
-    for warning in loaded.warnings:
-        print_warning(inp.label, warning)
+    for warning in merged_warnings(loaded.warnings):
+        print_warning(inp.label, f"xacro: {warning}")
     if target is not None:
         refuse_overwriting(target, loaded.deps)
         atomic_write(target, written)

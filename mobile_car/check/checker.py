@@ -12,6 +12,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import BuildError, McarError
+from ..expand.xacro_warnings import merged_warnings
 from ..load.inputs import RobotInput
 from ..load.robot import LoadedRobot, LoadOptions, load_robot
 from ..packages.search import PackageSearch
@@ -164,25 +165,9 @@ def check_loaded(loaded: LoadedRobot, structure_only: bool = False) -> CheckResu
     result.loaded = loaded
     if loaded.warnings:
         warnings = [Diagnostic("W220", loaded.label, None, f"xacro: {text}")
-                    for text in _xacro_warnings(loaded.warnings)]
+                    for text in merged_warnings(loaded.warnings)]
         result.diagnostics = sorted(result.diagnostics + warnings, key=Diagnostic.sort_key)
     return result
-
-
-def _xacro_warnings(lines: list[str]) -> list[str]:
-    """xacro's warning lines, each with its "when processing file: ..." context line."""
-    merged: list[str] = []
-    for line in lines:
-        text = line.strip()
-        if merged and text.startswith(_CONTEXT_PREFIXES):
-            merged[-1] += f" ({text})"
-        else:
-            merged.append(text.removeprefix("warning:").strip())
-    return merged
-
-
-_CONTEXT_PREFIXES = ("when processing file", "when instantiating", "included from",
-                     "instantiated from", "in file")
 
 
 def as_json(result: CheckResult) -> dict:

@@ -40,7 +40,7 @@ from pathlib import Path
 from lxml import etree
 
 from ..check.mujoco_inertia import TOKEN_MASS, bare_massless, make_physical, refusals
-from ..check.urdf_model import parse_number
+from ..check.urdf_model import parse_number, parse_numbers
 from ..errors import McarError
 from . import ExportError
 from .assets import Assets
@@ -307,16 +307,32 @@ def _mecanum_tyres(spec, drive, sources) -> list[str]:
 
 def is_vehicle(root) -> bool:
     """Whether the URDF ``root`` is a vehicle as sim decides it before any engine runs: two
-    or more continuous joints moving collision geometry, and another link with some to
-    stand on."""
-    from ..sim.vehicle import lacks
+    or more continuous joints about a level axis moving collision geometry, and another
+    link with some to stand on."""
+    from ..sim.vehicle import lacks, level_turning
 
     colliding = {link.get("name") for link in root.iterchildren("link")
                  if link.find("collision") is not None}
-    wheels = {child.get("link") for joint in root.iterchildren("joint")
-              if joint.get("type") == "continuous"
-              for child in joint.iterchildren("child") if child.get("link") in colliding}
+    joints = [(joint.get("type"), _link_of(joint, "parent"), _link_of(joint, "child"),
+               joint.find("origin"), _axis(joint)) for joint in root.iterchildren("joint")]
+    level = level_turning(joints)
+    wheels = {child for kind, _parent, child, _origin, _axis_xyz in joints
+              if kind == "continuous" and child in colliding and child in level}
     return lacks(colliding, wheels) is None
+
+
+def _link_of(joint, tag: str) -> str | None:
+    element = joint.find(tag)
+    return element.get("link") if element is not None else None
+
+
+def _axis(joint) -> tuple | None:
+    """The joint's axis as urdfdom reads it (1 0 0 without an <axis>, 0 0 0 unreadable)."""
+    axis = joint.find("axis")
+    if axis is None:
+        return (1.0, 0.0, 0.0)
+    value = parse_numbers(axis.get("xyz"), 3)
+    return value if isinstance(value, tuple) else (0.0, 0.0, 0.0)
 
 
 def parse_robot(urdf: bytes, label: str):

@@ -86,7 +86,7 @@ def gazebo_view(result, report: GazeboReport) -> GazeboView:
     said = f"libsdformat {report.sdformat}"
     hinted = set()  # a known bug is named once, at the first error it may explain
     for message in dict.fromkeys(report.errors):
-        hint = known_bug(report, message)
+        hint = known_bug(report, message, robot.element)
         diagnostics.add("E151", robot.element, f"{said}: {_first_line(message.text)} "
                                                f"({message.where}){'' if hint in hinted else hint}")
         hinted.add(hint)

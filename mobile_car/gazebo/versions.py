@@ -5,6 +5,9 @@ libsdformat").
 The helper reports the version it was built with (sdformat 12 has no call that tells it at
 run time). A bug is matched by release and by the error codes it returns, never by what
 the robot is: a matching error is still an error, since that release is what Gazebo runs.
+It is named only where the URDF holds what the bug needs (``needs``, a path below
+``<robot>``): the same codes also follow from an empty model (ABB's and KUKA's arms
+declare no mass: Gazebo leaves out every link, and the frame graph has nothing to hang on).
 """
 
 from __future__ import annotations
@@ -20,6 +23,7 @@ class KnownBug:
     fixed_in: tuple[int, int, int]
     codes: frozenset[str]  # the helper's "where" of the errors it gives ("error code 19")
     what: str
+    needs: str  # an ElementPath below <robot> that must find something for the bug to bite
 
 
 KNOWN_BUGS = (
@@ -28,7 +32,7 @@ KNOWN_BUGS = (
     KnownBug((12, 6, 0), frozenset(f"error code {code}" for code in (19, 20, 21, 22, 24, 25,
                                                                      27)),
              "an SDF <joint> in a <gazebo> block whose parent or child is lumped away by a "
-             "fixed joint keeps the lumped link's name"),
+             "fixed joint keeps the lumped link's name", "gazebo//joint"),
 )
 
 _VERSION = re.compile(r"(\d+)\.(\d+)\.(\d+)")
@@ -41,14 +45,15 @@ def release(version: str) -> tuple[int, int, int] | None:
     return tuple(int(part) for part in match.groups()) if match else None
 
 
-def known_bug(report: GazeboReport, message: Message) -> str:
-    """"" or the words that say this error of ``report`` may be a known bug of its
-    libsdformat, fixed in a later release."""
+def known_bug(report: GazeboReport, message: Message, robot) -> str:
+    """"" or the words that say this error of ``report`` on the URDF whose ``<robot>`` is
+    ``robot`` may be a known bug of its libsdformat, fixed in a later release."""
     found = release(report.sdformat)
     if found is None:
         return ""
     for bug in KNOWN_BUGS:
-        if found < bug.fixed_in and message.where in bug.codes:
+        if found < bug.fixed_in and message.where in bug.codes \
+                and robot.find(bug.needs) is not None:
             fixed = ".".join(map(str, bug.fixed_in))
             return (f"; maybe a bug of libsdformat before {fixed}: {bug.what} "
                     "(docs/gazebo.md)")

@@ -59,11 +59,11 @@ from .mecanum import (
     is_roller,
     mecanum_drive,
 )
+from .vehicle import HORIZONTAL  # what a wheel's axis is: the test of a vehicle too
 
 UPRIGHT = 0.9       # |z| of an axis in the root frame above which a hinge steers (or swivels)
 SIDE_EPSILON = 1e-6  # m: a wheel closer than this to the centre line is on neither side
 ACKERMANN_X_TOLERANCE = 0.05  # of the wheelbase: the steering pivots stand side by side
-HORIZONTAL = 0.5     # |z| of a wheel's axis in the root frame below which it can roll (30°)
 FLOOR_TOLERANCE = 0.003  # m: a wheel's tyre this close to the robot's lowest point touches
 # A declared virtual joint stands for the axle nearest its x: the wheels within this share
 # of a wheel's radius of the nearest (steer_bot's share its axle, Hunter 2's is 0.14 m off).

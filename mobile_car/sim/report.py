@@ -21,7 +21,7 @@ from .scenarios import (
     show_bound,
     show_value,
 )
-from .vehicle import NotAVehicle, not_a_vehicle, unsimulable
+from .vehicle import FIXED_TO_THE_WORLD, NotAVehicle, not_a_vehicle, unsimulable
 
 
 @dataclass
@@ -77,6 +77,11 @@ def simulate(checked, names=None, left=None, right=None,
     if only_if_drives and why_not:
         report.simulated, report.not_a_vehicle = False, why_not
         report.why_no_drive = str(why_not)
+        return report
+    if why_not is not None and why_not.kind == FIXED_TO_THE_WORLD:
+        report.why_no_drive, report.not_a_vehicle = str(why_not), why_not
+        report.scenarios = [ScenarioResult(name, skipped=report.why_no_drive)
+                            for name in (names or ("drop", "drive", "spin"))]
         return report
     problems = unsimulable(checked.robot)
     if problems:
@@ -178,7 +183,8 @@ def text_table(report: SimReport) -> list[str]:
     if report.drive:
         lines += _drive_lines(report.drive)
     elif report.why_no_drive:
-        lines.append(f"  {report.why_no_drive}: drop only")
+        fixed = report.not_a_vehicle and report.not_a_vehicle.kind == FIXED_TO_THE_WORLD
+        lines.append(f"  {report.why_no_drive}{'' if fixed else ': drop only'}")
     if report.held:
         lines.append(f"  held still at 0, not simulated: {', '.join(report.held)}")
     if report.lint_errors or report.error:

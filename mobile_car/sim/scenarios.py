@@ -112,6 +112,7 @@ def _what_touches(sim: SimModel, run: Run, result: ScenarioResult) -> None:
         if gap is not None and gap <= BOUNCE_HEIGHT * wheel.radius:
             touching.add(wheel.body_id)
     if sim.drive is None:
+        _tipped(sim, touching, result)
         return
     supports = {w.link: w.body_id for w in wheels} | dict(sim.ground_parts)
     missing = [w.link for w in sim.drive.driven if w.body_id not in touching]
@@ -132,6 +133,20 @@ def _what_touches(sim: SimModel, run: Run, result: ScenarioResult) -> None:
                                "above it at rest (its clearance)")
     if gaps:
         result.measured["clearance_m"] = max(gaps.values())
+
+
+def _tipped(sim: SimModel, touching: set[int], result: ScenarioResult) -> None:
+    """Why a robot without a drive did not come to rest level where its geometry rests at
+    0: it tipped onto parts that do not reach the floor in that pose (a UR arm held out at
+    0 has its centre of mass past its base's edge and lies down on its wrist). Said only
+    where the figures already fail it."""
+    if all(figure.ok for figure in result.figures):
+        return
+    onto = sorted(sim.model.body(b).name for b in touching - set(sim.ground_parts.values()))
+    if onto:
+        result.problems.append(f"tipped over onto {', '.join(onto)}, which the floor does "
+                               "not reach as it rests at 0 (a robot bolted down is fixed "
+                               "to a root link named world)")
 
 
 def _spring_travel(sim: SimModel, run: Run, result: ScenarioResult) -> None:

@@ -1,8 +1,11 @@
 """Whether a robot is a vehicle, read from its checked tree before any engine is started:
 what ``mcar ci`` and ``mcar sim`` of a package decide to simulate.
 
-A vehicle has wheels (continuous joints moving collision geometry, two or more) and
-another link with collision geometry to stand on (a castor, a body). Anything else is
+A vehicle has wheels (continuous joints about a level axis moving collision geometry, two
+or more) and another link with collision geometry to stand on (a castor, a body). An
+upright continuous joint is a swivel (a castor's, a turntable's, an arm's: Kinova Gen3's
+joints 1, 3, 5 and 7 turn without end about upright axes), never a wheel, as sim's drive
+finder (:mod:`.drives`) already judges it. Anything else is
 "not a vehicle", in one of a few kinds (no wheels; wheels and nothing to stand on; one
 wheel), each with the detail of this robot; ci prints one line per kind. A vehicle is
 simulated even when sim then finds no drive kind it can drive (mecanum, wheels on one
@@ -12,20 +15,25 @@ side): that is a failure of ci, not a skip, unless the package opts the robot ou
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
-from ..check.urdf_model import parse_number
+from ..check.rest_pose import IDENTITY, compose, frame
+from ..check.urdf_model import axis_of, parse_number
 from .lint import link_mass
 
 # rad: a revolute joint limited to ± this or more turns without end, as urdfdom and KDL
 # read it (swerve bases and Neobotix's MP-400 and MP-500 write ±1e16): sim simulates it
 # continuous (model.as_urdfdom_reads), so it is a wheel here too
 UNLIMITED = 1e6
+FIXED_TO_THE_WORLD = "fixed to the world"  # a NotAVehicle kind: nothing to drop
+HORIZONTAL = 0.5  # |z| of a wheel's axis in the root frame below which it can roll (30°)
 
 
 @dataclass(frozen=True)
 class NotAVehicle:
-    kind: str    # "no wheels", "one wheel", "nothing but its wheels to stand on"
+    kind: str    # "no wheels", "one wheel", "nothing but its wheels to stand on",
+    #              FIXED_TO_THE_WORLD
     detail: str  # this robot's joints or links
 
     def __str__(self) -> str:
@@ -37,11 +45,17 @@ def not_a_vehicle(robot) -> NotAVehicle | None:
     bare base_link) is not one; a car whose castor is set too high still is, so that drop
     fails it. Mass is not asked for here: a car that lost an <inertial> must fail (E305),
     not go unsimulated."""
+    fixed = anchored(robot)
+    if fixed is not None:
+        return NotAVehicle(FIXED_TO_THE_WORLD, fixed)
     colliding = {link.name for link in robot.links if link.collisions}
-    wheels = {j.child for j in robot.joints if turns_without_end(j) and j.child in colliding}
+    level = level_turning((j.type, j.parent, j.child, j.parts.get("origin"), axis_of(j))
+                          for j in robot.joints)
+    wheels = {j.child for j in robot.joints if turns_without_end(j) and j.child in colliding
+              and j.child in level}
     kind = lacks(colliding, wheels)
     if kind == "no wheels":
-        return NotAVehicle(kind, _no_wheels(robot))
+        return NotAVehicle(kind, _no_wheels(robot, colliding, level))
     if kind == "one wheel":
         return NotAVehicle(kind, f"{', '.join(sorted(wheels))} on a continuous joint")
     if kind is not None:
@@ -60,6 +74,19 @@ def turns_without_end(joint) -> bool:
     lower = parse_number(limit.get("lower") or "0")
     upper = parse_number(limit.get("upper") or "0")
     return None not in (lower, upper) and lower <= -UNLIMITED and upper >= UNLIMITED
+def anchored(robot) -> str | None:
+    """How the robot is fixed to the world, or None: its root is a link named ``world``,
+    which Gazebo welds to its world (and MoveIt and robot_state_publisher take for the
+    fixed frame): franka's panda with ``gazebo:=true``, an arm on its table. Such a robot
+    is not dropped: it stands where it is bolted."""
+    children = {j.child for j in robot.joints}
+    if "world" in children:
+        return None
+    held = [j for j in robot.joints if j.parent == "world"]
+    if not held:
+        return None
+    return ", ".join(f"joint {j.name} ({j.type}) holds {j.child} to link 'world'"
+                     for j in held[:3]) + (", ..." if len(held) > 3 else "")
 
 
 def lacks(colliding: set[str], wheels: set[str]) -> str | None:
@@ -75,10 +102,51 @@ def lacks(colliding: set[str], wheels: set[str]) -> str | None:
     return None
 
 
-def _no_wheels(robot) -> str:
-    continuous = [j.name for j in robot.joints if j.type == "continuous"]
+def level_turning(joints) -> set[str]:
+    """The children of the joints whose axis lies within HORIZONTAL of level in the root
+    frame, every joint at 0: ``joints`` are (type, parent, child, its ``<origin>`` element
+    or None, its axis or None: fixed and floating joints have none). An origin that cannot
+    be read counts as none."""
+    joints = list(joints)
+    above = {child: (parent, origin) for _kind, parent, child, origin, _axis in joints}
+    rotations: dict[str, tuple] = {}
+
+    def rotation(link: str) -> tuple:
+        chain = []
+        while link in above and link not in rotations and len(chain) <= len(above):
+            chain.append(link)
+            link = above[link][0]
+        pose = rotations.get(link, IDENTITY)
+        for name in reversed(chain):
+            pose = compose(pose, frame(above[name][1]) or IDENTITY)
+            rotations[name] = pose
+        return pose[0]
+
+    level = set()
+    for _kind, _parent, child, _origin, axis in joints:
+        if not axis:
+            continue
+        norm = math.sqrt(sum(a * a for a in axis))
+        if norm == 0 or not math.isfinite(norm):
+            continue
+        r = rotation(child)  # the child's frame is the joint's: the axis is given in it
+        up = (r[6] * axis[0] + r[7] * axis[1] + r[8] * axis[2]) / norm
+        if abs(up) < HORIZONTAL:
+            level.add(child)
+    return level
+
+
+def _no_wheels(robot, colliding: set[str], level: set[str]) -> str:
+    endless = [j for j in robot.joints if turns_without_end(j)]
+    upright = [j.name for j in endless if j.child in colliding and j.child not in level]
+    if upright:
+        if len(upright) == 1:
+            return f"continuous joint {upright[0]} turns about an upright axis (a swivel)"
+        return f"continuous joints {', '.join(upright)} turn about upright axes (swivels)"
+    continuous = [j for j in robot.joints if j.type == "continuous"]
     if continuous:
-        return (f"continuous joints {', '.join(continuous)} move no collision geometry")
+        names = ", ".join(j.name for j in continuous)
+        return f"continuous joints {names} move no collision geometry"
     joints = ", ".join(f"{j.name} ({j.type})" for j in robot.joints[:6])
     more = ", ..." if len(robot.joints) > 6 else ""
     return f"no continuous joint{': ' + joints + more if joints else ''}"

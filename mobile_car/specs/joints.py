@@ -62,6 +62,15 @@ def joints_section(checked, sim=None, proof: bool = True) -> Section:
     wheels = {w.joint for w in sim.drive.wheels} if sim is not None and sim.drive else set()
     springs = {s.joint: s for s in sim.springs} if sim is not None else {}
     judged = [j for j in checked.robot.joints if j.type in MOVING and j.name not in wheels]
+    declared = _declared_beyond(checked)
+    # joints beyond which only MuJoCo's token masses would hang
+    massless = [j.name for j in judged if declared.get(j.child, 0.0) <= 0]
+    if massless:
+        many = len(massless) > 1
+        found.notes.append(f"joint{'s' * many} {', '.join(massless)}: no link beyond "
+                           f"{'them' if many else 'it'} has mass (<inertial>): not judged "
+                           "(gravity asks nothing the description says)")
+        judged = [j for j in judged if j.name not in massless]
     if not judged:
         return found
     try:
@@ -137,6 +146,28 @@ def _sprung(found: Section, joint, spring, effort, unit: str, limit_at: str) -> 
         f" (its <limit effort> {effort:g} {unit} is {'under' if effort < carried else 'over'} that)"
     found.notes.append(f"joint {joint.name} is a suspension: a spring carries its "
                        f"{carried:.4g} {unit} at rest, not its effort{compared}")
+
+
+def _declared_beyond(checked) -> dict[str, float]:
+    """link -> the mass its ``<inertial>`` and those of every link below it declare, kg.
+    MuJoCo's model gives a moving link without mass a token gram
+    (:func:`~mobile_car.sim.model.jointed_model`): a load of token grams alone is no
+    figure of the robot, and no effort is under it (ABB's and Franka's kinematic
+    descriptions have no <inertial> at all)."""
+    from ..sim.lint import link_mass
+
+    own = {link.name: max(link_mass(link), 0.0) for link in checked.robot.links}
+    children = checked.tree.children
+    order, stack = [], [checked.tree.root]
+    while stack:
+        link = stack.pop()
+        order.append(link)
+        stack += [joint.child for joint in children.get(link, ())]
+    total: dict[str, float] = {}
+    for link in reversed(order):  # children before their parent
+        total[link] = own.get(link, 0.0) + sum(total.get(joint.child, 0.0)
+                                               for joint in children.get(link, ()))
+    return total
 
 
 def _mimics(joints) -> dict:

@@ -28,11 +28,15 @@ def statics_section(checked, sim, options: dict | None = None) -> Section:
     """The statics of a checked robot (a CheckResult) and sim's model of it at rest;
     ``options``: ``friction`` (the tyres' mu where the description gives none),
     ``proof`` (False: no MuJoCo runs)."""
+    from ..sim.vehicle import FIXED_TO_THE_WORLD, anchored
     from .support import stance
 
     options = options or {}
     if sim is None:  # (the body section's notes say why MuJoCo has no model of it)
         return Section("statics", notes=["no statics: MuJoCo has no model of the robot"])
+    fixed = anchored(checked.robot)
+    if fixed is not None:  # no slope tips or slides what is bolted down
+        return Section("statics", notes=[f"no statics: {FIXED_TO_THE_WORLD} ({fixed})"])
     found = stance(sim, sim.friction, options.get("friction"))
     result = Section("statics", notes=list(found.notes))
     statics = Statics(found, sim)

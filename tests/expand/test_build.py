@@ -287,3 +287,22 @@ def test_a_rebuilt_output_keeps_its_mode(run_mcar, tmp_path, arg_xacro):
     out.chmod(0o600)
     assert run_mcar("build", arg_xacro, "-o", out).returncode == 0
     assert out.stat().st_mode & 0o777 == 0o600
+
+
+def test_a_xacro_warning_is_one_line_as_check_says_it(run_mcar, tmp_path):
+    # Baxter's baxter.urdf.xacro gives its include children: build printed each warning
+    # as two lines, "FILE: warning: warning: Child elements of a <xacro:include> tag are
+    # ignored" and "FILE: warning: when processing file: FILE".
+    (tmp_path / "part.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="part"/></robot>\n')
+    (tmp_path / "robot.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="part.xacro"><origin xyz="0 0 0"/></xacro:include>\n'
+        '</robot>\n')
+    result = run_mcar("build", "robot.urdf.xacro", "-o", "robot.urdf", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert result.stderr == (
+        "robot.urdf.xacro: warning: xacro: Child elements of a <xacro:include> tag are "
+        "ignored (when processing file: robot.urdf.xacro)\n")
+    checked = run_mcar("check", "robot.urdf.xacro", cwd=tmp_path)
+    assert result.stderr.rstrip("\n") + " [W220]" in checked.stderr.splitlines()

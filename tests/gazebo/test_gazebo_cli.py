@@ -207,3 +207,27 @@ def test_the_helper_make_installs_beside_mcar_is_found_from_any_folder(run_mcar,
     assert result.returncode == 0, result.stderr
     assert "note: Gazebo simulates 3 links: 0.7056 kg, as in the URDF (libsdformat " \
         in result.stderr
+
+
+def test_an_empty_model_is_not_blamed_on_the_joint_frame_bug(cli, gazebo, tmp_path):
+    # ABB's and KUKA's arms declare no mass: Gazebo leaves out every link, and libsdformat
+    # 12.3.0 returns error code 24 of an empty frame graph too. Its hint named the bug of
+    # SDF <joint>s in <gazebo> blocks (fixed in 12.6.0), which these URDFs do not have.
+    robot = tmp_path / "bare_arm.urdf"
+    robot.write_text("""<?xml version="1.0"?>
+<robot name="bare_arm">
+  <link name="base_link"><visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>
+  </link>
+  <joint name="joint_1" type="revolute">
+    <parent link="base_link"/><child link="link_1"/><origin xyz="0 0 0.1"/>
+    <axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="0" velocity="1"/>
+  </joint>
+  <link name="link_1"><visual><geometry><box size="0.05 0.05 0.3"/></geometry></visual>
+  </link>
+</robot>
+""")
+    result = cli("check", "--gazebo", robot)
+    assert result.exit_code == 1
+    e151 = [line for line in result.stderr.splitlines() if line.endswith("[E151]")]
+    assert any("(error code 24) [E151]" in line for line in e151), e151
+    assert not [line for line in e151 if "maybe a bug" in line]

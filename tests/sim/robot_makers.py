@@ -234,6 +234,30 @@ def arm(links: int = 3) -> str:
     return "".join(parts)
 
 
+def swivel_arm() -> str:
+    """An arm whose first and third joints turn without end about upright axes, each link
+    with collision geometry (Kinova Gen3's joints 1, 3, 5 and 7 are continuous): no wheels."""
+    parts = ['<?xml version="1.0"?>\n<robot name="swivel_arm">', _body(5.0, (0.2, 0.2, 0.1), 0.0)]
+    parent = "base_link"
+    for number, (kind, axis) in enumerate((("continuous", "0 0 1"), ("revolute", "0 1 0"),
+                                           ("continuous", "0 0 1")), start=1):
+        parts.append(f"""
+  <joint name="joint_{number}" type="{kind}">
+    <parent link="{parent}"/><child link="link_{number}"/>
+    <origin xyz="0 0 {0.1 if number == 1 else 0.3}"/><axis xyz="{axis}"/>
+    <limit lower="-1.5" upper="1.5" effort="10" velocity="1"/>
+  </joint>
+  <link name="link_{number}">
+    <collision><origin xyz="0 0 0.15"/><geometry><cylinder radius="0.03" length="0.3"/>
+    </geometry></collision>
+    <inertial><origin xyz="0 0 0.15"/><mass value="0.5"/>{box_inertia(0.5, 0.05, 0.05, 0.3)}
+    </inertial>
+  </link>""")
+        parent = f"link_{number}"
+    parts.append("\n</robot>\n")
+    return "".join(parts)
+
+
 def heavy_wheels(wheel_mass: float = 1000.0) -> str:
     """two_wheeler() whose wheels weigh ``wheel_mass`` kg each, their inertia scaled with
     it (a TurtleBot3 burger's 28 g wheel typed as 1000 kg: every tensor stays physical)."""

@@ -226,3 +226,27 @@ def test_without_proofs_no_joint_is_held_in_mujoco(tmp_path):
     assert [(f.key, f.value) for f in bare.figures] == [(f.key, f.value) for f in proven.figures]
     assert proven.figure("joints.lift_joint.gravity").proof is not None
     assert all(f.proof is None for f in bare.figures)
+
+
+def test_a_joint_carrying_no_declared_mass_is_a_note_not_figures_nor_w501(tmp_path):
+    # ABB's and Franka's kinematic descriptions: no <inertial>, efforts of 0. MuJoCo's
+    # token gram on each massless moving link used to be judged: W501 "0 N·m is under the
+    # 0.04574 N·m gravity asks", and proofs failing on micro-newton-metres.
+    import re
+
+    forearm_bare = re.sub(r'(<link name="forearm">)\s*<inertial>.*?</inertial>', r"\1",
+                          arm(elbow_effort=0.0), flags=re.S)
+    found = joints_section(checked(tmp_path, "arm.urdf", forearm_bare))
+    assert [f.key for f in found.figures] == ["joints.shoulder.gravity",
+                                              "joints.shoulder.effort"]
+    assert found.figure("joints.shoulder.gravity").proof.agrees
+    assert not found.diagnostics
+    assert ("joint elbow: no link beyond it has mass (<inertial>): not judged (gravity asks "
+            "nothing the description says)") in found.notes
+    bare = re.sub(r"<inertial>.*?</inertial>", "", arm(effort=0.0, elbow_effort=0.0),
+                  flags=re.S)
+    found = joints_section(checked(tmp_path, "bare.urdf", bare))
+    assert (found.figures, found.diagnostics) == ([], [])
+    assert found.notes == ["joints shoulder, elbow: no link beyond them has mass "
+                           "(<inertial>): not judged (gravity asks nothing the description "
+                           "says)"]

@@ -364,3 +364,51 @@ def test_sectors_agree_within_one_sample_and_across_the_ends_of_a_full_turn():
     first, last = [True] + [False] * 5, [False] * 5 + [True]
     assert within_one_sample(first, last, around=True)
     assert not within_one_sample(first, last)
+
+
+BAXTER_ARM = [  # (xyz, rpy) of each joint down Baxter's right arm to its hand camera's axis
+    ("0.024645 -0.219645 0.118588", "0 0 -0.7854"), ("0.055695 0 0.011038", "0 0 0"),
+    ("0.069 0 0.27035", "-1.57079632679 0 0"), ("0.102 0 0", "1.57079632679 0 1.57079632679"),
+    ("0.069 0 0.26242", "-1.57079632679 -1.57079632679 0"),
+    ("0.10359 0 0", "1.57079632679 0 1.57079632679"),
+    ("0.01 0 0.2707", "-1.57079632679 -1.57079632679 0"),
+    ("0.115975 0 0", "1.57079632679 0 1.57079632679"), ("0 0 0.11355", "0 0 0"),
+    ("0.03825 0.012 0.015355", "0 0 0")]
+
+
+def test_a_camera_looking_straight_down_agrees_with_mujoco_whatever_its_yaw_rounds_to(
+        tmp_path):
+    # Baxter's hand camera looks straight down: the yaw of its x axis is atan2 of two
+    # rounding errors (26.56° computed, 26.57° by MuJoCo), and the proof failed, exit 1,
+    # on frames that agree to 1e-12.
+    parts, parent = [], "base_link"
+    for number, (xyz, rpy) in enumerate(BAXTER_ARM):
+        child = "hand_camera_axis" if number == len(BAXTER_ARM) - 1 else f"arm_{number}"
+        parts.append(f'<joint name="j{number}" type="fixed"><parent link="{parent}"/>'
+                     f'<child link="{child}"/><origin xyz="{xyz}" rpy="{rpy}"/></joint>'
+                     f'<link name="{child}"/>')
+        parent = child
+    _, section = sensors_of(tmp_path / "baxter_arm.urdf", robot(lidar_link(), *parts))
+    pose = section.figure("sensors.hand_camera_axis.pose")
+    assert pose.value[:3] == pytest.approx([0.8168, -0.9948, 0.2827], abs=1e-4)
+    assert pose.proof.agrees, (pose.value, pose.proof.measured)
+
+
+def test_the_pose_proof_still_sees_a_thousandth_of_a_degree_about_any_axis():
+    import numpy as np
+
+    from mobile_car.specs.sensors import POSE_TOLERANCE, _turned
+
+    def turned(axis, degrees):
+        x, y, z = axis
+        c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
+        k = np.array([[0, -z, y], [z, 0, -x], [-y, x, 0]])
+        frame = np.eye(4)
+        frame[:3, :3] = np.eye(3) * c + s * k + (1 - c) * np.outer(axis, axis)
+        return frame
+
+    for axis in ((0, 0, 1), (1, 0, 0), (0, 1, 0)):
+        assert _turned(np.eye(4), turned(axis, 1e-3)) == pytest.approx(1e-3, rel=1e-6)
+        assert _turned(np.eye(4), turned(axis, 1e-3)) > POSE_TOLERANCE
+    assert _turned(turned((0, 0, 1), 30), turned((0, 0, 1), 30)) == 0
+    assert _turned(np.eye(4), turned((0, 0, 1), 180)) == pytest.approx(180)

@@ -73,9 +73,9 @@ def source_of(root: Path, name: str, inner: str) -> Path | None:
     if ".." in wanted:
         return None
     for kind, source, destination in install_rules(root, name):
-        if "$" in source or ".." in PurePosixPath(source).parts:
-            continue
         src = PurePosixPath(source)
+        if "$" in source or ".." in src.parts or src.is_absolute():
+            continue  # CMake would take it from outside the package: mcar does not
         if kind == "FILES":
             target = PurePosixPath(destination, src.name).parts
             found = root / source if wanted == target else None
@@ -86,6 +86,15 @@ def source_of(root: Path, name: str, inner: str) -> Path | None:
             top = tuple(p for p in into.parts if p != ".")
             found = root / src / Path(*wanted[len(top):]) \
                 if wanted[:len(top)] == top and len(wanted) > len(top) else None
-        if found is not None and found.is_file():
+        if found is not None and found.is_file() and _inside(found, root):
             return found
     return None
+
+
+def _inside(path: Path, root: Path) -> bool:
+    """Whether ``path``, every link followed, lies below ``root``: a folder or file the
+    rules name may be a link out of the package (to the CI runner's files)."""
+    try:
+        return path.resolve().is_relative_to(root.resolve())
+    except (OSError, RuntimeError):  # a loop of links
+        return False

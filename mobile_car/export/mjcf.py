@@ -184,6 +184,7 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
         lowest_points,
         resting_parts,
         rolling_contacts,
+        shared_unevenly,
     )
     from ..sim.servos import add_motors, fit_drive
     from .inertia import apply_fixes, fix_warnings, refuse, refused_links
@@ -226,9 +227,11 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
     springs = _springs(mj, spec, shape, data, prepared, drive, mass, points)
     if drive is not None:  # sim's castor friction and round tyres: what --verify judges
         rest = {s.joint: s.rest for s in springs}  # (the castors sim finds at that rest)
-        rolling_contacts(mj, spec, drive, resting_parts(
-            shape, _lowest_at(mj, shape, data, rest) if rest else points, drive.wheels,
-            data)[1], sources.friction)
+        _, parts, clearance = resting_parts(
+            shape, _lowest_at(mj, shape, data, rest) if rest else points, drive.wheels, data)
+        rolling_contacts(mj, spec, drive, parts, sources.friction)
+        if shared_unevenly(spec, clearance):  # as sim has it
+            spec.option.cone = mj.mjtCone.mjCONE_ELLIPTIC
     mecanum = _mecanum_tyres(spec, drive, sources)
     floor = options.floor if options.floor is not None else options.base == "floating"
     if floor:

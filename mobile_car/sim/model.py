@@ -15,6 +15,10 @@ The simulation-only choices (docs/sim.md) are made here and nowhere else:
   CASTOR_FRICTION: URDF has no rolling ball, descriptions model it as a fixed block
   (TurtleBot3's box), and a block dragged at MuJoCo's default friction of 1 steers the
   robot (burger: 2.4 degrees off course in 3 s);
+* contacts go through MuJoCo's pyramidal friction cone, but through its elliptic one
+  where a <mu1> is over PYRAMID_MU, or where more than three parts of different friction
+  rest on the floor together (:func:`shared_unevenly`: the pyramid gives a castor's
+  weight to the part of lower friction);
 * a link without ``<inertial>`` is massless, as URDF says (MuJoCo would invent a mass from
   its geometry; Gazebo leaves a moving one out: lint reports such links);
 * a drive joint's motor figures come from the description (:mod:`.motors`), a default
@@ -97,12 +101,36 @@ CASTOR_FRICTION = 0.01
 PYRAMID_MU = 1.0
 
 
+# Parts within this of the drive wheels' floor (m) rest on it together.
+RESTING_TIE = 1e-4
+
+
 def friction_cone(mj, friction: dict[str, float]):
     """MuJoCo's friction cone for a robot of these declared <mu1>s (link -> mu): its
     default pyramid, elliptic where one is over PYRAMID_MU."""
     if any(mu > PYRAMID_MU for mu in friction.values()):
         return mj.mjtCone.mjCONE_ELLIPTIC
     return mj.mjtCone.mjCONE_PYRAMIDAL
+
+
+def shared_unevenly(spec, clearance: dict[str, float]) -> bool:
+    """Whether more than three parts rest on the floor together (``clearance``: link ->
+    its lowest point above the wheels' floor, :func:`resting_parts`) at different friction.
+    Statics cannot say how four or more supports share the weight: the contacts'
+    compliance does. Under MuJoCo's pyramidal cone a contact pushes through the edges of
+    its friction pyramid, whose regularisation scales with mu squared: a castor of mu 0.01
+    is 2e4 times stiffer than a tyre of mu 1 and takes the whole weight. ros2_control_demos'
+    diffbot, on two wheels and two castor balls level with them, left each wheel 0.5% of
+    its weight: the tyres slipped at their friction and it drove 5% short (more the longer
+    it drove, none at 10 rad/s); MiR's wheels carried 0.0%, its four castors the rest.
+    Such a robot touches through the elliptic cone, whose normal is regularised apart from
+    the friction: diffbot's wheels then carry 24% each, as four equally stiff supports do."""
+    resting = {link for link, height in clearance.items() if height <= RESTING_TIE}
+    if len(resting) <= 3:
+        return False
+    frictions = {round(float(geom.friction[0]), 9) for geom in spec.geoms
+                 if geom.parent.name in resting and _touches(geom)}
+    return len(frictions) > 1
 
 
 def frictionless(mu: float) -> bool:
@@ -231,6 +259,8 @@ def build_model(urdf: bytes, label: str, base: Path, search, left=None, right=No
     rest = rest_pose(mj, shape, data, root_body_id(shape), supports, lowest_points)
     tyres = _tyre_cylinders(mj, shape, drive)
     rolling_contacts(mj, spec, drive, parts, friction)
+    if shared_unevenly(spec, clearance):
+        spec.option.cone = mj.mjtCone.mjCONE_ELLIPTIC
     add_rollers(mj, spec, shape, drive, sources)
     add_motors(mj, spec, drive, mass)
     steering = drive.steering if drive else []

@@ -18,7 +18,13 @@ their joints but leave the floor to the capsule.
 Friction: the grip is the wheel's tyre's, its ``<gazebo>`` ``mu`` with ``fdir1`` (ROSbot
 XL: 1), else its ``<mu1>`` where that is a tyre's (GRIP_MIN or more), else MuJoCo's
 default of 1: a ``<mu1>`` of 0.01 (linorobot2) is the rollers' free roll that Gazebo's
-planar_move needs, not a grip. Across it: the declared ``mu2``, else FREE_ROLL.
+planar_move needs, not a grip. Across it: the declared ``mu2``, else FREE_ROLL, and
+FREE_ROLL at least: a roller rolls, its resistance is a rolling one, as a castor ball's
+(mu 0.01), never Gazebo's ideal 0 (ROSbot, ROSbot XL, Ridgeback: ``mu2`` 0 with
+``fdir1``). MuJoCo's elliptic cone at MIN_MU across and 1 along (a ratio of 1e5) let a
+braked robot creep down along its grip at 0.08 mm/s on a slope of 8° (Ridgeback's tilt
+proof took it for a slide at 7.6-8.3°, its figure 35.2°; ROSbot's at 19-24°); at 0.01
+across it holds to its figure.
 """
 
 from __future__ import annotations
@@ -40,7 +46,7 @@ def tyre_grip(wheel, sources) -> tuple[float, float, str]:
     for declaration in sources.mecanum:
         if wheel.link in declaration.grip_mu:
             mu, mu2 = declaration.grip_mu[wheel.link]
-            return mu, max(mu2, MIN_MU), "<gazebo> mu, mu2 with fdir1"
+            return mu, max(mu2, FREE_ROLL), "<gazebo> mu, mu2 with fdir1"
     declared = sources.friction.get(wheel.link)
     if declared is not None and declared >= GRIP_MIN:
         return declared, FREE_ROLL, "<gazebo> mu1"

@@ -641,6 +641,26 @@ def castors_fore_and_aft(mass: float = 2.0, back_lift: float = 0.002) -> str:
     return "".join(parts)
 
 
+def level_castors(castor_mu: float | None = None) -> str:
+    """ros2_control_demos' diffbot: a 0.3 kg box on two 0.3 kg wheels of 15 mm turning at
+    most 1 rad/s, and two ball castors in front and behind whose lowest points are level
+    with the wheels' (four supports: how they share the weight statics cannot say);
+    ``castor_mu``: the balls' <gazebo><mu1> (None: none given)."""
+    r = 0.015
+    parts = ['<?xml version="1.0"?>\n<robot name="level_castors">',
+             _body(0.3, (0.1, 0.1, 0.05), 0.0)]
+    for side, y in (("left", 0.05), ("right", -0.05)):
+        parts.append(_wheel(f"wheel_{side}", "base_link", (0, y, 0), r, 0.02, 0.3,
+                            limit='\n    <limit effort="100" velocity="1"/>'))
+    for name, x in (("caster_front", 0.035), ("caster_back", -0.035)):
+        parts.append(_ball(name, "base_link", (x, 0, 0), r, 0.1))
+        if castor_mu is not None:
+            parts.append(f"""
+  <gazebo reference="{name}_link"><mu1>{castor_mu:g}</mu1><mu2>{castor_mu:g}</mu2></gazebo>""")
+    parts.append("\n</robot>\n")
+    return "".join(parts)
+
+
 def tips_back(mass: float = 3.0, ahead: float = 0.002, height: float = 0.1) -> str:
     """TurtleBot 4's balance: a box on two drive wheels (radius 35 mm) and one ball castor
     in front, none behind; its centre of mass ``ahead`` m ahead of the axle, ``height`` m

@@ -1,0 +1,75 @@
+"""MuJoCo's tilt proofs of a mecanum robot's statics (docs/specs.md, "Mecanum wheels,
+which side is right"): braked, it holds along its rollers' grip axes to 35.3° forward,
+left, backward and right (tan θ = μ/√2) and slides along a diagonal at 26.5° (μ/2).
+Two robots made here: one declared as Gazebo's mecanum model declares it (ROSbot,
+Ridgeback: `<mu2>0</mu2>` with `<fdir1>`), whose braked wheels crept down their grip in
+MuJoCo from 8° and "slid first at 19°"; one as linorobot2 (planar_move, wheels of
+`<mu1>0.01</mu1>`), whose gripping diagonal drew load off the free one and held 1.5°
+past its figure."""
+
+from __future__ import annotations
+
+import pytest
+from sim.robot_makers import PLANAR_MOVE, mecanum_wheels
+from specs.statics_robots import checked_and_sim
+
+from mobile_car.specs.statics import statics_section
+
+TILTED = ("statics.tip.forward", "statics.tip.left", "statics.tip.backward",
+          "statics.tip.right", "statics.slide", "statics.stand")
+
+
+def _fdir1(mu2: str = "0.0") -> str:
+    """Gazebo's mecanum friction on each wheel: mu along fdir1 (the rollers' axis, the
+    usual X pattern, in base_link), mu2 across it."""
+    out = []
+    for name, side in (("front_left", -1), ("rear_right", -1), ("front_right", 1),
+                       ("rear_left", 1)):
+        out.append(f"""
+  <gazebo reference="{name}_wheel_link"><collision><surface><friction><ode>
+    <mu>1.0</mu><mu2>{mu2}</mu2><fdir1>1 {side} 0</fdir1></ode></friction></surface>
+  </collision></gazebo>""")
+    return "".join(out)
+
+
+ROBOTS = {"fdir1": mecanum_wheels(extra=_fdir1()),
+          "planar_move": mecanum_wheels(wheel_mu=0.01, extra=PLANAR_MOVE)}
+
+
+@pytest.fixture(scope="module")
+def figures(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("mecanum_proofs")
+    out = {}
+    for name, text in ROBOTS.items():
+        path = folder / f"{name}.urdf"
+        path.write_text(text)
+        checked, sim = checked_and_sim(path)
+        section = statics_section(checked, sim, {})
+        out[name] = {f.key: f for f in section.figures}
+    return out
+
+
+@pytest.mark.parametrize("robot", sorted(ROBOTS))
+def test_braked_mecanum_robot_slides_where_its_rollers_let_it(figures, robot):
+    fig = figures[robot]
+    for key in TILTED:
+        proof = fig[key].proof
+        assert proof is not None and proof.agrees, (key, fig[key].value, proof)
+    assert fig["statics.slide"].value == pytest.approx(26.51, abs=0.05)  # atan(1/2)
+    assert abs(fig["statics.slide"].proof.measured - 26.51) <= 1.0
+    # Forward and sideways every wheel grips at 45° to the slope: atan(1/√2) = 35.26°,
+    # long before it tips (67°).
+    assert fig["statics.tip.left"].value == pytest.approx(67.22, abs=0.05)
+    assert fig["statics.tip.left"].proof.detail.startswith(
+        "tilted towards azimuth 90° it slides at 35.")
+
+
+def test_gazebo_s_zero_across_the_rollers_is_their_rolling_resistance(tmp_path):
+    """The contact MuJoCo rolls each wheel on: 1 along its rollers, 0.01 across (mu2 0
+    declared), as sim drives it."""
+    path = tmp_path / "fdir1.urdf"
+    path.write_text(ROBOTS["fdir1"])
+    _, sim = checked_and_sim(path)
+    assert sim.model.npair == 4
+    for pair in range(4):
+        assert list(sim.model.pair_friction[pair][:2]) == [1.0, 0.01]

@@ -105,6 +105,7 @@ def run_isolated(func, *args, read_roots: list[Path] = (), codec: Codec = JSON_V
     most = wire.PREFIX_SIZE + wire.MAX_HEADER_BYTES + int(output_mb * 1024 * 1024)
     confined_roots = sandbox.prepare(list(read_roots))
     read_fd, write_fd = os.pipe()
+    parent = os.getpid()  # the child must not outlive it: see sandbox.die_with_parent
     held = hold_signals()  # not inside fork's after-fork callbacks: see held_signals
     try:
         pid = os.fork()
@@ -139,7 +140,7 @@ def run_isolated(func, *args, read_roots: list[Path] = (), codec: Codec = JSON_V
             resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
             try:
                 if confined_roots is not None:
-                    sandbox.confine(confined_roots, keep_fd=write_fd)
+                    sandbox.confine(confined_roots, keep_fd=write_fd, parent=parent)
                 data = codec.pack(func(*args))
             except BaseException as error:  # noqa: BLE001 - everything goes to the parent
                 data = wire.error_frame(error)

@@ -180,10 +180,11 @@ def prepare(read_roots: list[Path]) -> list[Path] | None:
     return list(dict.fromkeys(p for p in roots if p.exists()))
 
 
-def confine(read_roots: list[Path], keep_fd: int) -> None:
+def confine(read_roots: list[Path], keep_fd: int, parent: int | None = None) -> None:
     """In the forked child: confine this process for good. Raises nothing it can avoid:
-    a layer the kernel refuses is left out (``support()`` already said so)."""
-    die_with_parent()
+    a layer the kernel refuses is left out (``support()`` already said so). ``parent``:
+    the pid of the process that forked it, taken before the fork (see die_with_parent)."""
+    die_with_parent(parent)
     _only_fds(keep_fd)
     info = support()
     if info.landlock_abi:
@@ -193,8 +194,13 @@ def confine(read_roots: list[Path], keep_fd: int) -> None:
     sys.addaudithook(_refuse_audited)
 
 
-def die_with_parent() -> None:
-    parent = os.getppid()
+def die_with_parent(parent: int | None = None) -> None:
+    """Be killed when the parent dies (PR_SET_PDEATHSIG), and leave at once if it already
+    has. ``parent``, where the caller knows it (a fork: the pid before it), is the one to
+    outlive: asked in the child, a parent killed before the child's first line reads as
+    init (or a subreaper), and a runaway xacro then ran on with nobody to end it."""
+    if parent is None:
+        parent = os.getppid()
     try:
         import ctypes
 

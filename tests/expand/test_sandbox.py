@@ -246,6 +246,31 @@ def test_the_xacro_child_dies_with_mcar(mcar_bin, tmp_path, how):
     assert not (tmp_path / "out.urdf").exists()
 
 
+def _after_die_with_parent(parent_of) -> tuple[int, bytes]:
+    """(exit status, what it wrote) of a forked child that calls die_with_parent with
+    ``parent_of(its real parent's pid)``, then says it is alive."""
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:
+        os.close(read)
+        try:
+            sandbox.die_with_parent(parent_of(os.getppid()))
+            os.write(write, b"alive")
+        finally:
+            os._exit(0)
+    os.close(write)
+    with os.fdopen(read, "rb") as pipe:
+        said = pipe.read()
+    return os.waitstatus_to_exitcode(os.waitpid(pid, 0)[1]), said
+
+
+def test_a_forked_child_whose_parent_is_already_gone_leaves_at_once():
+    """The pid before the fork is the parent to outlive: a child that finds another one
+    (mcar was killed before the child ran, and it was handed to init) ends at once."""
+    assert _after_die_with_parent(lambda real: real + 1) == (1, b"")
+    assert _after_die_with_parent(lambda real: real) == (0, b"alive")  # the control
+
+
 def test_render_of_several_files_bounds_every_expansion(run_mcar, tmp_path, repo,
                                                         quiet_renderer):
     """render finishes pictures on a worker thread; the expansions after the first must

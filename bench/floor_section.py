@@ -7,7 +7,11 @@ change in the load of a shared machine falls on both sides of every ratio alike.
 * `mcar check` of the 20,000-link trees (bench/generate.py) over check_urdf;
 * `mcar build` of TurtleBot3, Husky and PR2, sandbox on, over the plain `xacro` command
   (packages found through an ament prefix, as in the build section); both write to
-  /dev/null, which no run can call up to date, so every run expands.
+  /dev/null, which no run can call up to date, so every run expands. A third command runs
+  in the same turns: xacro's own main() after `import click` in one interpreter, unsandboxed
+  (the floor of any click tool that runs xacro), shown over xacro in a row of its own and
+  under mcar's in mcar's row, so that what is mcar's own overhead is seen apart from
+  click's import.
 
 Each row shows CPU time (user + system of the command and every process it waited for,
 from wait4) and wall time; the target is judged on CPU, which the load of other processes
@@ -85,34 +89,66 @@ def run_cpu(cmd: list[str], env=None) -> tuple[float, float, int | None]:
 def measure_pairs(a_cmd: list[str], b_cmd: list[str], runs: int, b_env=None,
                   budget_s: float = 120) -> Pairs:
     """One untimed run of each, then up to ``runs`` pairs (fewer past ``budget_s``)."""
-    run_cpu(a_cmd)
-    run_cpu(b_cmd, env=b_env)
-    pairs = Pairs()
+    return measure_turns([(a_cmd, None), (b_cmd, b_env)], runs, budget_s)[0]
+
+
+def measure_turns(commands: list[tuple[list[str], dict | None]], runs: int,
+                  budget_s: float = 120) -> list[Pairs]:
+    """One untimed run of each (command, env), then up to ``runs`` turns of all of them in
+    order (fewer past ``budget_s``): the Pairs of every two, (0, 1), (0, 2) ... (1, 2) ...,
+    each ratio taken turn by turn."""
+    for cmd, env in commands:
+        run_cpu(cmd, env=env)
+    runs_of: list[list[tuple[float, float, int | None]]] = [[] for _ in commands]
     started = time.perf_counter()
     for _ in range(runs):
-        a_wall, a_cpu, a_code = run_cpu(a_cmd)
-        b_wall, b_cpu, b_code = run_cpu(b_cmd, env=b_env)
-        pairs.a_wall.append(a_wall)
-        pairs.a_cpu.append(a_cpu)
-        pairs.b_wall.append(b_wall)
-        pairs.b_cpu.append(b_cpu)
-        pairs.codes.append((a_code, b_code))
-        if time.perf_counter() - started > budget_s or None in (a_code, b_code):
+        for (cmd, env), done in zip(commands, runs_of, strict=True):
+            done.append(run_cpu(cmd, env=env))
+        if time.perf_counter() - started > budget_s or any(
+                done[-1][2] is None for done in runs_of):
             break
-    return pairs
+    every = []
+    for i, a_runs in enumerate(runs_of):
+        for b_runs in runs_of[i + 1:]:
+            pairs = Pairs()
+            for (a_wall, a_cpu, a_code), (b_wall, b_cpu, b_code) in zip(a_runs, b_runs,
+                                                                          strict=True):
+                pairs.a_wall.append(a_wall)
+                pairs.a_cpu.append(a_cpu)
+                pairs.b_wall.append(b_wall)
+                pairs.b_cpu.append(b_cpu)
+                pairs.codes.append((a_code, b_code))
+            every.append(pairs)
+    return every
 
 
-def _row(label: str, peer: str, pairs: Pairs, target: float) -> str:
+def _row(label: str, peer: str, pairs: Pairs, target: float | None,
+         over_floor: Pairs | None = None) -> str:
+    """One row of the table; ``target`` None: a yardstick's own row, judged on nothing;
+    ``over_floor``: the same command over the click + xacro floor, said after its
+    verdict."""
     if not pairs.ok:
         codes = exit_text([a for a, _ in pairs.codes]), exit_text([b for _, b in pairs.codes])
         return f"| {label} | {peer} | - | - | - | - | exit {codes[0]} / {codes[1]} | - |"
     cpu, wall = pairs.ratio("cpu"), pairs.ratio("wall")
     median = statistics.median
+    verdict = "-" if target is None else (
+        f"{'met' if cpu <= target else '**missed**'} (<= {target:g}x)")
+    if over_floor is not None and over_floor.ok:
+        verdict += f"; {over_floor.ratio('cpu'):.2f}x the click + xacro floor"
     return (f"| {label} | {peer} | {fmt_time(median(pairs.a_cpu))} / "
             f"{fmt_time(median(pairs.b_cpu))} | **{cpu:.2f}x** | "
             f"{fmt_time(median(pairs.a_wall))} / {fmt_time(median(pairs.b_wall))} | "
-            f"{wall:.2f}x | {len(pairs.codes)} | "
-            f"{'met' if cpu <= target else '**missed**'} (<= {target:g}x) |")
+            f"{wall:.2f}x | {len(pairs.codes)} | {verdict} |")
+
+
+def click_xacro_floor(python: str, path: Path) -> list[str]:
+    """xacro's own main() run after ``import click`` in one interpreter, unsandboxed: what
+    any click command that runs xacro costs at the least (xacro is run as its console
+    script runs it)."""
+    argv = ["xacro", str(path), "-o", os.devnull]
+    return [python, "-c", f"import click, sys; sys.argv = {argv!r}; import xacro; "
+            "sys.exit(xacro.main())"]
 
 
 def _package_prefix(root: Path, folders: list[Path]) -> dict:
@@ -172,7 +208,12 @@ def section_floor(rows: list[str], work: Path, quick: bool) -> None:
              "medians of each. `mcar check` of the car is over `python -c \"import click, "
              "lxml.etree\"` (the same interpreter); the trees over check_urdf; `mcar "
              "build` (sandbox on) over the plain `xacro` command, both to /dev/null (no "
-             "run is a no-op), xacro finding the packages through an ament prefix.", "",
+             "run is a no-op), xacro finding the packages through an ament prefix. Each "
+             "build runs in turn with a third command, `python -c \"import click, sys; "
+             "sys.argv = [...]; import xacro; sys.exit(xacro.main())\"` (same interpreter "
+             "and environment as xacro, unsandboxed): click's import and xacro's run, the "
+             "floor of any click tool that runs xacro. Its row shows it over xacro; "
+             "mcar's row ends with mcar's CPU over it, which is mcar's own overhead.", "",
              "| mcar command | yardstick | CPU, mcar / peer | CPU ratio | wall, mcar / peer "
              "| wall ratio | pairs | target (CPU) |",
              "|---|---|---:|---:|---:|---:|---:|---|"]
@@ -198,11 +239,18 @@ def section_floor(rows: list[str], work: Path, quick: bool) -> None:
     robots, missing = _robots()
     env = _package_prefix(work / "ament", [folder for _l, folder, _p in robots])
     for label, folder, path in robots:
-        pairs = measure_pairs([MCAR, "build", "--package-path", str(folder), str(path),
-                               "-o", os.devnull],
-                              [XACRO, str(path), "-o", os.devnull], runs, b_env=env)
-        rows.append(_row(f"`mcar build` {label}", "`xacro`", pairs, BUILD_TARGET))
-        progress(f"floor: build {label} {pairs.ratio('cpu') if pairs.ok else '-'}")
+        mcar_floor, mcar_xacro, floor_xacro = measure_turns(
+            [([MCAR, "build", "--package-path", str(folder), str(path), "-o", os.devnull],
+              None),
+             (click_xacro_floor(python, path), env),
+             ([XACRO, str(path), "-o", os.devnull], env)], runs)
+        rows.append(_row(f"`mcar build` {label}", "`xacro`", mcar_xacro, BUILD_TARGET,
+                         over_floor=mcar_floor))
+        rows.append(_row(f"click + xacro, unsandboxed (the floor of any click tool), "
+                         f"{label.split(' (')[0]}", "`xacro`", floor_xacro, None))
+        progress(f"floor: build {label} "
+                 f"{mcar_xacro.ratio('cpu') if mcar_xacro.ok else '-'}, over the floor "
+                 f"{mcar_floor.ratio('cpu') if mcar_floor.ok else '-'}")
     rows.append("")
     if missing:
         rows += ["Not measured: " + "; ".join(missing) + ".", ""]

@@ -183,6 +183,9 @@ class OriginRecorder:
         self._site_rows: list[tuple[int, int, int]] = []
         self._written: list[tuple[int, int]] = []  # "w<k>": (file, line) as parsed
         self._stack: list[int] = []  # the calls being expanded, innermost last
+        # Every mark this recorder wrote, as written ("w12", "s3") -> ("w", 12): one
+        # lookup reads a mark back (it is read at every element xacro evaluates).
+        self._marks: dict[str, tuple[str, int]] = {}
 
     def parse(self, inp, filename, original):
         """xacro's ``parse(inp, filename)``, the elements marked with their lines."""
@@ -192,7 +195,9 @@ class OriginRecorder:
 
         def mark(line: int) -> str:
             self._written.append((file, line))
-            return f"w{len(self._written) - 1}"
+            text = f"w{len(self._written) - 1}"
+            self._marks[text] = ("w", len(self._written) - 1)
+            return text
 
         builder = _LineBuilder(mark)
         return builder.parseString(inp) if isinstance(inp, str) else builder.parseFile(inp)
@@ -242,6 +247,7 @@ class OriginRecorder:
             if index is None:
                 index = self._sites[site] = len(self._site_rows)
                 self._site_rows.append(site)
+                self._marks[f"s{index}"] = ("s", index)
             node.setAttribute(MARK, f"s{index}")
 
     def _where(self, node) -> tuple[int, int] | None:
@@ -253,17 +259,11 @@ class OriginRecorder:
 
     def _mark_of(self, node) -> tuple[str, int] | None:
         """("w", k) as parsed, ("s", k) settled, or None: no mark, or one that is not
-        ours (a xacro:attribute can write any attribute: it moves nothing but a line)."""
+        ours, as this recorder wrote it (a xacro:attribute can write any attribute: it
+        moves nothing but a line)."""
         if node.nodeType != node.ELEMENT_NODE:
             return None
-        mark = node.getAttribute(MARK)
-        kind, number = mark[:1], mark[1:]
-        if kind not in ("w", "s") or not (number.isascii() and number.isdigit()) \
-                or len(number) > 12:
-            return None
-        index = int(number)
-        return (kind, index) if index < len(self._written if kind == "w" else
-                                            self._site_rows) else None
+        return self._marks.get(node.getAttribute(MARK))
 
     @staticmethod
     def _intern(table: dict, key) -> int:

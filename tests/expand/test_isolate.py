@@ -31,6 +31,14 @@ def test_result_and_exceptions_come_back_as_data():
     assert (str(info.value), info.value.details) == ("a.xacro:3: bad", ["in macro m"])
 
 
+def test_the_child_collects_garbage_every_100000_objects_and_the_parent_as_it_did():
+    import gc
+
+    before = gc.get_threshold()
+    assert run_isolated(gc.get_threshold) == [100_000, 10, 10]
+    assert gc.get_threshold() == before
+
+
 def test_timeout_kills_the_child(monkeypatch):
     monkeypatch.setenv("MCAR_XACRO_TIMEOUT", "0.5")
     with pytest.raises(Timeout) as info:

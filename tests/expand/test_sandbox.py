@@ -160,6 +160,42 @@ def test_landlock_alone_confines_reads(tmp_path):
     assert _in_confined_child(layer, probe) == "ok Permission denied"
 
 
+@needs_landlock
+def test_landlock_alone_refuses_every_change_below_a_readable_root(tmp_path):
+    """The ruleset handles every right the kernel's ABI knows, and the roots are given
+    reading only: writing, creating, linking or removing below them fails, as outside."""
+    (tmp_path / "inside.txt").write_text("ok")
+
+    def probe():
+        said = [(tmp_path / "inside.txt").read_text()]
+        for change in (lambda: open(tmp_path / "inside.txt", "a"),
+                       lambda: os.open(tmp_path / "new.txt", os.O_WRONLY | os.O_CREAT),
+                       lambda: os.mkdir(tmp_path / "PWNED"),
+                       lambda: os.symlink("/etc/hostname", tmp_path / "PWNED"),
+                       lambda: os.unlink(tmp_path / "inside.txt"),
+                       lambda: os.truncate(tmp_path / "inside.txt", 0)):
+            try:
+                change()
+                said.append("done")
+            except OSError as error:
+                said.append(errno.errorcode[error.errno])
+        return " ".join(said)
+
+    layer = lambda: sandbox._restrict_reads([tmp_path])  # noqa: E731
+    assert _in_confined_child(layer, probe) == "ok" + " EACCES" * 6
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["inside.txt"]
+    assert (tmp_path / "inside.txt").read_text() == "ok"
+
+
+def test_landlock_rights_handled_are_every_right_of_the_abi():
+    from mobile_car.expand import landlock_calls
+
+    # The kernel's uapi: ABI 1 knows EXECUTE ... MAKE_SYM (bits 0-12), 2 adds REFER, 3
+    # TRUNCATE, 5 IOCTL_DEV.
+    assert [landlock_calls.handled_rights(abi) for abi in range(1, 8)] == [
+        0x1FFF, 0x3FFF, 0x7FFF, 0x7FFF, 0xFFFF, 0xFFFF, 0xFFFF]
+
+
 def test_version_verbose_says_what_the_sandbox_uses(run_mcar):
     result = run_mcar("--version", "--verbose")
     assert result.returncode == 0
@@ -208,6 +244,31 @@ def test_the_xacro_child_dies_with_mcar(mcar_bin, tmp_path, how):
     assert not any(map(_alive, children)), f"xacro child outlived mcar after {how}"
     assert mcar.returncode == (-signal.SIGKILL if how == "SIGKILL" else 143)
     assert not (tmp_path / "out.urdf").exists()
+
+
+def _after_die_with_parent(parent_of) -> tuple[int, bytes]:
+    """(exit status, what it wrote) of a forked child that calls die_with_parent with
+    ``parent_of(its real parent's pid)``, then says it is alive."""
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:
+        os.close(read)
+        try:
+            sandbox.die_with_parent(parent_of(os.getppid()))
+            os.write(write, b"alive")
+        finally:
+            os._exit(0)
+    os.close(write)
+    with os.fdopen(read, "rb") as pipe:
+        said = pipe.read()
+    return os.waitstatus_to_exitcode(os.waitpid(pid, 0)[1]), said
+
+
+def test_a_forked_child_whose_parent_is_already_gone_leaves_at_once():
+    """The pid before the fork is the parent to outlive: a child that finds another one
+    (mcar was killed before the child ran, and it was handed to init) ends at once."""
+    assert _after_die_with_parent(lambda real: real + 1) == (1, b"")
+    assert _after_die_with_parent(lambda real: real) == (0, b"alive")  # the control
 
 
 def test_render_of_several_files_bounds_every_expansion(run_mcar, tmp_path, repo,

@@ -12,8 +12,7 @@ first byte, in three layers:
   itself, no tracing, no reading or writing its memory, no change to its priority, CPUs,
   scheduling or limits (nor to the child's own limits), nothing typed into a terminal
   (``TIOCSTI``). Each such call fails with EPERM (EACCES for the limits).
-* **Landlock** (its system calls, :mod:`.landlock_calls`), where the kernel offers it:
-  files are read only below
+* **Landlock** (through ``landlock``), where the kernel offers it: files are read only below
   the roots the build needs (the packages it may use, the input's folder, Python's own
   library); reading ``/etc/passwd`` or ``~/.ssh`` fails, and so does reading a root's
   version-control folder (``.git/config`` holds a CI job's token).
@@ -98,16 +97,14 @@ def support() -> Support:
         except (ImportError, OSError, RuntimeError) as error:
             seccomp_reason = f"libseccomp could not be loaded ({error})"
     abi, landlock_reason = 0, None
-    if not sys.platform.startswith("linux"):  # another kernel's call 444 is another call
-        landlock_reason = "not Linux"
-    else:
-        from . import landlock_calls
+    try:
+        import landlock
 
-        try:
-            abi = landlock_calls.abi_version()
-        except (OSError, AttributeError) as error:  # ENOSYS, EOPNOTSUPP: the kernel has none
-            name = errno.errorcode.get(getattr(error, "errno", None), type(error).__name__)
-            landlock_reason = f"the kernel offers no Landlock ({name})"
+        abi = landlock.landlock_abi_version()
+    except ImportError as error:
+        landlock_reason = f"the landlock package is missing ({error})"
+    except (OSError, AttributeError) as error:  # ENOSYS, EOPNOTSUPP: the kernel has none
+        landlock_reason = f"the kernel offers no Landlock ({error.__class__.__name__})"
     return Support(seccomp_reason, abi, landlock_reason)
 
 
@@ -224,25 +221,25 @@ def _only_fds(keep_fd: int) -> None:
 
 
 def _restrict_reads(read_roots: list[Path]) -> None:
-    from . import landlock_calls as landlock
+    import landlock
 
-    # Every right the ABI knows is handled: what no rule below allows is refused.
-    ruleset = landlock.create_ruleset(support().landlock_abi)
-    try:
-        readable = landlock.READ_FILE | landlock.READ_DIR
-        for root in read_roots:
-            for path, listed_only in _readable_below(root):
-                try:
-                    landlock.allow_beneath(ruleset, path, landlock.READ_DIR if listed_only
-                                           else readable if path.is_dir()
-                                           else landlock.READ_FILE)
-                except OSError:
-                    continue  # vanished, or not a kind of file Landlock takes: unreadable
-        landlock.restrict_self(ruleset)
-    finally:
-        # The ruleset's descriptor is not the child's to keep: it needs no handle but its
-        # pipe.
-        os.close(ruleset)
+    ruleset = landlock.Ruleset()
+    readable = landlock.FSAccess.READ_FILE | landlock.FSAccess.READ_DIR
+    for root in read_roots:
+        for path, listed_only in _readable_below(root):
+            try:
+                ruleset.allow(path, rules=landlock.FSAccess.READ_DIR if listed_only
+                              else readable if path.is_dir() else landlock.FSAccess.READ_FILE)
+            except OSError:
+                continue  # vanished, or not a kind of file Landlock takes: stays unreadable
+    ruleset.apply()
+    # The ruleset's descriptor is not the child's to keep: it needs no handle but its pipe.
+    fd = getattr(ruleset, "_fd", None)
+    if isinstance(fd, int):
+        try:
+            os.close(fd)
+        except OSError:
+            pass
 
 
 def _readable_below(root: Path) -> list[tuple[Path, bool]]:

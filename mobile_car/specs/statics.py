@@ -156,6 +156,10 @@ class Statics:
             limit = "the motors"
         elif abs(climb - by_traction) < 1e-4:
             limit = "traction"
+            if sim.drive.kind == "mecanum":  # what binds is not the least-loaded wheel
+                limit += (" (every driven wheel at its grip along its rollers, μ·its load/√2"
+                          " up the slope, front and rear alike: the load the slope moves"
+                          " onto the rear wheels leaves the sum as it is)")
         else:  # the loaded wheels push their motor's most, the others slip
             limit = "the motors and traction together"
         force = sum(f for f, _ in wheels.values())

@@ -73,3 +73,20 @@ def test_gazebo_s_zero_across_the_rollers_is_their_rolling_resistance(tmp_path):
     assert sim.model.npair == 4
     for pair in range(4):
         assert list(sim.model.pair_friction[pair][:2]) == [1.0, 0.01]
+
+
+@pytest.mark.parametrize("robot", sorted(ROBOTS))
+def test_mecanum_robot_climbs_to_its_rollers_grip(figures, robot):
+    """Driven straight up, every wheel pushes at its grip along its rollers: tan θ = μ/√2,
+    whatever load the slope moves onto the rear pair (in MuJoCo the front wheels, at 16 N
+    of load, and the rear, at 26 N, slid at the same share of their grip). At the servo
+    stiffness the other drives climb with, the four wheels bounced on their capsules and
+    this robot slid back at 31° and 33° but climbed at 32°."""
+    climb = figures[robot]["statics.climb"]
+    assert climb.value == pytest.approx(35.26, abs=0.01)  # atan(1/√2)
+    assert climb.source.startswith("limited by traction (every driven wheel at its grip along "
+                                   "its rollers")
+    assert climb.proof is not None and climb.proof.agrees, climb.proof
+    went = climb.proof.detail.split("; ")
+    assert went[0].startswith("at 34.3° it went up at 9"), went  # 90-99% of r·ω
+    assert went[1].startswith("at 36.3° -"), went  # it slid back

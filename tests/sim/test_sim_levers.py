@@ -101,3 +101,25 @@ def test_the_exports_say_which_is_a_vehicle_in_their_manifests(run_mcar, tmp_pat
         assert result.returncode == 0, result.stderr
         manifest = json.loads((folder / "out/mcar-export.json").read_text())
         assert manifest["vehicle"] is vehicle, height
+
+
+def test_a_large_robots_rest_pose_tells_levers_from_wheels_alike(tmp_path):
+    # From 2,000 links the check's rest pose is numpy's (rest_pose_arrays.ArraysPose).
+    from mobile_car.check.checker import LARGE_ROBOT, check_input
+    from mobile_car.load.inputs import RobotInput
+    from mobile_car.sim.vehicle import not_a_vehicle
+
+    studs = "".join(f"""
+  <joint name="stud_{i}_joint" type="fixed"><parent link="base_link"/>
+    <child link="stud_{i}"/><origin xyz="0 0 0.1"/></joint>
+  <link name="stud_{i}"><collision><geometry><box size="0.01 0.01 0.01"/></geometry>
+  </collision></link>""" for i in range(LARGE_ROBOT))
+    verdicts = []
+    for height in (0.9, 0.05):
+        robot = tmp_path / f"levers_{height}.urdf"
+        robot.write_text(levers(axle_height=height).replace("</robot>", studs + "</robot>"))
+        checked = check_input(RobotInput(robot))
+        assert type(checked.rest).__name__ == "ArraysPose"
+        verdicts.append(not_a_vehicle(checked.robot, checked.rest))
+    assert [str(v) if v else None for v in verdicts] == [
+        f"not a vehicle: no wheels ({LEVERS})", None]

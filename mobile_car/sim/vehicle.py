@@ -66,7 +66,9 @@ def not_a_vehicle(robot, rest=None) -> NotAVehicle | None:
     if kind == "no wheels":
         return NotAVehicle(kind, _no_wheels(robot, colliding, level, high))
     if kind == "one wheel":
-        return NotAVehicle(kind, f"{', '.join(sorted(wheels))} on a continuous joint")
+        levers = _levers(robot, high)
+        return NotAVehicle(kind, f"{', '.join(sorted(wheels))} on a continuous joint"
+                                 + (f"; {levers}" if levers else ""))
     if kind is not None:
         return NotAVehicle(kind, f"only {', '.join(sorted(wheels))} have collision geometry, "
                                  "no castor or body")
@@ -188,16 +190,24 @@ def _aloft_at_rest(robot, rest, wheels: set[str]) -> set[str]:
                  min(lowest.values()), extents[2])
 
 
+def _levers(robot, high: set[str]) -> str | None:
+    """What the joints turning the links of ``high`` (:func:`aloft`) are, or None."""
+    levers = [j.name for j in robot.joints if j.child in high]
+    if not levers:
+        return None
+    if len(levers) == 1:
+        return (f"continuous joint {levers[0]} turns about a level axis high above the "
+                "floor (a lever)")
+    return (f"continuous joints {', '.join(levers)} turn about level axes high above the "
+            "floor (levers)")
+
+
 def _no_wheels(robot, colliding: set[str], level: set[str], high: set[str]) -> str:
     endless = [j for j in robot.joints if turns_without_end(j)]
     upright = [j.name for j in endless if j.child in colliding and j.child not in level]
-    levers = [j.name for j in endless if j.child in high]
+    levers = _levers(robot, high)
     if levers:
-        if len(levers) == 1:
-            return (f"continuous joint {levers[0]} turns about a level axis high above the "
-                    "floor (a lever)")
-        return (f"continuous joints {', '.join(levers)} turn about level axes high above the "
-                "floor (levers)")
+        return levers
     if upright:
         if len(upright) == 1:
             return f"continuous joint {upright[0]} turns about an upright axis (a swivel)"

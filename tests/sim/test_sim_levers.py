@@ -123,3 +123,20 @@ def test_a_large_robots_rest_pose_tells_levers_from_wheels_alike(tmp_path):
         verdicts.append(not_a_vehicle(checked.robot, checked.rest))
     assert [str(v) if v else None for v in verdicts] == [
         f"not a vehicle: no wheels ({LEVERS})", None]
+
+
+def test_one_disc_at_the_floor_and_one_high_up_is_one_wheel_and_a_lever(tmp_path):
+    # ABB's IRB 6640 balances its arm on a cylinder and piston, each on a continuous joint:
+    # the cylinder's lowest point is near the floor, the piston's high up.
+    from mobile_car.check.checker import check_input
+    from mobile_car.load.inputs import RobotInput
+    from mobile_car.sim.vehicle import not_a_vehicle
+
+    text = levers(axle_height=0.9)
+    low = text.index('<origin xyz="0 -0.2 0.9"/>')
+    robot = tmp_path / "lopsided.urdf"
+    robot.write_text(text[:low] + '<origin xyz="0 -0.2 0.05"/>' + text[low + 26:])
+    checked = check_input(RobotInput(robot))
+    assert str(not_a_vehicle(checked.robot, checked.rest)) == (
+        "not a vehicle: one wheel (lever_right on a continuous joint; continuous joint "
+        "lever_left_joint turns about a level axis high above the floor (a lever))")

@@ -54,11 +54,12 @@ reference or plugin joint left pointing at nothing a warning (--no-gazebo: not).
 
 Only vehicles are simulated: robots with wheels (two or more continuous joints, or
 revolute ones limited to ±1e6 rad or more, about a level axis and moving collision
-geometry) and another link with collision geometry to stand on (a castor, a
-body), each with its drive kind's scenarios. Any other robot file (a part's test file,
-the tutorial) is reported "not simulated, not a vehicle", one line per kind, which does
-not fail the run. A vehicle sim cannot drive (mecanum wheels, wheels on one side) fails
-it, saying why, unless the package's mcar.yaml opts it out with a reason that ci prints:
+geometry down to the floor at rest: levers high up an arm are none) and another link
+with collision geometry to stand on (a castor, a body), each with its drive kind's
+scenarios. Any other robot file (a part's test file, the tutorial) is reported "not
+simulated, not a vehicle", one line per kind, which does not fail the run. A vehicle sim
+cannot drive (mecanum wheels, wheels on one side) fails it, saying why, unless the
+package's mcar.yaml opts it out with a reason that ci prints:
 
 \b
   sim:

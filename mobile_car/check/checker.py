@@ -57,6 +57,9 @@ class CheckResult(Counted):
         # The box around every visual and collision shape in the rest pose, (x, y, z) in
         # metres; None when the tree is not sound or no shape's size is known.
         self.extents = extents
+        # That rest pose (rest_pose.RestPose, or rest_pose_arrays.ArraysPose for a large
+        # robot), None where there is no extents: sim asks it which wheels reach the floor.
+        self.rest = None
 
     @property
     def tree_is_drawable(self) -> bool:
@@ -131,7 +134,7 @@ def _check_document(root, data: bytes, file: str, base: Path, search: PackageSea
             pose = rest_pose_arrays(robot, tree, held, bounds, origins)
         if pose is None:
             pose = rest_pose(robot, tree, held, bounds)
-        result.extents = pose.extents()
+        result.extents, result.rest = pose.extents(), pose
         check_plausibility(robot, tree, pose, report)
         check_masses(robot, tree, held, bounds, report)
     if not report.numbers_confirmed():

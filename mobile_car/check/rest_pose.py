@@ -16,7 +16,7 @@ own box comes from :mod:`mobile_car.load.mesh_facts` (its file's unit applied), 
 
 from __future__ import annotations
 
-from math import cos, sin
+from math import cos, inf, sin
 
 ZERO = (0.0, 0.0, 0.0)
 ONE = (1.0, 1.0, 1.0)
@@ -158,6 +158,13 @@ class RestPose:
         self.rest_high = [float("-inf")] * 3
         self.widest: tuple | None = None  # (span, Shape)
         self.judged: dict = {}  # link -> the kind of shape its inertia is read with
+        self.collision_low: dict = {}  # link -> the lowest z of its collision shapes
+
+    def lowest_collision(self, links) -> dict:
+        """link -> the lowest z of its collision shapes, of ``links`` that have one whose
+        size is known."""
+        return {name: self.collision_low[name] for name in links
+                if name in self.collision_low}
 
     def extents(self) -> tuple | None:
         """(x, y, z) of the box around every shape, None if there is none."""
@@ -359,6 +366,8 @@ def rest_pose(robot, tree, shapes_of: dict, mesh_bounds: dict) -> RestPose:
             size, own = known
             box_low, box_high = placed_box(compose(pose, placed), *own)
             placed_shapes.append((kind, tag, element, size, box_low, box_high, placed, own))
+            if kind == "collision" and box_low[2] < result.collision_low.get(link.name, inf):
+                result.collision_low[link.name] = box_low[2]
             for i in range(3):
                 if box_low[i] < low[i]:
                     low[i] = box_low[i]

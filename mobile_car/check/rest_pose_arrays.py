@@ -62,6 +62,15 @@ class ArraysPose:
         return Shape(link, kind, element.tag, element, size, tuple(self.low[index].tolist()),
                      tuple(self.high[index].tolist()), frame_of(xyz, rpy), own)
 
+    def lowest_collision(self, links) -> dict:
+        """As :meth:`.rest_pose.RestPose.lowest_collision`."""
+        wanted, lowest = set(links), {}
+        for index, (link, kind, *_rest) in enumerate(self.bodies):
+            if kind == "collision" and link in wanted:
+                z = float(self.low[index, 2])
+                lowest[link] = min(z, lowest.get(link, z))
+        return lowest
+
     def largest(self) -> Shape | None:
         if not len(self.low):
             return None

@@ -187,6 +187,7 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
         shared_unevenly,
     )
     from ..sim.servos import add_motors, fit_drive
+    from ..sim.vehicle import aloft_bodies
     from .inertia import apply_fixes, fix_warnings, refuse, refused_links
 
     root, joints, sources = prepared.root, prepared.joints, prepared.sources
@@ -254,7 +255,8 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
         warnings=warnings, notes=([f"no drive actuators: {why}"] if drive is None and why
                                   else []) + mecanum,
         drive=drive_summary(drive), base=options.base, floor=floor, added_mass=added + tokens,
-        vehicle=is_vehicle(root), springs=[_spring_json(s) for s in springs],
+        vehicle=is_vehicle(root, aloft_bodies(shape, data, points)),
+        springs=[_spring_json(s) for s in springs],
         joint_types={j.get("name"): j.get("type") for j in root.iterchildren("joint")
                      if j.get("type") != "fixed"})
 
@@ -308,10 +310,11 @@ def _mecanum_tyres(spec, drive, sources) -> list[str]:
             + ": the robot drives and turns, but does not strafe"]
 
 
-def is_vehicle(root) -> bool:
+def is_vehicle(root, aloft: set[str] = frozenset()) -> bool:
     """Whether the URDF ``root`` is a vehicle as sim decides it before any engine runs: two
-    or more continuous joints about a level axis moving collision geometry, and another
-    link with some to stand on."""
+    or more continuous joints about a level axis moving collision geometry down to the
+    floor (not the links of ``aloft``: :func:`mobile_car.sim.vehicle.aloft_bodies`), and
+    another link with some to stand on."""
     from ..sim.vehicle import lacks, level_turning
 
     colliding = {link.get("name") for link in root.iterchildren("link")
@@ -320,7 +323,8 @@ def is_vehicle(root) -> bool:
                joint.find("origin"), _axis(joint)) for joint in root.iterchildren("joint")]
     level = level_turning(joints)
     wheels = {child for kind, _parent, child, _origin, _axis_xyz in joints
-              if kind == "continuous" and child in colliding and child in level}
+              if kind == "continuous" and child in colliding and child in level
+              and child not in aloft}
     return lacks(colliding, wheels) is None
 
 

@@ -59,7 +59,7 @@ from .mecanum import (
     is_roller,
     mecanum_drive,
 )
-from .vehicle import HORIZONTAL  # what a wheel's axis is: the test of a vehicle too
+from .vehicle import HORIZONTAL, aloft_bodies  # what a wheel is: the test of a vehicle too
 
 UPRIGHT = 0.9       # |z| of an axis in the root frame above which a hinge steers (or swivels)
 SIDE_EPSILON = 1e-6  # m: a wheel closer than this to the centre line is on neither side
@@ -91,8 +91,11 @@ def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
         (z for g, z in lowest.items() if model.geom_contype[g] or model.geom_conaffinity[g]),
         default=0.0))
     not_wheels = {}
+    high = aloft_bodies(model, data, lowest) if rolling else set()
     for wheel in rolling:
         why = _not_a_wheel(model, data, wheel, lowest, floor)
+        if why is None and model.body(wheel.body_id).name in high:
+            why = "high above the robot's lowest point at rest (a lever, not a wheel)"
         if why is not None:
             not_wheels[wheel.joint] = why
     wheel_bodies = {w.body_id: w for w in rolling + hubs if w.joint not in not_wheels}

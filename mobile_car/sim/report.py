@@ -73,7 +73,7 @@ def simulate(checked, names=None, left=None, right=None,
     started = time.perf_counter()
     loaded = checked.loaded
     report = SimReport(checked.file, checked.robot.name)
-    why_not = not_a_vehicle(checked.robot)
+    why_not = not_a_vehicle(checked.robot, checked.rest)
     if only_if_drives and why_not:
         report.simulated, report.not_a_vehicle = False, why_not
         report.why_no_drive = str(why_not)

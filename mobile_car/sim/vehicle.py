@@ -5,7 +5,9 @@ A vehicle has wheels (continuous joints about a level axis moving collision geom
 or more) and another link with collision geometry to stand on (a castor, a body). An
 upright continuous joint is a swivel (a castor's, a turntable's, an arm's: Kinova Gen3's
 joints 1, 3, 5 and 7 turn without end about upright axes), never a wheel, as sim's drive
-finder (:mod:`.drives`) already judges it. Anything else is
+finder (:mod:`.drives`) already judges it; and a wheel reaches the floor: a level one
+high above the robot's lowest point at rest is a lever (:func:`aloft`: ABB's IRB 2400
+links its arm through levers on continuous joints 0.5 m and more up). Anything else is
 "not a vehicle", in one of a few kinds (no wheels; wheels and nothing to stand on; one
 wheel), each with the detail of this robot; ci prints one line per kind. A vehicle is
 simulated even when sim then finds no drive kind it can drive (mecanum, wheels on one
@@ -28,6 +30,9 @@ from .lint import link_mass
 UNLIMITED = 1e6
 FIXED_TO_THE_WORLD = "fixed to the world"  # a NotAVehicle kind: nothing to drop
 HORIZONTAL = 0.5  # |z| of a wheel's axis in the root frame below which it can roll (30°)
+# of the robot's height at rest: a wheel's lowest point lies at most this far above the
+# robot's lowest point (aloft)
+NEAR_FLOOR = 0.25
 
 
 @dataclass(frozen=True)
@@ -40,11 +45,13 @@ class NotAVehicle:
         return f"not a vehicle: {self.kind} ({self.detail})"
 
 
-def not_a_vehicle(robot) -> NotAVehicle | None:
+def not_a_vehicle(robot, rest=None) -> NotAVehicle | None:
     """Why a robot is not a vehicle, or None. A part's test file (the wheel pair on a
     bare base_link) is not one; a car whose castor is set too high still is, so that drop
     fails it. Mass is not asked for here: a car that lost an <inertial> must fail (E305),
-    not go unsimulated."""
+    not go unsimulated. ``rest``: the check's rest pose (``CheckResult.rest``), which
+    tells the levers high above the floor (:func:`aloft`) from wheels; without it every
+    level endless joint's child counts."""
     fixed = anchored(robot)
     if fixed is not None:
         return NotAVehicle(FIXED_TO_THE_WORLD, fixed)
@@ -53,11 +60,15 @@ def not_a_vehicle(robot) -> NotAVehicle | None:
                           for j in robot.joints)
     wheels = {j.child for j in robot.joints if turns_without_end(j) and j.child in colliding
               and j.child in level}
+    high = set() if rest is None or not wheels else _aloft_at_rest(robot, rest, wheels)
+    wheels -= high
     kind = lacks(colliding, wheels)
     if kind == "no wheels":
-        return NotAVehicle(kind, _no_wheels(robot, colliding, level))
+        return NotAVehicle(kind, _no_wheels(robot, colliding, level, high))
     if kind == "one wheel":
-        return NotAVehicle(kind, f"{', '.join(sorted(wheels))} on a continuous joint")
+        levers = _levers(robot, high)
+        return NotAVehicle(kind, f"{', '.join(sorted(wheels))} on a continuous joint"
+                                 + (f"; {levers}" if levers else ""))
     if kind is not None:
         return NotAVehicle(kind, f"only {', '.join(sorted(wheels))} have collision geometry, "
                                  "no castor or body")
@@ -136,9 +147,67 @@ def level_turning(joints) -> set[str]:
     return level
 
 
-def _no_wheels(robot, colliding: set[str], level: set[str]) -> str:
+def aloft(lowest: dict, bottom: float, height: float) -> set[str]:
+    """The links of ``lowest`` (link -> the z of its lowest collision point, every joint
+    at 0) that stay high above the floor: their lowest point more than NEAR_FLOOR of the
+    robot's ``height`` above its ``bottom``, the lowest point of its collision geometry.
+    A wheel touches the floor the robot stands on (the castor or body lower than it by a
+    few millimetres at most); the parallel-linkage levers of ABB's IRB 2400 turn without
+    end about level axes 0.6 m and more up the arm."""
+    if not height > 0:
+        return set()
+    return {link for link, z in lowest.items() if z - bottom > NEAR_FLOOR * height}
+
+
+def aloft_bodies(model, data, lowest: dict) -> set[str]:
+    """The bodies of a compiled MuJoCo model whose collision geometry stays high above
+    the floor as :func:`aloft` judges it (kinematics done on ``data``; ``lowest``: geom ->
+    the z of its lowest point, :func:`.model.lowest_points`), the robot's height over
+    every geom's box: what sim's drive finder and an export, which have no check's rest
+    pose, ask."""
+    import numpy as np
+
+    lowest_of, tops = {}, []
+    for g, z in lowest.items():
+        rot = data.geom_xmat[g].reshape(3, 3)
+        centre, half = model.geom_aabb[g][:3], model.geom_aabb[g][3:]
+        tops.append(float(data.geom_xpos[g][2] + rot[2] @ centre + np.abs(rot[2]) @ half))
+        if model.geom_contype[g] or model.geom_conaffinity[g]:
+            name = model.body(int(model.geom_bodyid[g])).name
+            lowest_of[name] = min(z, lowest_of.get(name, z))
+    if not lowest_of:
+        return set()
+    bottom = min(lowest_of.values())
+    return aloft(lowest_of, bottom, max(tops) - bottom)
+
+
+def _aloft_at_rest(robot, rest, wheels: set[str]) -> set[str]:
+    extents = rest.extents()
+    lowest = rest.lowest_collision(link.name for link in robot.links)
+    if extents is None or not lowest:
+        return set()
+    return aloft({link: z for link, z in lowest.items() if link in wheels},
+                 min(lowest.values()), extents[2])
+
+
+def _levers(robot, high: set[str]) -> str | None:
+    """What the joints turning the links of ``high`` (:func:`aloft`) are, or None."""
+    levers = [j.name for j in robot.joints if j.child in high]
+    if not levers:
+        return None
+    if len(levers) == 1:
+        return (f"continuous joint {levers[0]} turns about a level axis high above the "
+                "floor (a lever)")
+    return (f"continuous joints {', '.join(levers)} turn about level axes high above the "
+            "floor (levers)")
+
+
+def _no_wheels(robot, colliding: set[str], level: set[str], high: set[str]) -> str:
     endless = [j for j in robot.joints if turns_without_end(j)]
     upright = [j.name for j in endless if j.child in colliding and j.child not in level]
+    levers = _levers(robot, high)
+    if levers:
+        return levers
     if upright:
         if len(upright) == 1:
             return f"continuous joint {upright[0]} turns about an upright axis (a swivel)"

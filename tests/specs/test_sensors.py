@@ -436,6 +436,24 @@ def test_each_link_is_made_ray_ready_once_for_every_sensor_each_seeing_the_other
     ((start, end),) = found["sensors.left.blocked"]
     assert abs(start - low) <= STEP / 2 and abs(end - high) <= STEP / 2, (start, end, low, high)
     assert found["sensors.right.blocked"] == [[-end, -start]]
-    # base_link, left_link and right_link, each made once: a box drawn and colliding
-    # (12 triangles each). (A scene of the robot without each one's housing: 48, 48.)
+    # base_link (the rest of the robot), left_link and right_link (each a housing), each
+    # made once: a box drawn and colliding, 12 triangles each. (A scene of the robot
+    # without each one's housing: 48, 48.)
     assert made == [24, 24, 24]
+
+
+def test_the_links_no_sensor_can_be_housed_in_are_made_ray_ready_together(
+        tmp_path, monkeypatch):
+    from mobile_car.specs import self_view
+
+    made = []
+    intersector = self_view._intersector
+    monkeypatch.setattr(self_view, "_intersector",
+                        lambda triangles: made.append(len(triangles)) or intersector(triangles))
+    posts = [post(f"post{n}", (0.2, y), 0.02) for n, y in enumerate((-0.1, 0.0, 0.1))]
+    _, section = sensors_of(tmp_path / "posts.urdf",
+                            robot(lidar_link(), *posts, ray_sensor("lidar_link")))
+    assert len(values(section)["sensors.scanner.blocked"]) == 3
+    # The body and the three posts at once (4 boxes drawn and colliding); the scanner's
+    # own box, its housing, is never cast on.
+    assert made == [96]

@@ -26,6 +26,8 @@ from ..check.colours import without_unusable_colours
 # rows bounded (the image's size comes from the description: 1 x 10^9 is a number too).
 CAMERA_COLUMNS = 64
 CAMERA_MAX_ROWS = 4 * CAMERA_COLUMNS
+# The key of the intersector on every link not kept apart (link names are strings).
+REST = ("rest",)
 
 
 @dataclass
@@ -65,6 +67,7 @@ class RobotSurface:
     poses: dict
     notes: list[str] = field(default_factory=list)
     _casters: dict = field(default_factory=dict)
+    _apart: set = field(default_factory=set)
 
     def placed(self, link: str) -> bool:
         return link in self.poses
@@ -77,18 +80,44 @@ class RobotSurface:
                 housing: list[str]) -> np.ndarray:
         """(N,) bool: the ray meets the robot (the sensor's ``housing`` aside) within the
         sensor's range. As Gazebo casts it, the ray starts at range min: a part nearer is
-        not seen (a real scanner reports no range there either)."""
-        caster = self.without(housing)
+        not seen (a real scanner reports no range there either). The nearest part met
+        lies within the range exactly where the nearest of some part of the robot does:
+        the links kept apart (:meth:`keep_apart`) are cast one by one, the rest together,
+        each made ray-ready once a run (a scene of the robot without each sensor's housing
+        cost Go1 and Baxter seconds a sensor)."""
         hit = np.zeros(len(directions), dtype=bool)
-        if caster is None or not len(directions):
+        if not len(directions):
             return hit
+        if not set(housing) <= self._apart:  # (a housing keep_apart was not told of)
+            self._apart |= set(housing)
+            self._casters.pop(REST, None)
         starts = origin + directions * sensor.range_min
-        locations, rays, _ = caster.intersects_location(starts, directions,
-                                                        multiple_hits=False)
-        if len(rays):
-            distance = np.linalg.norm(locations - starts[rays], axis=1)
-            hit[rays[distance <= sensor.range_max - sensor.range_min]] = True
+        reach = sensor.range_max - sensor.range_min
+        parts = [link for link in self.links() if link in self._apart and link not in housing]
+        for caster in [self.caster(link) for link in parts] + [self._rest()]:
+            if caster is None:
+                continue
+            locations, rays, _ = caster.intersects_location(starts, directions,
+                                                            multiple_hits=False)
+            if len(rays):
+                distance = np.linalg.norm(locations - starts[rays], axis=1)
+                hit[rays[distance <= reach]] = True
         return hit
+
+    def keep_apart(self, spots) -> None:
+        """``spots``: the (link, origin) of every sensor to be cast. The links that may be
+        one's housing (its own, any with a shape whose box holds its origin) are made
+        ray-ready one by one, the rest of the robot once, together: a robot of many links
+        is not cast link by link."""
+        for link, origin in spots:
+            self._apart |= {link} | {piece.link for piece in self.pieces if piece.holds(origin)}
+        self._casters.pop(REST, None)
+
+    def _rest(self):
+        if REST not in self._casters:
+            owned = [i for i, piece in enumerate(self.pieces) if piece.link not in self._apart]
+            self._casters[REST] = _intersector(self.triangles[np.isin(self.piece_of, owned)])
+        return self._casters[REST]
 
     def housing(self, link: str, origin: np.ndarray) -> list[str]:
         """The links a sensor on ``link`` at ``origin`` looks out of: its own, and any
@@ -101,26 +130,24 @@ class RobotSurface:
         return [link] + sorted(other for other in near if self._encloses(other, origin))
 
     def _encloses(self, link: str, origin: np.ndarray) -> bool:
-        caster = self._cached(("only", link), [i for i, piece in enumerate(self.pieces)
-                                               if piece.link != link])
-        directions = enclosing_directions()
+        directions, caster = enclosing_directions(), self.caster(link)
         if caster is None:
             return False
-        _, rays, _ = caster.intersects_location(np.broadcast_to(origin, directions.shape),
-                                                directions, multiple_hits=False)
+        _, rays, _ = caster.intersects_location(
+            np.broadcast_to(origin, directions.shape), directions, multiple_hits=False)
         return len(set(rays.tolist())) == len(directions)
 
-    def without(self, links: list[str]):
-        """A ray intersector on every triangle but those of ``links`` (None when nothing
-        is left), made once for each such set."""
-        return self._cached(tuple(links), [i for i, piece in enumerate(self.pieces)
-                                           if piece.link in links])
+    def links(self) -> list[str]:
+        """The links with geometry, in the order of their first piece."""
+        return list(dict.fromkeys(piece.link for piece in self.pieces))
 
-    def _cached(self, key, dropped: list[int]):
-        if key not in self._casters:
-            self._casters[key] = _intersector(self.triangles[~np.isin(self.piece_of,
-                                                                      dropped)])
-        return self._casters[key]
+    def caster(self, link: str):
+        """A ray intersector on ``link``'s triangles alone (None when it has none: a mesh
+        of no faces), made once."""
+        if link not in self._casters:
+            owned = [i for i, piece in enumerate(self.pieces) if piece.link == link]
+            self._casters[link] = _intersector(self.triangles[np.isin(self.piece_of, owned)])
+        return self._casters[link]
 
 
 def enclosing_directions() -> np.ndarray:

@@ -57,7 +57,7 @@ def sensors_section(checked, sim, options: dict | None = None) -> Section:
 
     start = dict(getattr(sim, "start", None) or {})
     cast, proof = _casts(checked, start, options.get("proof", True) is not False,
-                         result.notes)
+                         result.notes, sensors)
     if cast is None:
         return result
     threshold = float(options.get("sensor_blocked_share", DEFAULT_BLOCKED_SHARE))
@@ -79,13 +79,14 @@ def sensors_section(checked, sim, options: dict | None = None) -> Section:
     return result
 
 
-def _casts(checked, start, proving: bool, notes: list[str]):
+def _casts(checked, start, proving: bool, notes: list[str], sensors):
     """(what casts the figures' rays, what casts the proof's or None). With proofs:
     trimesh's cast on render's assembly (:mod:`.self_view`), MuJoCo's the proof. Without:
     MuJoCo's alone, already a complete cast of the same geometry, sparing trimesh's
     import (and scipy's through it: ~0.5 s of a cold ``mcar specs --no-proof``); trimesh's
     where MuJoCo cannot make the model or refuses a mesh trimesh would see.
-    (None, None) where neither can read the geometry (a note says why)."""
+    (None, None) where neither can read the geometry (a note says why). trimesh's is told
+    where ``sensors`` sit, to make each link that may house one ray-ready on its own."""
     if not proving:
         cast = _mujoco_cast(checked, start, None)
         if cast is not None and not cast.refused:
@@ -100,6 +101,8 @@ def _casts(checked, start, proving: bool, notes: list[str]):
                      f"{type(error).__name__}: {error}")
         return None, None
     notes += surface.notes
+    surface.keep_apart([(sensor.link, surface.frame(sensor)[:3, 3]) for sensor in sensors
+                        if surface.placed(sensor.link)])
     return surface, (_mujoco_cast(checked, start, notes) if proving else None)
 
 

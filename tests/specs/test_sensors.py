@@ -412,3 +412,48 @@ def test_the_pose_proof_still_sees_a_thousandth_of_a_degree_about_any_axis():
         assert _turned(np.eye(4), turned(axis, 1e-3)) > POSE_TOLERANCE
     assert _turned(turned((0, 0, 1), 30), turned((0, 0, 1), 30)) == 0
     assert _turned(np.eye(4), turned((0, 0, 1), 180)) == pytest.approx(180)
+
+
+def test_each_link_is_made_ray_ready_once_for_every_sensor_each_seeing_the_other(
+        tmp_path, monkeypatch):
+    from mobile_car.specs import self_view
+
+    made = []
+    intersector = self_view._intersector
+    monkeypatch.setattr(self_view, "_intersector",
+                        lambda triangles: made.append(len(triangles)) or intersector(triangles))
+    # Two scanners 0.3 m apart on the y axis, each housed in its own 4 cm box: each one's
+    # housing is left out of its own view and blocks the other's, over the sector the
+    # box's near face subtends.
+    text = robot(lidar_link("left_link", (0, 0.15, LIDAR_Z)),
+                 lidar_link("right_link", (0, -0.15, LIDAR_Z)),
+                 ray_sensor("left_link").replace('name="scanner"', 'name="left"'),
+                 ray_sensor("right_link").replace('name="scanner"', 'name="right"'))
+    _, section = sensors_of(tmp_path / "pair.urdf", text)
+    found = values(section)
+    # The far face of the other box is hidden behind its near one: the near face's edges.
+    low, high = subtended([(-0.02, -0.28), (0.02, -0.28)])
+    ((start, end),) = found["sensors.left.blocked"]
+    assert abs(start - low) <= STEP / 2 and abs(end - high) <= STEP / 2, (start, end, low, high)
+    assert found["sensors.right.blocked"] == [[-end, -start]]
+    # base_link (the rest of the robot), left_link and right_link (each a housing), each
+    # made once: a box drawn and colliding, 12 triangles each. (A scene of the robot
+    # without each one's housing: 48, 48.)
+    assert made == [24, 24, 24]
+
+
+def test_the_links_no_sensor_can_be_housed_in_are_made_ray_ready_together(
+        tmp_path, monkeypatch):
+    from mobile_car.specs import self_view
+
+    made = []
+    intersector = self_view._intersector
+    monkeypatch.setattr(self_view, "_intersector",
+                        lambda triangles: made.append(len(triangles)) or intersector(triangles))
+    posts = [post(f"post{n}", (0.2, y), 0.02) for n, y in enumerate((-0.1, 0.0, 0.1))]
+    _, section = sensors_of(tmp_path / "posts.urdf",
+                            robot(lidar_link(), *posts, ray_sensor("lidar_link")))
+    assert len(values(section)["sensors.scanner.blocked"]) == 3
+    # The body and the three posts at once (4 boxes drawn and colliding); the scanner's
+    # own box, its housing, is never cast on.
+    assert made == [96]

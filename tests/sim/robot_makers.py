@@ -214,46 +214,38 @@ def mecanum(mass: float = 10.0, wheelbase: float = 0.4, track: float = 0.4,
 
 def arm(links: int = 3) -> str:
     """An arm of ``links`` boxes on revolute joints on a fixed base: no wheels."""
-    parts = ['<?xml version="1.0"?>\n<robot name="arm">', _body(5.0, (0.2, 0.2, 0.1), 0.0)]
-    parent = "base_link"
-    for number in range(1, links + 1):
-        parts.append(f"""
-  <joint name="arm_{number}_joint" type="revolute">
-    <parent link="{parent}"/><child link="arm_{number}_link"/>
-    <origin xyz="0 0 {0.1 if number == 1 else 0.3}"/><axis xyz="0 1 0"/>
-    <limit lower="-1.5" upper="1.5" effort="10" velocity="1"/>
-  </joint>
-  <link name="arm_{number}_link">
-    <collision><origin xyz="0 0 0.15"/><geometry><box size="0.05 0.05 0.3"/></geometry>
-    </collision>
-    <inertial><origin xyz="0 0 0.15"/><mass value="0.5"/>{box_inertia(0.5, 0.05, 0.05, 0.3)}
-    </inertial>
-  </link>""")
-        parent = f"arm_{number}_link"
-    parts.append("\n</robot>\n")
-    return "".join(parts)
+    return _arm("arm", "arm_{}_joint", "arm_{}_link", [("revolute", "0 1 0")] * links,
+                '<box size="0.05 0.05 0.3"/>')
 
 
 def swivel_arm() -> str:
     """An arm whose first and third joints turn without end about upright axes, each link
     with collision geometry (Kinova Gen3's joints 1, 3, 5 and 7 are continuous): no wheels."""
-    parts = ['<?xml version="1.0"?>\n<robot name="swivel_arm">', _body(5.0, (0.2, 0.2, 0.1), 0.0)]
+    return _arm("swivel_arm", "joint_{}", "link_{}",
+                [("continuous", "0 0 1"), ("revolute", "0 1 0"), ("continuous", "0 0 1")],
+                '<cylinder radius="0.03" length="0.3"/>')
+
+
+def _arm(name: str, joint: str, link: str, joints: list[tuple[str, str]], shape: str) -> str:
+    """A fixed base and a chain of 0.3 m links of ``shape`` on ``joints`` (kind, axis),
+    named by the patterns ``joint`` and ``link``."""
+    parts = [f'<?xml version="1.0"?>\n<robot name="{name}">', _body(5.0, (0.2, 0.2, 0.1), 0.0)]
     parent = "base_link"
-    for number, (kind, axis) in enumerate((("continuous", "0 0 1"), ("revolute", "0 1 0"),
-                                           ("continuous", "0 0 1")), start=1):
+    for number, (kind, axis) in enumerate(joints, start=1):
+        child = link.format(number)
         parts.append(f"""
-  <joint name="joint_{number}" type="{kind}">
-    <parent link="{parent}"/><child link="link_{number}"/>
+  <joint name="{joint.format(number)}" type="{kind}">
+    <parent link="{parent}"/><child link="{child}"/>
     <origin xyz="0 0 {0.1 if number == 1 else 0.3}"/><axis xyz="{axis}"/>
     <limit lower="-1.5" upper="1.5" effort="10" velocity="1"/>
   </joint>
-  <link name="link_{number}">
-    <collision><origin xyz="0 0 0.15"/><geometry><cylinder radius="0.03" length="0.3"/>
-    </geometry></collision>
+  <link name="{child}">
+    <collision><origin xyz="0 0 0.15"/><geometry>{shape}</geometry>
+    </collision>
     <inertial><origin xyz="0 0 0.15"/><mass value="0.5"/>{box_inertia(0.5, 0.05, 0.05, 0.3)}
     </inertial>
   </link>""")
-        parent = f"link_{number}"
+        parent = child
     parts.append("\n</robot>\n")
     return "".join(parts)
 

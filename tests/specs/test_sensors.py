@@ -414,14 +414,20 @@ def test_the_pose_proof_still_sees_a_thousandth_of_a_degree_about_any_axis():
     assert _turned(np.eye(4), turned((0, 0, 1), 180)) == pytest.approx(180)
 
 
-def test_each_link_is_made_ray_ready_once_for_every_sensor_each_seeing_the_other(
-        tmp_path, monkeypatch):
+@pytest.fixture
+def made(monkeypatch) -> list[int]:
+    """The triangle counts of every ray scene built (self_view._intersector) in the test."""
     from mobile_car.specs import self_view
 
-    made = []
+    counts = []
     intersector = self_view._intersector
     monkeypatch.setattr(self_view, "_intersector",
-                        lambda triangles: made.append(len(triangles)) or intersector(triangles))
+                        lambda triangles: counts.append(len(triangles)) or intersector(triangles))
+    return counts
+
+
+def test_each_link_is_made_ray_ready_once_for_every_sensor_each_seeing_the_other(
+        tmp_path, made):
     # Two scanners 0.3 m apart on the y axis, each housed in its own 4 cm box: each one's
     # housing is left out of its own view and blocks the other's, over the sector the
     # box's near face subtends.
@@ -442,14 +448,7 @@ def test_each_link_is_made_ray_ready_once_for_every_sensor_each_seeing_the_other
     assert made == [24, 24, 24]
 
 
-def test_the_links_no_sensor_can_be_housed_in_are_made_ray_ready_together(
-        tmp_path, monkeypatch):
-    from mobile_car.specs import self_view
-
-    made = []
-    intersector = self_view._intersector
-    monkeypatch.setattr(self_view, "_intersector",
-                        lambda triangles: made.append(len(triangles)) or intersector(triangles))
+def test_the_links_no_sensor_can_be_housed_in_are_made_ray_ready_together(tmp_path, made):
     posts = [post(f"post{n}", (0.2, y), 0.02) for n, y in enumerate((-0.1, 0.0, 0.1))]
     _, section = sensors_of(tmp_path / "posts.urdf",
                             robot(lidar_link(), *posts, ray_sensor("lidar_link")))

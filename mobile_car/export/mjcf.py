@@ -193,6 +193,13 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
     root, joints, sources = prepared.root, prepared.joints, prepared.sources
     assets, warnings = prepared.assets, prepared.warnings
     found, mended = mended_first
+    root_body = spec.worldbody.first_body()
+    if root_body is None:
+        raise ExportError("the robot has no link MuJoCo can place", file=loaded.label)
+    if options.base == "floating":
+        # before the inertias are judged: a floating root moves, and MuJoCo then needs its
+        # mass (ABB's massless base_link passed the judging, then failed the compile)
+        root_body.add_freejoint(name=FREE_JOINT)
     refused = refused_links(mj, spec)
     if not options.fix_inertia:
         refuse(found + refused, loaded.label, options.place)
@@ -210,11 +217,6 @@ def _complete(mj, spec, prepared, loaded, options, mended_first):
             geom.priority = 1
             if frictionless(mu):  # sim's frictionless contact
                 geom.condim = 1
-    root_body = spec.worldbody.first_body()
-    if root_body is None:
-        raise ExportError("the robot has no link MuJoCo can place", file=loaded.label)
-    if options.base == "floating":
-        root_body.add_freejoint(name=FREE_JOINT)
     spec.option.timestep = TIMESTEP
     spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
     spec.option.cone = friction_cone(mj, sources.friction)  # as sim has it

@@ -211,6 +211,41 @@ def test_a_moving_link_without_mass_gets_one_from_its_geometry(run_mcar, tmp_pat
            "links" in fixed.stderr
 
 
+ARM_ON_A_BARE_BASE = """<?xml version="1.0"?>
+<robot name="bolted_arm">
+  <link name="base_link"><collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+  </link>
+  <link name="arm_link">
+    <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0"
+      iyz="0"/></inertial>
+    <collision><geometry><box size="0.05 0.05 0.3"/></geometry></collision>
+  </link>
+  <joint name="arm_joint" type="revolute">
+    <parent link="base_link"/><child link="arm_link"/><origin xyz="0 0 0.2"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="5" velocity="1"/>
+  </joint>
+</robot>
+"""
+
+
+def test_a_floating_root_without_mass_is_judged_as_the_moving_link_it_is(run_mcar, tmp_path):
+    # ABB's arms: a base_link without <inertial>, every other link on a joint. Floating, the
+    # base moves; MuJoCo refused it only at the last compile, past --fix-inertia's reach.
+    (tmp_path / "arm.urdf").write_text(ARM_ON_A_BARE_BASE)
+    refused = run_mcar("export", "arm.urdf", "--to", "mjcf", "-o", "out", cwd=tmp_path)
+    assert refused.returncode == 1
+    assert refused.stderr.splitlines()[1:] == [
+        "  link base_link: moves but has no mass (MuJoCo needs one) (arm.urdf:3)"]
+    fixed = run_mcar("export", "arm.urdf", "--to", "mjcf", "-o", "out", "--fix-inertia",
+                     "--verify", cwd=tmp_path)
+    assert fixed.returncode == 0, fixed.stderr
+    assert ("arm.urdf: warning: link base_link: moves without mass; MuJoCo gave it 4 kg "
+            "and its inertia from its collision geometry") in fixed.stderr
+    bolted = run_mcar("export", "arm.urdf", "--to", "mjcf", "-o", "fixed", "--base", "fixed",
+                      cwd=tmp_path)  # welded to the world, the base need not move
+    assert bolted.returncode == 0, bolted.stderr
+
+
 def test_verify_names_a_mass_that_differs(tmp_path):
     from mobile_car.errors import McarError
     from mobile_car.export.mjcf import Exported

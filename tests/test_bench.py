@@ -106,6 +106,13 @@ def test_quick_folder_section_times_check_and_build_of_two_sizes(tmp_path, mcar_
     assert all(cells[6] in ("met", "**missed**") for cells in rows[1::2])  # 2N vs N
 
 
+def _rows_by_command(text: str) -> dict[str, list[str]]:
+    """A section's table rows whose first cell is a command (`mcar ...`), by that cell."""
+    return {cells[0]: cells for cells in (line.strip("| ").split(" | ")
+                                          for line in text.splitlines()
+                                          if line.startswith("| `"))}
+
+
 def test_quick_robots_section_times_sim_on_real_robots_next_to_the_car(tmp_path, mcar_bin):
     from sim.test_sim_real_robots import FOLDER
 
@@ -113,9 +120,7 @@ def test_quick_robots_section_times_sim_on_real_robots_next_to_the_car(tmp_path,
         pytest.skip("the shared real-robots folder is absent (set MCAR_REAL_ROBOTS)")
     text = quick_section(tmp_path, "robots", timeout=600)
     assert "## `mcar sim` on real robots" in text
-    rows = {cells[0]: cells for cells in (line.strip("| ").split(" | ")
-                                          for line in text.splitlines()
-                                          if line.startswith("| `"))}
+    rows = _rows_by_command(text)
     sims = ["`mcar sim` bundled car (mobile_robot.xacro)",
             "`mcar sim` TurtleBot3 burger (built URDF)", "`mcar sim` Husky (husky.urdf.xacro)"]
     assert list(rows)[:3] == sims
@@ -137,9 +142,7 @@ def test_quick_specs_section_times_specs_with_and_without_proofs_beside_sim(tmp_
         pytest.skip("the shared real-robots folder is absent (set MCAR_REAL_ROBOTS)")
     text = quick_section(tmp_path, "specs", timeout=600)
     assert "## `mcar specs`" in text
-    rows = {cells[0]: cells for cells in (line.strip("| ").split(" | ")
-                                          for line in text.splitlines()
-                                          if line.startswith("| `"))}
+    rows = _rows_by_command(text)
     names = ("TurtleBot3 burger", "the bundled car")
     assert list(rows) == [label for name in names for label in (
         f"`mcar specs --no-proof` {name}", f"`mcar specs` {name} (with its proofs)",

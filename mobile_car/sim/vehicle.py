@@ -85,6 +85,8 @@ def turns_without_end(joint) -> bool:
     lower = parse_number(limit.get("lower") or "0")
     upper = parse_number(limit.get("upper") or "0")
     return None not in (lower, upper) and lower <= -UNLIMITED and upper >= UNLIMITED
+
+
 def anchored(robot) -> str | None:
     """How the robot is fixed to the world, or None: its root is a link named ``world``,
     which Gazebo welds to its world (and MoveIt and robot_state_publisher take for the

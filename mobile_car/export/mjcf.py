@@ -314,19 +314,22 @@ def _mecanum_tyres(spec, drive, sources) -> list[str]:
 
 def is_vehicle(root, aloft: set[str] = frozenset()) -> bool:
     """Whether the URDF ``root`` is a vehicle as sim decides it before any engine runs: two
-    or more continuous joints about a level axis moving collision geometry down to the
-    floor (not the links of ``aloft``: :func:`mobile_car.sim.vehicle.aloft_bodies`), and
-    another link with some to stand on."""
-    from ..sim.vehicle import lacks, level_turning
+    or more joints turning without end (continuous, or revolute limited to ±UNLIMITED or
+    more) about a level axis moving collision geometry down to the floor (not the links of
+    ``aloft``: :func:`mobile_car.sim.vehicle.aloft_bodies`), and another link with some to
+    stand on."""
+    from ..sim.vehicle import endless, lacks, level_turning
 
     colliding = {link.get("name") for link in root.iterchildren("link")
                  if link.find("collision") is not None}
+    elements = list(root.iterchildren("joint"))
     joints = [(joint.get("type"), _link_of(joint, "parent"), _link_of(joint, "child"),
-               joint.find("origin"), _axis(joint)) for joint in root.iterchildren("joint")]
+               joint.find("origin"), _axis(joint)) for joint in elements]
     level = level_turning(joints)
-    wheels = {child for kind, _parent, child, _origin, _axis_xyz in joints
-              if kind == "continuous" and child in colliding and child in level
-              and child not in aloft}
+    wheels = {child for element, (kind, _parent, child, _origin, _axis_xyz)
+              in zip(elements, joints, strict=True)
+              if endless(kind, element.find("limit")) and child in colliding
+              and child in level and child not in aloft}
     return lacks(colliding, wheels) is None
 
 

@@ -77,10 +77,15 @@ def not_a_vehicle(robot, rest=None) -> NotAVehicle | None:
 
 def turns_without_end(joint) -> bool:
     """A continuous joint, or a revolute one limited to ±UNLIMITED or more."""
-    if joint.type == "continuous":
+    return endless(joint.type, joint.parts.get("limit"))
+
+
+def endless(kind: str | None, limit) -> bool:
+    """Whether a joint of type ``kind`` with this ``<limit>`` element (or None) turns
+    without end: :func:`turns_without_end` of a joint as lxml reads it (an export's)."""
+    if kind == "continuous":
         return True
-    limit = joint.parts.get("limit") if joint.type == "revolute" else None
-    if limit is None:
+    if kind != "revolute" or limit is None:
         return False
     lower = parse_number(limit.get("lower") or "0")
     upper = parse_number(limit.get("upper") or "0")

@@ -258,3 +258,20 @@ def test_grippy_wheels_export_the_elliptic_cone_sim_drives_them_with(run_mcar, t
     plain = _export(run_mcar, tmp_path, two_wheeler(), out="plain")
     assert plain.returncode == 0, plain.stderr
     assert "cone=" not in (tmp_path / "plain/two_wheeler.xml").read_text()
+
+
+def test_wheels_on_revolute_joints_limited_to_1e16_make_a_vehicle_as_in_sim(run_mcar, tmp_path):
+    # Neobotix MP-400's wheels: urdfdom, sim and ci turn them without end; the export's
+    # manifest called the robot no vehicle (continuous joints only), and --verify judged
+    # no drop. (It fits no drive actuators to them yet: sim reads them as continuous
+    # before MuJoCo does, the export does not.)
+    from sim.robot_makers import two_wheeler
+
+    unlimited = two_wheeler(limit='\n    <limit lower="-1e16" upper="1e16" effort="1" '
+                                  'velocity="20"/>').replace('type="continuous"',
+                                                             'type="revolute"')
+    result = _export(run_mcar, tmp_path, unlimited)
+    assert result.returncode == 0, result.stderr
+    manifest = json.loads((tmp_path / "out/mcar-export.json").read_text())
+    assert manifest["vehicle"] is True
+    assert "mcar export: verified: drop passed as mcar sim judges it: " in result.stderr

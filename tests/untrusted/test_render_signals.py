@@ -113,6 +113,17 @@ def _stat(pid: int) -> tuple[str, float] | None:
     return fields[0], (int(fields[11]) + int(fields[12])) / TICKS
 
 
+def _started(pid: int) -> int | None:
+    """When a process started (clock ticks after boot), or None once it is gone: a pid
+    names the same process only while this stays the same (pid_max may be 32768, and a
+    busy test run reuses a freed pid within seconds)."""
+    try:
+        text = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return None
+    return int(text.rsplit(")", 1)[1].split()[19])
+
+
 def _rasterising(pid: int) -> bool:
     """Mesa's llvmpipe threads (named llvmpipe-N) of ``pid`` have computed for a second:
     a draw is under way, in whichever process holds the GL context."""
@@ -161,7 +172,8 @@ def _earlier_pictures(folder: Path, names) -> dict[str, bytes]:
 
 
 def _signal_while_drawing(args, cwd: Path, signum: int, whole_group: bool = False):
-    """Run mcar, signal it mid-draw; (exit code, seconds to exit, stderr, drawing pids)."""
+    """Run mcar, signal it mid-draw; (exit code, seconds to exit, stderr, (pid, start time)
+    of each drawing process)."""
     # The face limit raised so the mesh is drawn: a user with a big mesh raises it too, and
     # a mesh under any limit can still fill every pixel with every face.
     env = {**os.environ, "MCAR_MAX_MESH_FACES": str(2 * FACES)}
@@ -169,7 +181,7 @@ def _signal_while_drawing(args, cwd: Path, signum: int, whole_group: bool = Fals
                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
                                start_new_session=True, env=env)
     try:
-        drawing = _wait_until_drawing(process)
+        drawing = [(pid, _started(pid)) for pid in _wait_until_drawing(process)]
         sent = time.monotonic()
         if whole_group:  # as a terminal's Ctrl-C: mcar and its children alike
             os.killpg(process.pid, signum)
@@ -195,8 +207,10 @@ def _assert_ended_cleanly(code, seconds, err, drawing, signum, folder, before):
     assert "internal error" not in err and "cannot draw" not in err, err
     announcement = "mcar: interrupted" if signum == signal.SIGINT else "mcar: terminated"
     assert err.splitlines()[-1] == announcement, err
-    for pid in drawing:  # killed and reaped, not left drawing on its own
+    for pid, started in drawing:  # killed and reaped, not left drawing on its own
         state = _stat(pid)
+        if state is not None and _started(pid) != started:
+            continue  # gone: its pid is another process's now
         assert state is None or state[0] == "Z", (pid, state)
     after = {path.name: path.read_bytes() for path in folder.iterdir()}
     assert after == before  # earlier pictures whole, no temporary or half-written file

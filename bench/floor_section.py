@@ -11,7 +11,8 @@ change in the load of a shared machine falls on both sides of every ratio alike.
   in the same turns: xacro's own main() after `import click` in one interpreter, unsandboxed
   (the floor of any click tool that runs xacro), shown over xacro in a row of its own and
   under mcar's in mcar's row, so that what is mcar's own overhead is seen apart from
-  click's import.
+  click's import. A fourth, bench/sandboxed_xacro.py (xacro's main() in a child confined
+  by mcar's sandbox, no click), is the floor of any runner that keeps the sandbox on.
 
 Each row shows CPU time (user + system of the command and every process it waited for,
 from wait4) and wall time; the target is judged on CPU, which the load of other processes
@@ -46,6 +47,7 @@ from measure import (  # noqa: E402
 from sim_robots_bench import real_robots  # noqa: E402
 
 CHECK_TARGET, TREE_TARGET, BUILD_TARGET = 1.25, 1.2, 1.3
+SANDBOXED_XACRO = Path(__file__).resolve().parent / "sandboxed_xacro.py"
 PR2_FOLDER = "PR2+pr2_common"  # a checkout of PR2/pr2_common (pr2_description inside)
 
 
@@ -120,6 +122,12 @@ def measure_turns(commands: list[tuple[list[str], dict | None]], runs: int,
                 pairs.codes.append((a_code, b_code))
             every.append(pairs)
     return every
+
+
+def _swapped(pairs: Pairs) -> Pairs:
+    """The same runs with B as the command and A as its yardstick."""
+    return Pairs(pairs.b_cpu, pairs.b_wall, pairs.a_cpu, pairs.a_wall,
+                 [(b, a) for a, b in pairs.codes])
 
 
 def _row(label: str, peer: str, pairs: Pairs, target: float | None,
@@ -213,7 +221,11 @@ def section_floor(rows: list[str], work: Path, quick: bool) -> None:
              "sys.argv = [...]; import xacro; sys.exit(xacro.main())\"` (same interpreter "
              "and environment as xacro, unsandboxed): click's import and xacro's run, the "
              "floor of any click tool that runs xacro. Its row shows it over xacro; "
-             "mcar's row ends with mcar's CPU over it, which is mcar's own overhead.", "",
+             "mcar's row ends with mcar's CPU over it, which is mcar's own overhead. A "
+             "fourth command in the same turns, `python bench/sandboxed_xacro.py` (xacro's "
+             "main() in a child forked and confined by mcar's sandbox, its output back "
+             "through a pipe; no click, no checks), is the floor of any tool that keeps "
+             "the sandbox on, shown over xacro in a row of its own.", "",
              "| mcar command | yardstick | CPU, mcar / peer | CPU ratio | wall, mcar / peer "
              "| wall ratio | pairs | target (CPU) |",
              "|---|---|---:|---:|---:|---:|---:|---|"]
@@ -239,18 +251,26 @@ def section_floor(rows: list[str], work: Path, quick: bool) -> None:
     robots, missing = _robots()
     env = _package_prefix(work / "ament", [folder for _l, folder, _p in robots])
     for label, folder, path in robots:
-        mcar_floor, mcar_xacro, floor_xacro = measure_turns(
+        sandboxed_env = {**env, "MCAR_BENCH_READ_ROOTS": str(folder)}
+        (mcar_floor, mcar_xacro, _mcar_sandboxed, floor_xacro, _floor_sandboxed,
+         _xacro_sandboxed) = measure_turns(
             [([MCAR, "build", "--package-path", str(folder), str(path), "-o", os.devnull],
               None),
              (click_xacro_floor(python, path), env),
-             ([XACRO, str(path), "-o", os.devnull], env)], runs)
+             ([XACRO, str(path), "-o", os.devnull], env),
+             ([python, str(SANDBOXED_XACRO), str(path)], sandboxed_env)], runs)
+        sandboxed_xacro = _swapped(_xacro_sandboxed)
+        name = label.split(" (")[0]
         rows.append(_row(f"`mcar build` {label}", "`xacro`", mcar_xacro, BUILD_TARGET,
                          over_floor=mcar_floor))
         rows.append(_row(f"click + xacro, unsandboxed (the floor of any click tool), "
-                         f"{label.split(' (')[0]}", "`xacro`", floor_xacro, None))
+                         f"{name}", "`xacro`", floor_xacro, None))
+        rows.append(_row(f"xacro in mcar's sandbox, no click (the floor of any sandboxed "
+                         f"runner), {name}", "`xacro`", sandboxed_xacro, None))
         progress(f"floor: build {label} "
                  f"{mcar_xacro.ratio('cpu') if mcar_xacro.ok else '-'}, over the floor "
-                 f"{mcar_floor.ratio('cpu') if mcar_floor.ok else '-'}")
+                 f"{mcar_floor.ratio('cpu') if mcar_floor.ok else '-'}, sandboxed xacro "
+                 f"{sandboxed_xacro.ratio('cpu') if sandboxed_xacro.ok else '-'}")
     rows.append("")
     if missing:
         rows += ["Not measured: " + "; ".join(missing) + ".", ""]

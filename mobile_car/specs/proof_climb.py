@@ -91,9 +91,12 @@ def _mecanum_share(sim, found) -> float:
     from .proof_grip import least_share
     from .proof_tilt import proof_model
 
+    gripping = [w for w in sim.drive.driven if w.grip is not None]  # (their capsules)
+    if not gripping:
+        return 1.0
     model, _ = proof_model(sim, found, resting=False)
     omega = min(command_speed(sim), CRAWL / sim.drive.radius)
-    return least_share(model, sim.drive.driven, found.mass / len(sim.drive.driven), omega,
+    return least_share(model, gripping, found.mass / len(sim.drive.driven), omega,
                        SERVO_STIFFER_MECANUM, (DRIVE, MEASURE, PROGRESS))
 
 

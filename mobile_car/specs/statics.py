@@ -46,7 +46,7 @@ def statics_section(checked, sim, options: dict | None = None) -> Section:
         from .proof_tilt import prove_tilt
 
         prove_tilt(sim, found, result, statics)
-        prove_climb(sim, found, result)
+        prove_climb(sim, found, result, statics)
     elif sim.drive is None:
         result.notes.append("not a vehicle: no tilt or climb proof (they hold and drive its "
                             "wheels)")
@@ -121,37 +121,16 @@ class Statics:
         """The steepest slope its driven wheels hold and climb, facing up it: each wheel
         pushes the least of its motor's (effort − joint friction) / r and μ·its load, the
         slope asks m·g·sin θ and the castors' drag."""
-        sim, found = self.sim, self.found
+        sim = self.sim
         label = "steepest slope it climbs"
         if sim.drive is None:
             return Figure("statics.climb", label, None, "deg",
                           f"not a vehicle: {sim.why_no_drive or 'no drive wheels'}")
         wheels = _motor_forces(sim)  # body -> (N its motor pushes, wheel)
-        weight = found.mass * GRAVITY
-        x, y, h = self.com
-        edge = _reach_back(self)
-
-        def shares(theta):
-            d = min(h * math.tan(theta), max(0.0, edge - 1e-9))
-            return loads_of(found.contacts, (x - d, y))
-
-        def push(theta, motors=True, traction=True) -> float:
-            s, total = shares(theta), 0.0
-            per_body: dict[int, float] = {}
-            for contact, share in zip(found.contacts, s, strict=True):
-                if contact.role == "driven":  # (a mecanum wheel grips along its rollers)
-                    per_body[contact.body] = per_body.get(contact.body, 0.0) + \
-                        grip_along(contact, 1.0, 0.0) * share * math.cos(theta)
-                elif contact.hold == "held":
-                    total -= contact.mu * share * math.cos(theta)  # a dragging castor
-            for body, grip in per_body.items():
-                motor = wheels[body][0] / weight if body in wheels else 0.0
-                total += min(motor if motors else math.inf, grip if traction else math.inf)
-            return total - math.sin(theta)
-
-        climb = first_failure(lambda t: push(t) >= 0)
-        by_motors = first_failure(lambda t: push(t, traction=False) >= 0)
-        by_traction = first_failure(lambda t: push(t, motors=False) >= 0)
+        weight = self.found.mass * GRAVITY
+        climb = self.climb_angle()
+        by_motors = self.climb_angle(traction=False)
+        by_traction = self.climb_angle(motors=False)
         if abs(climb - by_motors) < 1e-4:
             limit = "the motors"
         elif abs(climb - by_traction) < 1e-4:
@@ -170,6 +149,34 @@ class Statics:
                       f"(Σ effort/r = {force:.4g} N of m·g = {weight:.4g} N; effort "
                       f"{efforts}), the driven wheels' grip {_most(by_traction)}",
                       "facing straight up the slope; castors drag with their μ")
+
+    def climb_angle(self, motors: bool = True, traction: bool = True,
+                    grip_share: float = 1.0) -> float:
+        """The steepest slope (rad) the driven wheels climb, each pushing the least of its
+        motor's force and ``grip_share`` of its grip (its μ·load, along its rollers for a
+        mecanum wheel); ``motors``/``traction`` False: that limit left out."""
+        found = self.found
+        wheels = _motor_forces(self.sim)
+        weight = found.mass * GRAVITY
+        x, y, h = self.com
+        edge = _reach_back(self)
+
+        def push(theta) -> float:
+            d = min(h * math.tan(theta), max(0.0, edge - 1e-9))
+            shares, total = loads_of(found.contacts, (x - d, y)), 0.0
+            per_body: dict[int, float] = {}
+            for contact, share in zip(found.contacts, shares, strict=True):
+                if contact.role == "driven":  # (a mecanum wheel grips along its rollers)
+                    per_body[contact.body] = per_body.get(contact.body, 0.0) + grip_share * \
+                        grip_along(contact, 1.0, 0.0) * share * math.cos(theta)
+                elif contact.hold == "held":
+                    total -= contact.mu * share * math.cos(theta)  # a dragging castor
+            for body, grip in per_body.items():
+                motor = wheels[body][0] / weight if body in wheels else 0.0
+                total += min(motor if motors else math.inf, grip if traction else math.inf)
+            return total - math.sin(theta)
+
+        return first_failure(lambda t: push(t) >= 0)
 
 
 def _motor_forces(sim) -> dict:

@@ -526,16 +526,17 @@ PLANAR_MOVE = """
 
 def mecanum_wheels(mass: float = 10.0, wheelbase: float = 0.4, track: float = 0.4,
                    radius: float = 0.06, wheel_mu: float | None = None,
-                   extra: str = "") -> str:
+                   extra: str = "", lift: float = 0.2) -> str:
     """A box on four plain cylinders (mecanum wheels as linorobot2 and ROSbot XL draw
     them: no roller links); ``wheel_mu``: each wheel's <gazebo><mu1> (linorobot2: 0.01);
-    ``extra``: what declares them mecanum (PLANAR_MOVE), else nothing does."""
+    ``extra``: what declares them mecanum (PLANAR_MOVE), else nothing does; ``lift``: the
+    body's centre above the axles, in wheel radii."""
     width = 0.5 * radius
     wheel_mass = 0.05 * mass
     body_mass = mass - 4 * wheel_mass
     body = (wheelbase, track - width - 0.04, 0.6 * radius)
     parts = ['<?xml version="1.0"?>\n<robot name="mecanum_wheels">',
-             _body(body_mass, body, 0.2 * radius, axle=radius)]
+             _body(body_mass, body, lift * radius, axle=radius)]
     for end, x in (("front", wheelbase / 2), ("rear", -wheelbase / 2)):
         for side, sign in (("left", 1), ("right", -1)):
             name = f"{end}_{side}_wheel"

@@ -17,6 +17,7 @@ simply has no controller to read.
 from __future__ import annotations
 
 import math
+import os
 import re
 from pathlib import Path
 
@@ -153,32 +154,86 @@ def _description_packages(loaded) -> list[str]:
 def yaml_mappings(path: Path, problems: list[str], contains: str | None = None) -> list[dict]:
     """key -> (key node, value node) of every mapping in the YAML file (bounded read, the
     bounded loader); ``contains``: a word the file must hold to be parsed at all (most
-    files of a control package name no controller a reader looks for)."""
-    import yaml
+    files of a control package name no controller a reader looks for). Each file is read
+    and parsed once in a process while its stamp holds (:data:`_READ`): the declarations,
+    mecanum, the multiplier and the stack's comparison all ask for the same files."""
+    read = _read_yaml(path)
+    if isinstance(read.text, BaseException):
+        problems.append(f"{display_path(path)}: not read ({_reason(read.text)})")
+        return []
+    if contains is not None and contains not in read.text:
+        return []
+    if read.mappings is None:
+        read.parse()
+    if isinstance(read.mappings, BaseException):
+        problems.append(f"{display_path(path)}: not read ({_reason(read.mappings)})")
+        return []
+    return list(read.mappings)
 
-    from ..config.bounded_yaml import compose_and_load
-    from ..load.bounded import read_input
+
+class _YamlFile:
+    """A control file as read (its text, or why it could not be read) and, once asked
+    for, its mappings (or why they could not be parsed)."""
+
+    __slots__ = ("mappings", "text")
+
+    def __init__(self, path: Path):
+        import yaml
+
+        from ..load.bounded import read_input
+
+        self.mappings = None
+        try:
+            self.text = read_input(path, str(path)).decode("utf-8")
+        except (OSError, McarError, UnicodeDecodeError, yaml.YAMLError) as error:
+            self.text = error
+
+    def parse(self) -> None:
+        import yaml
+
+        from ..config.bounded_yaml import compose_and_load
+
+        try:
+            node, _ = compose_and_load(self.text)
+        except yaml.YAMLError as error:
+            self.mappings = error
+            return
+        found = []
+        todo = [node] if node is not None else []
+        while todo:
+            current = todo.pop()
+            if isinstance(current, yaml.SequenceNode):
+                todo += current.value
+            if not isinstance(current, yaml.MappingNode):
+                continue
+            keys = {k.value: (k, v) for k, v in current.value
+                    if isinstance(k, yaml.ScalarNode)}
+            found.append(keys)
+            todo += [v for _, v in current.value]
+        self.mappings = found
+
+
+# real path -> (its stamp, _YamlFile): within one process (a view server's reloads too),
+# a file edited since is read again; at most _MAX_KEPT files kept
+_READ: dict[str, tuple[list, _YamlFile]] = {}
+_MAX_KEPT = 256
+
+
+def _read_yaml(path: Path) -> _YamlFile:
+    from ..freshness import identity
 
     try:
-        text = read_input(path, str(path)).decode("utf-8")
-        if contains is not None and contains not in text:
-            return []
-        node, _ = compose_and_load(text)
-    except (OSError, McarError, UnicodeDecodeError, yaml.YAMLError) as error:
-        problems.append(f"{display_path(path)}: not read ({_reason(error)})")
-        return []
-    found = []
-    todo = [node] if node is not None else []
-    while todo:
-        current = todo.pop()
-        if isinstance(current, yaml.SequenceNode):
-            todo += current.value
-        if not isinstance(current, yaml.MappingNode):
-            continue
-        keys = {k.value: (k, v) for k, v in current.value if isinstance(k, yaml.ScalarNode)}
-        found.append(keys)
-        todo += [v for _, v in current.value]
-    return found
+        real = os.path.realpath(path)
+        stamp = identity(os.stat(real))
+    except (OSError, ValueError):
+        return _YamlFile(path)  # (read_input says why)
+    kept = _READ.get(real)
+    if kept is not None and kept[0] == stamp:
+        return kept[1]
+    if len(_READ) >= _MAX_KEPT:
+        _READ.clear()
+    read = _READ[real] = (stamp, _YamlFile(path))
+    return read[1]
 
 
 def _multipliers(path: Path, problems: list[str]) -> list[tuple[ControlConfig, set[str]]]:

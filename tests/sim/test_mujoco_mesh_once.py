@@ -30,7 +30,7 @@ def test_a_mesh_named_three_times_is_read_once_and_again_after_an_edit(tmp_path,
         return original(path, *args, **kwargs)
 
     monkeypatch.setattr(mesh_reader, "load_mesh", counted)
-    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    monkeypatch.setenv("MCAR_CACHE_DIR", str(tmp_path / "cache"))
     ascii_stl = tmp_path / "part.stl"  # ASCII: converted to binary STL for MuJoCo
     ascii_stl.write_text(TRIANGLE.format(x=1))
     first = mujoco_mesh(ascii_stl)

@@ -86,7 +86,8 @@ def find_controllers(loaded) -> tuple[list, list[str], list[Path]]:
 
 
 def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
-                     folders=("config", ""), named_only: bool = True):
+                     folders=("config", ""), named_only: bool = True,
+                     consulted: list | None = None):
     """Each control package's YAML files (at most MAX_FILES), nearest package first. A
     file that is a link out of the repository holding its package (or into its ``.git``)
     is not read, and said in ``problems``: a pull request commits
@@ -99,8 +100,11 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
     ``named_only``: where the robot names some of a package's files as its controllers'
     parameters (``<parameters>`` of its ros2_control or Gazebo plugin), only those: the
     others configure another variant (ROSbot: mecanum_drive_controller.yaml beside the
-    diff_drive_controller.yaml its plain wheels name)."""
+    diff_drive_controller.yaml its plain wheels name); where it names none, those its
+    launch runs for the variant built (:mod:`.control_variants`; the launch files it read
+    are added to ``consulted``)."""
     from ..packages.asset_roots import link_out_of, repository_of
+    from .control_variants import launch_choice
 
     named = _named_parameters(loaded) if named_only else set()
     for name in _description_packages(loaded):
@@ -119,7 +123,8 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
                 else:
                     problems.append(f"{display_path(path)}: not read ({why})")
             chosen = [path for path in kept if path.resolve() in named]
-            yield chosen or kept
+            yield chosen or (launch_choice(loaded, root, kept, consulted) if named_only
+                             else kept)
 
 
 def _named_parameters(loaded) -> set[Path]:

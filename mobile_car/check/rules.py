@@ -237,6 +237,10 @@ _TABLE = [
          "n/a"),
     Rule("N404", "gazebo-console-error", "an error libsdformat printed on its console but "
          "did not return: it loaded the robot past it", "n/a"),
+    Rule("N405", "stack-variant-unknown", "W510-W512's finding on one of several controller "
+         "files the control package ships for the robot's variants, where the robot names "
+         "none in `<parameters>` and no launch of the package chooses one by an argument "
+         "of this build: mcar cannot tell the file is the one this variant runs", "n/a"),
 ]
 
 RULES: dict[str, Rule] = {rule.id: rule for rule in _TABLE}

@@ -155,15 +155,21 @@ def export_mjcf(loaded, folder: Path, options: MjcfOptions) -> Exported:
     """Write the MuJoCo model of a loaded robot (a LoadedRobot) and its meshes into
     ``folder``; ExportError where MuJoCo cannot make the model asked for."""
     from ..sim.engine import mujoco
+    from ..sim.model import as_urdfdom_reads
 
     mj = mujoco()
     prepared = prepare(loaded, folder)
+    # As sim reads the robot before MuJoCo does: wheels limited to ±1e16 turn without end
+    # (sim's drive finder takes continuous joints only), so the file drives as sim's model
+    read_as = as_urdfdom_reads(prepared.root, made="exported")
     # What MuJoCo cannot mend itself, found and mended in the URDF first (then MuJoCo
     # reads the robot, and names the rest: refused_links).
     found = before_mujoco(prepared.root)
     mended = make_physical(prepared.root, found)
     spec = mujoco_spec(mj, prepared, loaded.label)
-    return _complete(mj, spec, prepared, loaded, options, (found, mended))
+    exported = _complete(mj, spec, prepared, loaded, options, (found, mended))
+    exported.notes[:0] = read_as
+    return exported
 
 
 def before_mujoco(root) -> list:

@@ -23,6 +23,7 @@ from PIL import Image
 from ..errors import InputError
 from ..held_signals import import_held
 from ..packages.asset_roots import in_vcs_folder
+from . import mesh_cache
 from .collada import readable_collada
 from .compressed import ZIP_FORMATS, compressed_kind, decompressed_members, max_mesh_bytes
 from .mesh_limits import MeshOverLimit, scan_bytes, scan_mesh, suffix_of
@@ -101,9 +102,44 @@ def load_mesh(path: str | os.PathLike, shown: str | None = None, **kwargs):
     read besides the mesh. COLLADA is read as RViz reads it (:mod:`.collada`: recovered
     XML, repaired colours, ``<unit>`` applied). MeshOverLimit over a limit; MeshBroken,
     InputError or one of compressed.broken_errors() for a file that cannot be measured;
-    trimesh's own exceptions for one it cannot parse."""
+    trimesh's own exceptions for one it cannot parse. Within :func:`.mesh_cache.kept`, a
+    file asked for as a scene or a mesh is parsed once while its stamp holds: what
+    ``trimesh.load`` makes of ``force`` (the scene, or its meshes concatenated) is made of
+    the kept scene, a copy each time."""
     path = Path(path)
     shown = shown or str(path)
+    force = kwargs.get("force")
+    key = None
+    if force in ("scene", "mesh"):
+        key = mesh_cache.key_of(path, _read_alike(path, {k: v for k, v in kwargs.items()
+                                                          if k != "force"}))
+    if key is None:
+        loaded, unit, read = _read(path, shown, kwargs)
+        return in_metres(loaded, unit), read
+    kept = mesh_cache.get(key)
+    if kept is None:
+        kept = _read(path, shown, {**kwargs, "force": "scene"})
+        mesh_cache.put(key, kept)
+    scene, unit, read = kept
+    if force == "mesh":  # what trimesh.load(force="mesh") makes of the same scene
+        return in_metres(scene.to_mesh(), unit), list(read)
+    # (scaled is a copy already)
+    return in_metres(scene.copy() if unit == 1.0 else scene, unit), list(read)
+
+
+def _read_alike(path: Path, options: dict) -> dict:
+    """``options`` without those that change nothing trimesh reads from this file: its
+    COLLADA reader ignores ``skip_materials`` and ignores broken parts unless told not to
+    (render asks for both, sim for neither: they share one read)."""
+    if suffix_of(path.name) != "dae":
+        return options
+    return {k: v for k, v in options.items()
+            if k != "skip_materials" and (k, v) != ("ignore_broken", True)}
+
+
+def _read(path: Path, shown: str, kwargs: dict):
+    """(what trimesh.load gives for ``kwargs``, the file's unit in metres, the files it
+    read besides the mesh)."""
     read: list[Path] = []
     scan_mesh(path, shown)
     kind = compressed_kind(path)
@@ -115,7 +151,7 @@ def load_mesh(path: str | os.PathLike, shown: str | None = None, **kwargs):
             data = handle.read(max_mesh_bytes() + 1)
         if len(data) > max_mesh_bytes():  # it grew since it was measured
             raise MeshOverLimit("grew past the mesh size limit while read", file=shown)
-        return _load_bytes(path.name, data, shown, resolver, kwargs), read
+        return (*_load_bytes(path.name, data, shown, resolver, kwargs), read)
     members = decompressed_members(path, shown)
     for name, data in members:
         scan_bytes(name, data, f"{shown} ({name})")
@@ -123,7 +159,7 @@ def load_mesh(path: str | os.PathLike, shown: str | None = None, **kwargs):
         raise InputError("an archive with no file in it", file=shown)
     if kind in ("bz2", "gz"):
         name, data = members[0]
-        return _load_bytes(name, data, shown, resolver, kwargs), read
+        return (*_load_bytes(name, data, shown, resolver, kwargs), read)
     # An archive again, its members stored as they are: trimesh reads what was measured;
     # a COLLADA member as RViz reads it, its unit applied once loaded.
     unit = 1.0
@@ -137,17 +173,18 @@ def load_mesh(path: str | os.PathLike, shown: str | None = None, **kwargs):
     del members
     stored.seek(0)
     file_type = kind if kind in ZIP_FORMATS else "zip"
-    return in_metres(trimesh.load(stored, file_type=file_type, **kwargs), unit), read
+    return trimesh.load(stored, file_type=file_type, **kwargs), unit, read
 
 
 def _load_bytes(name: str, data: bytes, shown: str, resolver, kwargs: dict):
+    """(what trimesh.load gives, the unit in metres)."""
     file_type = suffix_of(name)
     unit = 1.0
     if file_type == "dae":
         document = readable_collada(data, shown)
         data, unit = document.data, document.unit
-    loaded = trimesh.load(io.BytesIO(data), file_type=file_type, resolver=resolver, **kwargs)
-    return in_metres(loaded, unit)
+    return trimesh.load(io.BytesIO(data), file_type=file_type, resolver=resolver,
+                        **kwargs), unit
 
 
 def in_metres(loaded, unit: float):

@@ -82,7 +82,8 @@ class LoadedRobot:
     # that imports it the compiling of its methods (values.py).
     def __init__(self, input: RobotInput, urdf: bytes, search: PackageSearch,
                  deps: list[Path] | None = None, warnings: list[str] | None = None,
-                 from_xacro: bool = False, origins: object = None):
+                 from_xacro: bool = False, origins: object = None,
+                 mappings: dict[str, str] | None = None):
         self.input = input
         self.urdf = urdf
         self.search = search
@@ -90,6 +91,7 @@ class LoadedRobot:
         self.warnings = [] if warnings is None else warnings  # xacro's warnings
         self.from_xacro = from_xacro
         self.origins = origins  # expand.origins.Origins: where each element was written
+        self.mappings = {} if mappings is None else mappings  # xacro's NAME:=VALUE given
 
     @property
     def label(self) -> str:
@@ -165,7 +167,8 @@ def _expand(inp: RobotInput, options: LoadOptions, search: PackageSearch,
         raise UsageError("--set/--config change config.xacro, which this file does not "
                          "include", file=inp.label)
     return LoadedRobot(inp, built.xml.encode("utf-8"), search, deps=built.deps,
-                       warnings=built.warnings, from_xacro=True, origins=built.origins)
+                       warnings=built.warnings, from_xacro=True, origins=built.origins,
+                       mappings=mappings)
 
 
 def _check_config_ranges(deps: list[Path]) -> None:

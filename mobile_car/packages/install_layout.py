@@ -66,13 +66,15 @@ def _share_relative(after: list[str], names: set[str]) -> str | None:
     return "/".join(rest)
 
 
-def source_of(root: Path, name: str, inner: str) -> Path | None:
+def source_of(root: Path, name: str, inner: str, rules: list | None = None) -> Path | None:
     """The file of package ``name`` (source folder ``root``) installed as
-    ``share/NAME/INNER``, if its rules install one there and it exists; else None."""
+    ``share/NAME/INNER``, if its rules install one there and it exists; else None.
+    ``rules``: its :func:`install_rules`, where the caller keeps them (read once a run,
+    not once for each path a checkout lacks)."""
     wanted = PurePosixPath(inner).parts
     if ".." in wanted:
         return None
-    for kind, source, destination in install_rules(root, name):
+    for kind, source, destination in install_rules(root, name) if rules is None else rules:
         src = PurePosixPath(source)
         if "$" in source or ".." in src.parts or src.is_absolute():
             continue  # CMake would take it from outside the package: mcar does not

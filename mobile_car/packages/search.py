@@ -125,6 +125,8 @@ class PackageSearch:
         self.settings_read: list[Path] = []
         self._cache: dict[str, Path] = {}
         self._crawled: dict[str, Path] | None = None
+        # package -> its CMakeLists.txt's install rules (installed_source)
+        self._install_rules: dict[str, list] = {}
 
     @property
     def _env(self):
@@ -222,12 +224,15 @@ class PackageSearch:
         """The source file a missing ``path`` below a found package's folder names as
         that package installs it (:mod:`.install_layout`): ``$(find PKG)/urdf/x`` of a
         package that installs ``description/urdf``. None for any other path."""
-        from .install_layout import source_of
+        from .install_layout import install_rules, source_of
 
         path = Path(path)
         for name, root in self._cache.items():
             if root in path.parents and not path.exists():
-                return source_of(root, name, path.relative_to(root).as_posix())
+                if name not in self._install_rules:  # CMakeLists.txt read once a run
+                    self._install_rules[name] = install_rules(root, name)
+                return source_of(root, name, path.relative_to(root).as_posix(),
+                                 self._install_rules[name])
         return None
 
     def resolve_uri(self, uri: str, base: Path | None = None) -> Path:

@@ -17,6 +17,7 @@ simply has no controller to read.
 from __future__ import annotations
 
 import math
+import os
 import re
 from pathlib import Path
 
@@ -85,7 +86,8 @@ def find_controllers(loaded) -> tuple[list, list[str], list[Path]]:
 
 
 def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
-                     folders=("config", ""), named_only: bool = True):
+                     folders=("config", ""), named_only: bool = True,
+                     consulted: list | None = None):
     """Each control package's YAML files (at most MAX_FILES), nearest package first. A
     file that is a link out of the repository holding its package (or into its ``.git``)
     is not read, and said in ``problems``: a pull request commits
@@ -98,8 +100,11 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
     ``named_only``: where the robot names some of a package's files as its controllers'
     parameters (``<parameters>`` of its ros2_control or Gazebo plugin), only those: the
     others configure another variant (ROSbot: mecanum_drive_controller.yaml beside the
-    diff_drive_controller.yaml its plain wheels name)."""
+    diff_drive_controller.yaml its plain wheels name); where it names none, those its
+    launch runs for the variant built (:mod:`.control_variants`; the launch files it read
+    are added to ``consulted``)."""
     from ..packages.asset_roots import link_out_of, repository_of
+    from .control_variants import launch_choice
 
     named = _named_parameters(loaded) if named_only else set()
     for name in _description_packages(loaded):
@@ -118,7 +123,8 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
                 else:
                     problems.append(f"{display_path(path)}: not read ({why})")
             chosen = [path for path in kept if path.resolve() in named]
-            yield chosen or kept
+            yield chosen or (launch_choice(loaded, root, kept, consulted) if named_only
+                             else kept)
 
 
 def _named_parameters(loaded) -> set[Path]:
@@ -153,32 +159,86 @@ def _description_packages(loaded) -> list[str]:
 def yaml_mappings(path: Path, problems: list[str], contains: str | None = None) -> list[dict]:
     """key -> (key node, value node) of every mapping in the YAML file (bounded read, the
     bounded loader); ``contains``: a word the file must hold to be parsed at all (most
-    files of a control package name no controller a reader looks for)."""
-    import yaml
+    files of a control package name no controller a reader looks for). Each file is read
+    and parsed once in a process while its stamp holds (:data:`_READ`): the declarations,
+    mecanum, the multiplier and the stack's comparison all ask for the same files."""
+    read = _read_yaml(path)
+    if isinstance(read.text, BaseException):
+        problems.append(f"{display_path(path)}: not read ({_reason(read.text)})")
+        return []
+    if contains is not None and contains not in read.text:
+        return []
+    if read.mappings is None:
+        read.parse()
+    if isinstance(read.mappings, BaseException):
+        problems.append(f"{display_path(path)}: not read ({_reason(read.mappings)})")
+        return []
+    return list(read.mappings)
 
-    from ..config.bounded_yaml import compose_and_load
-    from ..load.bounded import read_input
+
+class _YamlFile:
+    """A control file as read (its text, or why it could not be read) and, once asked
+    for, its mappings (or why they could not be parsed)."""
+
+    __slots__ = ("mappings", "text")
+
+    def __init__(self, path: Path):
+        import yaml
+
+        from ..load.bounded import read_input
+
+        self.mappings = None
+        try:
+            self.text = read_input(path, str(path)).decode("utf-8")
+        except (OSError, McarError, UnicodeDecodeError, yaml.YAMLError) as error:
+            self.text = error
+
+    def parse(self) -> None:
+        import yaml
+
+        from ..config.bounded_yaml import compose_and_load
+
+        try:
+            node, _ = compose_and_load(self.text)
+        except yaml.YAMLError as error:
+            self.mappings = error
+            return
+        found = []
+        todo = [node] if node is not None else []
+        while todo:
+            current = todo.pop()
+            if isinstance(current, yaml.SequenceNode):
+                todo += current.value
+            if not isinstance(current, yaml.MappingNode):
+                continue
+            keys = {k.value: (k, v) for k, v in current.value
+                    if isinstance(k, yaml.ScalarNode)}
+            found.append(keys)
+            todo += [v for _, v in current.value]
+        self.mappings = found
+
+
+# real path -> (its stamp, _YamlFile): within one process (a view server's reloads too),
+# a file edited since is read again; at most _MAX_KEPT files kept
+_READ: dict[str, tuple[list, _YamlFile]] = {}
+_MAX_KEPT = 256
+
+
+def _read_yaml(path: Path) -> _YamlFile:
+    from ..freshness import identity
 
     try:
-        text = read_input(path, str(path)).decode("utf-8")
-        if contains is not None and contains not in text:
-            return []
-        node, _ = compose_and_load(text)
-    except (OSError, McarError, UnicodeDecodeError, yaml.YAMLError) as error:
-        problems.append(f"{display_path(path)}: not read ({_reason(error)})")
-        return []
-    found = []
-    todo = [node] if node is not None else []
-    while todo:
-        current = todo.pop()
-        if isinstance(current, yaml.SequenceNode):
-            todo += current.value
-        if not isinstance(current, yaml.MappingNode):
-            continue
-        keys = {k.value: (k, v) for k, v in current.value if isinstance(k, yaml.ScalarNode)}
-        found.append(keys)
-        todo += [v for _, v in current.value]
-    return found
+        real = os.path.realpath(path)
+        stamp = identity(os.stat(real))
+    except (OSError, ValueError):
+        return _YamlFile(path)  # (read_input says why)
+    kept = _READ.get(real)
+    if kept is not None and kept[0] == stamp:
+        return kept[1]
+    if len(_READ) >= _MAX_KEPT:
+        _READ.clear()
+    read = _READ[real] = (stamp, _YamlFile(path))
+    return read[1]
 
 
 def _multipliers(path: Path, problems: list[str]) -> list[tuple[ControlConfig, set[str]]]:

@@ -65,7 +65,7 @@ from .resting import RestPose, rest_pose
 from .rollers import Rollers, add_rollers, roller_bodies
 from .servos import DriveSources, add_motors, fit_drive
 from .springs import apply_springs, gazebo_joint_blocks, make_springs, sprung_joints
-from .vehicle import UNLIMITED
+from .vehicle import endless
 
 TIMESTEP = 0.001
 # Above the floor by this much, a part does not rest on it (contacts, ground parts).
@@ -376,29 +376,29 @@ def _hold_the_rest(spec, joints: dict, drive, springs: set[str]) -> list[str]:
     return held
 
 
-def as_urdfdom_reads(root) -> list[str]:
+def as_urdfdom_reads(root, made: str = "simulated") -> list[str]:
     """Rewrite, in place, what urdfdom reads with a warning into the form it reads it in,
-    so that MuJoCo simulates the robot RViz and Gazebo show; the notes say what changed.
+    so that MuJoCo simulates the robot RViz and Gazebo show; the notes say what changed
+    (``made``: what the robot is made into, "simulated" by sim, "exported" by export).
 
     * a revolute joint limited to ±UNLIMITED or more (swerve bases write ±1e16) turns
-      without end, as urdfdom and KDL read it: a ``continuous`` joint, so that a wheel
-      on it is a wheel (:mod:`.drives` finds wheels on continuous joints);
+      without end, as urdfdom and KDL read it (:func:`.vehicle.endless`): a ``continuous``
+      joint, so that a wheel on it is a wheel (:mod:`.drives` finds wheels on continuous
+      joints);
     * an ``<axis>`` without ``xyz`` (``xzy="0 1 0"``): urdfdom keeps the axis it cleared,
       0 0 0, a joint that cannot move; MuJoCo refuses the element. It is fixed."""
     notes = []
     for joint in root.iterchildren("joint"):
         kind, name = joint.get("type"), joint.get("name")
         limit = next((c for c in joint if c.tag == "limit"), None)
-        if kind == "revolute" and limit is not None:
-            lower = parse_number(limit.get("lower") or "0")
-            upper = parse_number(limit.get("upper") or "0")
-            if None not in (lower, upper) and lower <= -UNLIMITED and upper >= UNLIMITED:
-                joint.set("type", "continuous")
-                for key in ("lower", "upper"):
-                    limit.attrib.pop(key, None)
-                notes.append(f"joint {name}: revolute limited to {lower:g}..{upper:g} rad "
-                             "turns without end, as urdfdom and KDL read it: simulated "
-                             "continuous")
+        if kind == "revolute" and endless(kind, limit):
+            lower, upper = (parse_number(limit.get(key)) for key in ("lower", "upper"))
+            joint.set("type", "continuous")
+            for key in ("lower", "upper"):
+                limit.attrib.pop(key, None)
+            notes.append(f"joint {name}: revolute limited to {lower:g}..{upper:g} rad "
+                         f"turns without end, as urdfdom and KDL read it: {made} "
+                         "continuous")
         axis = next((c for c in joint if c.tag == "axis"), None)
         if kind not in ("fixed", "floating") and axis is not None and axis.get("xyz") is None:
             joint.set("type", "fixed")

@@ -26,13 +26,17 @@ def computed(checked, options: dict | None = None) -> SpecsContext:
     """:func:`compute`'s context once every section is in it (``sections``), with sim's
     model (``sim``) the stack's files are written from. sim's notes on the model (what it
     changed, or why there is none) open the body section's notes."""
+    from ..load.mesh_cache import kept
+
     options = dict(options or {})
-    sim, notes = specs_model(checked, **{k: options[k] for k in MODEL_OPTIONS if k in options})
-    context = SpecsContext(checked, sim, options)
-    context.sections = [body.section(context)]
-    context.body.notes[:0] = notes
-    for name in PARTS:
-        context.sections.append(_part(name).section(context))
+    with kept():  # sim's model, the sensors' scenes and the proofs read the same meshes
+        sim, notes = specs_model(checked, **{k: options[k] for k in MODEL_OPTIONS
+                                             if k in options})
+        context = SpecsContext(checked, sim, options)
+        context.sections = [body.section(context)]
+        context.body.notes[:0] = notes
+        for name in PARTS:
+            context.sections.append(_part(name).section(context))
     return context
 
 

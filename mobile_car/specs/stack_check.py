@@ -51,14 +51,17 @@ def find_package_yaml(loaded) -> Found:
     from ..sim.control_config import control_packages, yaml_mappings
 
     found = Found()
-    controls = [p for files in control_packages(loaded, found.problems) for p in files]
+    launches: list[Path] = []  # (what decided which variant's controllers are compared)
+    controls = [p for files in control_packages(loaded, found.problems, consulted=launches)
+                for p in files]
     navigation = [p for files in control_packages(loaded, found.problems,
                                                   NAVIGATION_SUFFIXES, NAVIGATION_FOLDERS,
                                                   named_only=False)
                   for p in files]
-    found.read = list(dict.fromkeys(controls + navigation))  # (an edit may make one relevant)
+    yamls = list(dict.fromkeys(controls + navigation))
+    found.read = list(dict.fromkeys(yamls + launches))  # (an edit may make one relevant)
     found.absent = _absent_siblings(loaded)
-    for path in found.read:
+    for path in yamls:
         text = _text(path)
         if text is None:
             continue

@@ -46,8 +46,11 @@ def compare(found, checked, sim, sections) -> tuple[list[Diagnostic], list[str]]
     drive = sim.drive
     joints = {j.name for j in checked.robot.joints}
     if drive is not None:
+        undecided = _undecided_variants(found.controllers, joints, checked.loaded)
         for path, keys in found.controllers:
-            diagnostics += _controller(path, keys, drive, joints, sections, notes)
+            said = _controller(path, keys, drive, joints, sections, notes)
+            diagnostics += [_variant_note(d, undecided) for d in said] \
+                if path in undecided else said
     outline = figure_value(sections, "body.footprint")
     radius = figure_value(sections, "body.radius.circumscribed")
     for path, keys in found.nav2:
@@ -56,6 +59,34 @@ def compare(found, checked, sim, sections) -> tuple[list[Diagnostic], list[str]]
     if blocked:
         diagnostics += _filters(found.filters, blocked)
     return sorted(set(diagnostics), key=Diagnostic.sort_key), notes
+
+
+def _undecided_variants(controllers, joints: set[str], loaded) -> list[Path]:
+    """The controller files of which mcar cannot tell the one the robot runs: two or more
+    configure a drive controller of its wheels, the robot names none in ``<parameters>``
+    and no launch of the package chose (:mod:`mobile_car.sim.control_variants`): ROSbot
+    2's mecanum and differential files, where its launch were not found. [] otherwise."""
+    from ..sim.control_config import _named_parameters, _names_in_order
+    from ..sim.declared import in_yaml_mapping
+
+    files = []
+    for path, keys in controllers:
+        declaration = in_yaml_mapping(keys, display_path(path), _names_in_order)
+        if declaration is not None and any(n in joints for n in declaration.joints):
+            files.append(path)
+    files = list(dict.fromkeys(files))
+    if len(files) < 2 or loaded is None or _named_parameters(loaded):
+        return []
+    return files
+
+
+def _variant_note(diagnostic: Diagnostic, files: list[Path]) -> Diagnostic:
+    """W510-W512's finding on a file of :func:`_undecided_variants`, said as a note."""
+    names = ", ".join(display_path(path) for path in files)
+    return Diagnostic("N405", diagnostic.file, diagnostic.line,
+                      f"{diagnostic.message} [{diagnostic.rule}, if this variant runs it: "
+                      f"the robot names none of {names} in <parameters>, and no launch of "
+                      "the package chooses one by an argument of this build]")
 
 
 def _at(rule: str, path: Path, key_node, message: str) -> Diagnostic:

@@ -118,7 +118,7 @@ def stance(sim, described: dict[str, float], friction: float | None) -> Stance:
             role, hold = "free wheel", "axle"
             axis = _axle(data, free_wheels[body].joint_id)
         else:
-            role = "castor" if link in sim.ground_parts else "part"
+            role = _role(sim, link)
             hold, axis = _how_it_holds(sim, data, body)
         touching = min(p[2] for p in points) <= TOUCHING
         for x, y, _z in points:
@@ -128,6 +128,20 @@ def stance(sim, described: dict[str, float], friction: float | None) -> Stance:
     com = data.subtree_com[sim.root_body]
     return Stance(contacts, (float(com[0] - origin[0]), float(com[1] - origin[1]),
                              float(com[2])), float(sim.mass), notes)
+
+
+def _role(sim, link: str) -> str:
+    """What a resting part other than a wheel is: one of sim's castors on a robot with a
+    drive, or one named a castor (PR2's, which sim does not drive); on a robot without
+    drive wheels nothing else is a castor (UR5e's base_link_inertia, Go1's feet): a
+    "part". (Which part is its base cannot be told from sim's model: the joints it holds
+    still weld Go1's feet to its trunk as its fixed joints weld UR5e's base.)"""
+    from ..sim.model import CASTOR_WORDS
+
+    if link in sim.ground_parts and (sim.drive is not None
+                                     or any(w in link.lower() for w in CASTOR_WORDS)):
+        return "castor"
+    return "part"
 
 
 def _stiffness(model, body: int) -> float:

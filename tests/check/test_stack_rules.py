@@ -333,10 +333,57 @@ def test_the_controller_file_the_robot_names_is_compared_not_its_siblings(
     extra = "" if named is None else _naming(named.format(root=tmp_path))
     write_package(tmp_path, two_wheeler(extra=extra),
                   {CONTROL: diff_control(), "bot_control/config/variant.yaml": variant})
-    result = check(run_mcar, tmp_path)
+    # (not -q: it leaves notes out)
+    result = run_mcar("check", "bot_description/robot.urdf", "--package-path", tmp_path,
+                      cwd=tmp_path)
     assert result.returncode == 0, result.stderr
+    assert warnings(result, "W511") == []
+    # Named, the sibling is not read; named none, mcar cannot tell which file this robot
+    # runs (no launch says): a note, not a warning (ROSbot 2 was warned at its defaults)
     expected = [] if named else [
-        "bot_control/config/variant.yaml:6: warning: wheel_radius 0.03 m, but the drive "
+        "bot_control/config/variant.yaml:6: note: wheel_radius 0.03 m, but the drive "
         "wheels' collision radius is 0.033 m (-9.1%): the robot would drive faster or "
-        "slower than commanded [W511]"]
-    assert warnings(result, "W511") == expected
+        "slower than commanded [W511, if this variant runs it: the robot names none of "
+        "bot_control/config/control.yaml, bot_control/config/variant.yaml in <parameters>, "
+        "and no launch of the package chooses one by an argument of this build] [N405]"]
+    assert warnings(result, "N405") == expected
+
+
+# ROSbot 2's controller.launch.py, its choice of file and its xacro argument
+LAUNCH = """from launch.substitutions import Command, LaunchConfiguration, PythonExpression
+
+
+def generate_launch_description():
+    variant = LaunchConfiguration("variant")
+    name = PythonExpression(["'variant.yaml' if ", variant, " else 'control.yaml'"])
+    description = Command(["xacro ", "robot.urdf", " variant:=", variant])
+"""
+
+
+@pytest.mark.parametrize("argument", [None, "variant:=true", "variant:=false"])
+def test_the_controller_file_the_launch_picks_by_a_xacro_argument_is_compared(
+        run_mcar, tmp_path, argument):
+    """ROSbot 2 names no <parameters> at its default arguments: its launch loads
+    mecanum_drive_controller.yaml if mecanum else diff_drive_controller.yaml, and builds
+    the robot with mecanum:= the same. Each file is compared with the robot it goes with."""
+    variant = diff_control(radius=0.03).replace("diff_cont", "mecanum_cont")
+    robot = two_wheeler().replace(
+        '<robot name="two_wheeler">', '<robot name="two_wheeler" xmlns:xacro='
+        '"http://www.ros.org/wiki/xacro"><xacro:arg name="variant" default="false"/>')
+    write_package(tmp_path, robot, {CONTROL: diff_control(separation=0.176),
+                                    "bot_control/config/variant.yaml": variant,
+                                    "bot_control/launch/controller.launch.py": LAUNCH})
+    result = run_mcar("check", "bot_description/robot.urdf", *([argument] if argument else []),
+                      "--package-path", tmp_path, cwd=tmp_path)  # (not -q: notes too)
+    assert result.returncode == 0, result.stderr
+    assert warnings(result, "N405") == []
+    if argument == "variant:=true":
+        assert warnings(result, "W510") == []
+        assert warnings(result, "W511") == [
+            "bot_control/config/variant.yaml:6: warning: wheel_radius 0.03 m, but the drive "
+            "wheels' collision radius is 0.033 m (-9.1%): the robot would drive faster or "
+            "slower than commanded [W511]"]
+    else:
+        assert warnings(result, "W511") == []
+        assert [line.split(": warning:")[0] for line in warnings(result, "W510")] == [
+            "bot_control/config/control.yaml:5"]

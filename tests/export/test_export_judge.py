@@ -261,10 +261,11 @@ def test_grippy_wheels_export_the_elliptic_cone_sim_drives_them_with(run_mcar, t
 
 
 def test_wheels_on_revolute_joints_limited_to_1e16_make_a_vehicle_as_in_sim(run_mcar, tmp_path):
-    # Neobotix MP-400's wheels: urdfdom, sim and ci turn them without end; the export's
-    # manifest called the robot no vehicle (continuous joints only), and --verify judged
-    # no drop. (It fits no drive actuators to them yet: sim reads them as continuous
-    # before MuJoCo does, the export does not.)
+    # Neobotix MP-400's wheels: urdfdom, sim and ci turn them without end. The export's
+    # manifest called the robot no vehicle (continuous joints only), then fitted no drive
+    # actuators to them ("no drive wheels: no continuous joint moves a link with collision
+    # geometry"), and --verify judged a drop alone: the file now has sim's continuous
+    # joints and motors, and drives and spins as mcar sim judges it.
     from sim.robot_makers import two_wheeler
 
     unlimited = two_wheeler(limit='\n    <limit lower="-1e16" upper="1e16" effort="1" '
@@ -274,4 +275,15 @@ def test_wheels_on_revolute_joints_limited_to_1e16_make_a_vehicle_as_in_sim(run_
     assert result.returncode == 0, result.stderr
     manifest = json.loads((tmp_path / "out/mcar-export.json").read_text())
     assert manifest["vehicle"] is True
-    assert "mcar export: verified: drop passed as mcar sim judges it: " in result.stderr
+    assert manifest["drive"]["left"] == ["wheel_left_joint"]
+    assert manifest["drive"]["right"] == ["wheel_right_joint"]
+    assert manifest["joint_types"] == {"wheel_left_joint": "continuous",
+                                       "wheel_right_joint": "continuous"}
+    assert manifest["notes"] == [
+        f"joint wheel_{side}_joint: revolute limited to -1e+16..1e+16 rad turns without end, "
+        "as urdfdom and KDL read it: exported continuous" for side in ("left", "right")]
+    text = (tmp_path / "out/two_wheeler.xml").read_text()
+    assert 'name="mcar_motor_wheel_left_joint"' in text and "1e+16" not in text
+    for scenario in ("drop", "drive", "spin"):
+        assert f"mcar export: verified: {scenario} passed as mcar sim judges it: " \
+            in result.stderr

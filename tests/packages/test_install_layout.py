@@ -120,3 +120,37 @@ def test_another_package_share_or_an_unknown_variable_maps_nothing(tmp_path):
         "install(DIRECTORY description/ros2_control DESTINATION share/other_pkg)\n"
         "install(DIRECTORY description/ros2_control DESTINATION ${SHARE_DIR})\n")
     assert source_of(root, "demo_bot", "ros2_control/demo.ros2_control.xacro") is None
+
+
+def test_a_run_reads_the_install_rules_once_for_every_path_the_checkout_lacks(
+        tmp_path, monkeypatch):
+    # Each include and YAML named as installed read CMakeLists.txt again (ros2_control_demos'
+    # robots name a handful a build): one package search, one read.
+    from mobile_car.packages import install_layout
+    from mobile_car.packages.search import PackageSearch
+
+    root = tmp_path / "demo_bot"
+    robot = make_demo(root)
+    read = []
+
+    def counted(path, *args, **kwargs):
+        read.append(Path(path).name)
+        return reading(path, *args, **kwargs)
+
+    reading = install_layout.read_text_quietly
+    monkeypatch.setattr(install_layout, "read_text_quietly", counted)
+    search = PackageSearch(origin=robot)
+    share = search.find("demo_bot")
+    assert search.installed_source(share / "ros2_control" / "demo.ros2_control.xacro") == \
+        root / "description" / "ros2_control" / "demo.ros2_control.xacro"
+    assert search.installed_source(share / "config" / "dims.yaml") == \
+        root / "bringup" / "config" / "dims.yaml"
+    assert search.installed_source(share / "urdf" / "none.xacro") is None
+    assert search.installed_source(robot) is None  # there: no rule asked
+    assert read == ["CMakeLists.txt"]
+    # another run reads the package as it is then
+    (root / "CMakeLists.txt").write_text("project(demo_bot)\n")
+    again = PackageSearch(origin=robot)
+    assert again.find("demo_bot") == share
+    assert again.installed_source(share / "config" / "dims.yaml") is None
+    assert read == ["CMakeLists.txt"] * 2

@@ -103,3 +103,15 @@ def test_the_same_arm_on_the_floor_tips_and_its_drop_fails_saying_onto_what(cli,
     assert drop["message"].startswith(
         "tipped over onto arm, which the floor does not reach as it rests at 0 (a robot "
         "bolted down is fixed to a root link named world); ")
+
+
+def test_an_arm_set_on_the_floor_stands_on_a_part_not_on_a_castor(run_mcar, tmp_path):
+    # UR5e's W505 said "the contacts of base_link_inertia (castor)": a robot with no
+    # wheels has no castor.
+    (tmp_path / "reach.urdf").write_text(reaching_arm(world=False))
+    result = run_mcar("specs", "reach.urdf", "--no-proof", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert ("reach.urdf: warning: its centre of mass is not inside the polygon it stands on "
+            "(the contacts of base_link (part) at rest): it stands only balanced [W505]"
+            ) in result.stderr.splitlines()
+    assert "castor)" not in result.stdout + result.stderr

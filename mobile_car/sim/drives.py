@@ -9,8 +9,10 @@ FLOOR_TOLERANCE of the robot's lowest point): a head's swivel (upright), a casto
 swivel (upright), a dummy wheel in the air (Hunter 2's, 5 mm up) or a bicycle model's
 virtual wheel (steer_bot's, 75 mm up) is not one. A wheel is on the left if its centre
 has y > 0, on the right if y < 0. Above a wheel (between it and the root) may sit an
-upright hinge: a ``revolute`` one is a steering joint, a ``continuous`` one a castor's
-swivel (that wheel is a castor, not a drive wheel). A wheel below another wheel is a
+upright hinge: a ``revolute`` one is a steering joint, and so is a ``continuous`` one that
+something turns (a ``<transmission>`` or a ``<ros2_control>`` command interface: the
+gz_ros2_control Ackermann demo's steering joints, the MIT racecar's right hinge); a free
+``continuous`` one is a castor's swivel (that wheel is a castor, not a drive wheel). A wheel below another wheel is a
 roller of an omni or mecanum wheel; a small one on a level wheel's rim makes that wheel a
 mecanum hub (:mod:`.mecanum`). The kinds:
 
@@ -72,10 +74,12 @@ CENTRE_SHARE = 0.1  # of the nearest side wheel's |y|: a declared joint this nea
 GEOMETRY = "geometry: a wheel that touches the floor"
 
 
-def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
+def find_tree(mj, model, data, joints: dict, lowest: dict, turned=frozenset()) -> Tree:
     """The wheels, steering joints, rollers and castor wheels of a compiled model
     (``joints``: URDF joint name -> element, the robot's own joints; ``lowest``: geom ->
-    the z of its lowest point, :func:`.model.lowest_points`)."""
+    the z of its lowest point, :func:`.model.lowest_points`; ``turned``: the joints an
+    actuator turns (:func:`actuated_joints`): a continuous upright hinge among them steers,
+    a free one swivels)."""
     names = {model.joint(j).name for j in range(model.njnt)}
     rolling = [_wheel(mj, model, data, joints, name) for name, element in joints.items()
                if element.get("type") == "continuous" and name in names]
@@ -125,7 +129,8 @@ def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
             body = int(model.body_parentid[body])
         if below_wheel:
             rollers.append(wheel.joint)
-        elif hinge is not None and joints[hinge].get("type") == "continuous":
+        elif (hinge is not None and joints[hinge].get("type") == "continuous"
+              and hinge not in turned):
             castors.append(wheel.link)
         else:
             wheel.steering = hinge
@@ -564,9 +569,12 @@ def _steering(model, data, element, name: str, wheel: Wheel) -> Steering:
     def number(key):
         return parse_number(limit.get(key)) if limit is not None else None
     anchor = data.xanchor[joint_id]
+    # a continuous joint turns without end: urdfdom drops its <limit lower/upper>
+    endless = element.get("type") == "continuous"
     return Steering(name, joint_id, wheel, float(anchor[0]), float(anchor[1]),
-                    1.0 if data.xaxis[joint_id][2] > 0 else -1.0, number("lower"),
-                    number("upper"), number("effort"))
+                    1.0 if data.xaxis[joint_id][2] > 0 else -1.0,
+                    None if endless else number("lower"), None if endless else number("upper"),
+                    number("effort"))
 
 
 def _upright_hinge(mj, model, data, body: int) -> str | None:

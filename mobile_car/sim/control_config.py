@@ -152,18 +152,19 @@ def _description_packages(loaded) -> list[str]:
 
 def yaml_mappings(path: Path, problems: list[str], contains: str | None = None) -> list[dict]:
     """key -> (key node, value node) of every mapping in the YAML file (bounded read, the
-    bounded loader); ``contains``: a word the file must hold to be parsed at all (most
+    bounded composer; a key given twice keeps its last value, as ROS reads it);
+    ``contains``: a word the file must hold to be parsed at all (most
     files of a control package name no controller a reader looks for)."""
     import yaml
 
-    from ..config.bounded_yaml import compose_and_load
+    from ..config.bounded_yaml import compose
     from ..load.bounded import read_input
 
     try:
         text = read_input(path, str(path)).decode("utf-8")
         if contains is not None and contains not in text:
             return []
-        node, _ = compose_and_load(text)
+        node = compose(text)
     except (OSError, McarError, UnicodeDecodeError, yaml.YAMLError) as error:
         problems.append(f"{display_path(path)}: not read ({_reason(error)})")
         return []

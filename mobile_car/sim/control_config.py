@@ -98,10 +98,14 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
     ``named_only``: where the robot names some of a package's files as its controllers'
     parameters (``<parameters>`` of its ros2_control or Gazebo plugin), only those: the
     others configure another variant (ROSbot: mecanum_drive_controller.yaml beside the
-    diff_drive_controller.yaml its plain wheels name)."""
+    diff_drive_controller.yaml its plain wheels name); and the files it names outside
+    such packages, last (gz_ros2_control's demos keep theirs in gz_ros2_control_demos),
+    each a YAML file within the folders a robot may name files in (:meth:`~mobile_car.
+    packages.search.PackageSearch.confined`, as its meshes are)."""
     from ..packages.asset_roots import link_out_of, repository_of
 
     named = _named_parameters(loaded) if named_only else set()
+    seen: set[Path] = set()
     for name in _description_packages(loaded):
         stem = next(name[: -len(s)] for s in SUFFIXES if name.endswith(s))
         for suffix in suffixes:
@@ -118,7 +122,26 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
                 else:
                     problems.append(f"{display_path(path)}: not read ({why})")
             chosen = [path for path in kept if path.resolve() in named]
+            seen |= {path.resolve() for path in kept}
             yield chosen or kept
+    outside = [path for path in sorted(named - seen) if _named_file(loaded, path, problems)]
+    if outside:
+        yield outside
+
+
+def _named_file(loaded, path: Path, problems: list[str]) -> bool:
+    """Whether a parameters file the robot names outside its control packages is read:
+    a YAML file within the robot's allowed folders (else ``problems`` says why not)."""
+    from ..packages.asset_roots import OutsideRootsError
+
+    if path.suffix not in (".yaml", ".yml"):
+        return False
+    try:
+        loaded.search.confined(str(path), path)
+    except OutsideRootsError as error:
+        problems.append(f"{display_path(path)}: not read ({error.message})")
+        return False
+    return path.is_file()
 
 
 def _named_parameters(loaded) -> set[Path]:

@@ -42,11 +42,13 @@ class BoundedResolver(trimesh.resolvers.FilePathResolver):
     the mesh's folder or below, regular files within the mesh size cap, and textures
     within PIL's own pixel limit (a small PNG can stand for gigabytes of pixels), never in
     a version-control folder; what it opened is in ``read``. A file it refuses is one
-    trimesh does without (its colour)."""
+    trimesh does without (its colour); ``textures`` False refuses every image, for a
+    reader of the geometry alone."""
 
-    def __init__(self, mesh: Path, read: list[Path]):
+    def __init__(self, mesh: Path, read: list[Path], textures: bool = True):
         super().__init__(str(mesh))
         self.read = read
+        self.textures = textures
 
     def namespaced(self, namespace: str) -> BoundedResolver:
         # A namespace is a folder below this one: one that climbs out (``..``, a link
@@ -54,9 +56,11 @@ class BoundedResolver(trimesh.resolvers.FilePathResolver):
         here = Path(os.path.realpath(self.parent))
         inner = Path(os.path.realpath(here / namespace))
         return BoundedResolver((inner if inner.is_relative_to(here) else here) / "_",
-                               self.read)
+                               self.read, self.textures)
 
     def get(self, name: str) -> bytes:
+        if not self.textures and Path(name.strip()).suffix.lower() in _IMAGES:
+            raise FileNotFoundError(name)
         for candidate in (name.strip(), name.strip().lstrip("/"), os.path.split(name)[-1]):
             try:
                 path = self.absolute(candidate)
@@ -96,10 +100,14 @@ def _no_blocking(path, flags):
     return os.open(path, flags | os.O_NONBLOCK)
 
 
-def load_mesh(path: str | os.PathLike, shown: str | None = None, **kwargs):
+def load_mesh(path: str | os.PathLike, shown: str | None = None, textures: bool = True,
+              **kwargs):
     """``trimesh.load(path, **kwargs)`` within every limit, in metres, and the files it
     read besides the mesh. COLLADA is read as RViz reads it (:mod:`.collada`: recovered
-    XML, repaired colours, ``<unit>`` applied). MeshOverLimit over a limit; MeshBroken,
+    XML, repaired colours, ``<unit>`` applied). ``textures`` False: the image files it
+    names are not read (a reader of its geometry alone: bounds, inertia, MuJoCo's copy;
+    trimesh made one texture atlas of Curiosity's textured COLLADA parts, most of the
+    time of mcar check, sim and specs on it). MeshOverLimit over a limit; MeshBroken,
     InputError or one of compressed.broken_errors() for a file that cannot be measured;
     trimesh's own exceptions for one it cannot parse."""
     path = Path(path)
@@ -109,7 +117,7 @@ def load_mesh(path: str | os.PathLike, shown: str | None = None, **kwargs):
     kind = compressed_kind(path)
     # Anchored at the real file: what it names is taken below the folder it really lies
     # in (trimesh then follows every link of a name and keeps it below that folder).
-    resolver = BoundedResolver(Path(os.path.realpath(path)), read)
+    resolver = BoundedResolver(Path(os.path.realpath(path)), read, textures)
     if kind is None:
         with open(path, "rb", opener=_no_blocking) as handle:
             data = handle.read(max_mesh_bytes() + 1)

@@ -10,9 +10,11 @@ swivel (upright), a dummy wheel in the air (Hunter 2's, 5 mm up) or a bicycle mo
 virtual wheel (steer_bot's, 75 mm up) is not one. A wheel is on the left if its centre
 has y > 0, on the right if y < 0. Above a wheel (between it and the root) may sit an
 upright hinge: a ``revolute`` one is a steering joint, and so is a ``continuous`` one that
-something turns (a ``<transmission>`` or a ``<ros2_control>`` command interface: the
-gz_ros2_control Ackermann demo's steering joints, the MIT racecar's right hinge); a free
-``continuous`` one is a castor's swivel (that wheel is a castor, not a drive wheel). A wheel below another wheel is a
+something turns (a ``<transmission>`` or a ``<ros2_control>`` command interface) about an
+axis through its wheel (the gz_ros2_control Ackermann demo's steering joints, the MIT
+racecar's right hinge); any other ``continuous`` one is a castor's swivel, free or not
+(AgileX Tracer writes a transmission for each castor's), its wheel trailing behind its
+axis (that wheel is a castor, not a drive wheel). A wheel below another wheel is a
 roller of an omni or mecanum wheel; a small one on a level wheel's rim makes that wheel a
 mecanum hub (:mod:`.mecanum`). The kinds:
 
@@ -67,6 +69,9 @@ UPRIGHT = 0.9       # |z| of an axis in the root frame above which a hinge steer
 SIDE_EPSILON = 1e-6  # m: a wheel closer than this to the centre line is on neither side
 ACKERMANN_X_TOLERANCE = 0.05  # of the wheelbase: the steering pivots stand side by side
 FLOOR_TOLERANCE = 0.003  # m: a wheel's tyre this close to the robot's lowest point touches
+# of a wheel's radius: a continuous hinge whose axis passes further from the wheel's centre
+# is a castor's swivel, the wheel trailing behind it (Tracer's: 0.58), not a steering joint
+STEER_TRAIL = 0.1
 # A declared virtual joint stands for the axle nearest its x: the wheels within this share
 # of a wheel's radius of the nearest (steer_bot's share its axle, Hunter 2's is 0.14 m off).
 VIRTUAL_X_TOLERANCE = 0.5
@@ -78,8 +83,8 @@ def find_tree(mj, model, data, joints: dict, lowest: dict, turned=frozenset()) -
     """The wheels, steering joints, rollers and castor wheels of a compiled model
     (``joints``: URDF joint name -> element, the robot's own joints; ``lowest``: geom ->
     the z of its lowest point, :func:`.model.lowest_points`; ``turned``: the joints an
-    actuator turns (:func:`actuated_joints`): a continuous upright hinge among them steers,
-    a free one swivels)."""
+    actuator turns (:func:`actuated_joints`): a continuous upright hinge among them whose
+    axis passes through its wheel steers, any other swivels)."""
     names = {model.joint(j).name for j in range(model.njnt)}
     rolling = [_wheel(mj, model, data, joints, name) for name, element in joints.items()
                if element.get("type") == "continuous" and name in names]
@@ -130,7 +135,7 @@ def find_tree(mj, model, data, joints: dict, lowest: dict, turned=frozenset()) -
         if below_wheel:
             rollers.append(wheel.joint)
         elif (hinge is not None and joints[hinge].get("type") == "continuous"
-              and hinge not in turned):
+              and not _steers_about_itself(model, data, hinge, wheel, turned)):
             castors.append(wheel.link)
         else:
             wheel.steering = hinge
@@ -152,6 +157,19 @@ def find_tree(mj, model, data, joints: dict, lowest: dict, turned=frozenset()) -
     return Tree(wheels, steering, rollers, castors, odd, joints,
                 lambda name: _wheel(mj, model, data, joints, name), not_wheels=not_wheels,
                 roller_grip={hub: grip for hub, grip in grips.items() if grip is not None})
+
+
+def _steers_about_itself(model, data, hinge: str, wheel: Wheel, turned) -> bool:
+    """Whether a continuous upright ``hinge`` above ``wheel`` steers it: an actuator turns
+    it, about an axis through the wheel's centre (a castor's wheel trails behind its
+    swivel's axis)."""
+    if hinge not in turned:
+        return False
+    joint = model.joint(hinge).id
+    offset = data.xpos[wheel.body_id] - data.xanchor[joint]
+    axis = data.xaxis[joint]
+    trail = np.linalg.norm(offset - np.dot(offset, axis) * axis)
+    return trail <= STEER_TRAIL * wheel.radius
 
 
 def _not_a_wheel(model, data, wheel: Wheel, lowest: dict, floor: float) -> str | None:

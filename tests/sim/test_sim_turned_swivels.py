@@ -3,8 +3,10 @@ a steering joint when an actuator does: the gz_ros2_control Ackermann demo steer
 continuous joints its <ros2_control> block commands (it was judged a differential robot
 on its rear wheels, its front wheels castors, and failed spin), and the MIT racecar's
 right steering hinge is continuous, with a <transmission> (it was one steering joint,
-"not one each side", and failed drive and spin). Robots made here: the Ackermann car of
-robot_makers, its steering joints made continuous."""
+"not one each side", and failed drive and spin). A castor's swivel stays one, free or
+turned: its wheel trails behind the axis (AgileX Tracer writes a transmission for each of
+its castors' swivels). Robots made here: the Ackermann car of robot_makers, its steering
+joints made continuous, and its MiR-like robot on castor swivels."""
 
 from __future__ import annotations
 
@@ -12,7 +14,7 @@ import json
 import re
 
 import pytest
-from sim.robot_makers import ackermann
+from sim.robot_makers import ackermann, castor_swivels
 
 STEERING = ["front_left_steering_joint", "front_right_steering_joint"]
 
@@ -90,3 +92,22 @@ def test_the_export_steers_on_the_continuous_joints_and_verifies(run_mcar, tmp_p
     assert manifest["drive"]["steering"] == STEERING
     xml = (tmp_path / "out/ackermann_car.xml").read_text()
     assert re.findall(r'name="mcar_steer_(\w+)"', xml) == STEERING
+
+
+def test_a_castors_swivel_an_actuator_turns_stays_a_castor(cli, tmp_path):
+    # Tracer: a <transmission> on each castor's swivel, its wheel trailing behind the axis
+    swivels = [f"{end}_{side}_castor_swivel_joint" for end in ("front", "back")
+               for side in ("left", "right")]
+    block = "".join(f"""
+  <transmission name="{joint}_transmission">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="{joint}"><hardwareInterface>VelocityJointInterface</hardwareInterface></joint>
+    <actuator name="{joint}_motor"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>""" for joint in swivels)
+    (tmp_path / "mir.urdf").write_text(castor_swivels().replace("</robot>", block + "</robot>"))
+    result, entry = _sim(cli, tmp_path / "mir.urdf")
+    assert result.exit_code == 0, result.stdout + result.stderr
+    drive = entry["drive"]
+    assert drive["kind"] == "differential"
+    assert drive["steering"] == []
+    assert drive["left"] + drive["right"] == ["left_wheel_joint", "right_wheel_joint"]

@@ -109,6 +109,18 @@ NumbersAsTextLoader.yaml_implicit_resolvers = {
     for first, resolvers in BoundedLoader.yaml_implicit_resolvers.items()}
 
 
+def compose(text: str):
+    """The document's node, bounded as :func:`compose_and_load` bounds it, nothing
+    constructed: for a package's ROS parameter files, which ROS reads as PyYAML does (a
+    key given twice keeps its last value: Warthog's control.yaml gives ``two_d_mode``
+    twice), not as mcar's own config files are held; raises yaml.YAMLError."""
+    loader = BoundedLoader(text)
+    try:
+        return loader.get_single_node()
+    finally:
+        loader.dispose()
+
+
 def compose_and_load(text: str, numbers_as_text: bool = False):
     """(the document's node, its value): one pass, bounded; raises yaml.YAMLError."""
     loader = (NumbersAsTextLoader if numbers_as_text else BoundedLoader)(text)

@@ -46,7 +46,7 @@ def _bounds(path: Path) -> tuple | str:
     try:
         from ..load.mesh_reader import load_mesh
 
-        mesh, _ = load_mesh(path, str(path), force="mesh")
+        mesh, _ = load_mesh(path, str(path), textures=False, force="mesh")
         low, high = mesh.bounds
     except Exception as error:  # trimesh raises anything on a file it cannot read
         return f"cannot load {path}: {type(error).__name__}: {error}"

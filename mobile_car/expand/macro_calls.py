@@ -5,8 +5,9 @@ xacro 2 expands only ``<xacro:chassis .../>`` and leaves the rest in place witho
 so the robot silently loses its body and wheels. An element named like a macro defined
 while expanding, and not like a URDF element (a macro called ``inertial`` may share its
 name with one), is such a call. Outside extension elements (``<gazebo>``, ...), whose
-contents no URDF rule describes, in the expanded document; in the source text when xacro
-stopped before the end (often on the call's own attributes).
+contents no URDF rule describes, in the expanded document and in the source text, where
+the call is located (and looked for alone when xacro stopped before the end, often on the
+call's own attributes).
 """
 
 from __future__ import annotations
@@ -20,6 +21,10 @@ from ..load.bounded import read_text_quietly
 from ..load.inputs import display_path
 
 _COMMENT_RE = re.compile(r"<!--.*?-->", re.S)
+# An extension element, whole: Gazebo's <sensor><imu> is SDF, not a call of a macro 'imu'
+# (Panther defines one, and its <gazebo> blocks hold <imu>).
+_EXTENSION_RE = re.compile(
+    r"<(" + "|".join(sorted(EXTENSIONS)) + r")(?:\s[^>]*)?(?:/>|>.*?</\1\s*>)", re.S)
 
 
 def unprefixed_call(macros: set[str], files: list[Path], doc=None) -> BuildError | None:
@@ -36,8 +41,9 @@ def unprefixed_call(macros: set[str], files: list[Path], doc=None) -> BuildError
         text = read_text_quietly(path)
         if text is None:
             continue
-        # Blank comments out, keeping their newlines, so line numbers stay right.
-        text = _COMMENT_RE.sub(lambda m: "\n" * m.group(0).count("\n"), text)
+        # Blank comments and extension elements out, keeping their newlines, so line
+        # numbers stay right.
+        text = _EXTENSION_RE.sub(_newlines, _COMMENT_RE.sub(_newlines, text))
         match = pattern.search(text)
         if match:
             name = match.group(1)
@@ -46,6 +52,10 @@ def unprefixed_call(macros: set[str], files: list[Path], doc=None) -> BuildError
                               f"<xacro:{name} ...>", file=display_path(path),
                               line=text.count("\n", 0, match.start()) + 1)
     return None
+
+
+def _newlines(match) -> str:
+    return "\n" * match.group(0).count("\n")
 
 
 def _tags_in(element) -> set[str]:

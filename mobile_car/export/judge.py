@@ -47,7 +47,9 @@ def sim_model_of(mj, path, exported, label: str):
     summary = exported.drive
     if summary is None:  # a vehicle sim drives no kind of: it must still stand, as in sim
         return _resting(mj, model, spec, data, None, [], {})
-    tree = find_tree(mj, model, data, joints, lowest_points(mj, model, data))
+    # the joints the export steers steer here too (a continuous one is no castor's swivel)
+    tree = find_tree(mj, model, data, joints, lowest_points(mj, model, data),
+                     set(summary.get("steering") or ()))
     try:
         drive, _ = choose_drive(tree, set(), summary["left"],
                                 summary["right"], summary["kind"])

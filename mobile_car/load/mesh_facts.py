@@ -169,7 +169,7 @@ def _read(path: Path, shown: str, scan) -> MeshFacts:
             trimesh.available_formats():
         return MeshFacts(faces=scan.faces, vertices=scan.vertices)  # exists: all we know
     try:
-        loaded, reads = load_mesh(path, shown, force="mesh")
+        loaded, reads = load_mesh(path, shown, textures=False, force="mesh")
     except MeshOverLimit as error:  # a member of an archive, counted once decompressed
         return MeshFacts(over_limit=error.message)
     except InputError as error:

@@ -43,11 +43,13 @@ class BoundedResolver(trimesh.resolvers.FilePathResolver):
     the mesh's folder or below, regular files within the mesh size cap, and textures
     within PIL's own pixel limit (a small PNG can stand for gigabytes of pixels), never in
     a version-control folder; what it opened is in ``read``. A file it refuses is one
-    trimesh does without (its colour)."""
+    trimesh does without (its colour); ``textures`` False refuses every image, for a
+    reader of the geometry alone."""
 
-    def __init__(self, mesh: Path, read: list[Path]):
+    def __init__(self, mesh: Path, read: list[Path], textures: bool = True):
         super().__init__(str(mesh))
         self.read = read
+        self.textures = textures
 
     def namespaced(self, namespace: str) -> BoundedResolver:
         # A namespace is a folder below this one: one that climbs out (``..``, a link
@@ -55,9 +57,11 @@ class BoundedResolver(trimesh.resolvers.FilePathResolver):
         here = Path(os.path.realpath(self.parent))
         inner = Path(os.path.realpath(here / namespace))
         return BoundedResolver((inner if inner.is_relative_to(here) else here) / "_",
-                               self.read)
+                               self.read, self.textures)
 
     def get(self, name: str) -> bytes:
+        if not self.textures and Path(name.strip()).suffix.lower() in _IMAGES:
+            raise FileNotFoundError(name)
         for candidate in (name.strip(), name.strip().lstrip("/"), os.path.split(name)[-1]):
             try:
                 path = self.absolute(candidate)
@@ -97,13 +101,18 @@ def _no_blocking(path, flags):
     return os.open(path, flags | os.O_NONBLOCK)
 
 
-def load_mesh(path: str | os.PathLike, shown: str | None = None, **kwargs):
+def load_mesh(path: str | os.PathLike, shown: str | None = None, textures: bool = True,
+              **kwargs):
     """``trimesh.load(path, **kwargs)`` within every limit, in metres, and the files it
     read besides the mesh. COLLADA is read as RViz reads it (:mod:`.collada`: recovered
-    XML, repaired colours, ``<unit>`` applied). MeshOverLimit over a limit; MeshBroken,
+    XML, repaired colours, ``<unit>`` applied). ``textures`` False: the image files it
+    names are not read (a reader of its geometry alone: bounds, inertia, MuJoCo's copy;
+    trimesh made one texture atlas of Curiosity's textured COLLADA parts, most of the
+    time of mcar check, sim and specs on it). MeshOverLimit over a limit; MeshBroken,
     InputError or one of compressed.broken_errors() for a file that cannot be measured;
     trimesh's own exceptions for one it cannot parse. Within :func:`.mesh_cache.kept`, a
-    file asked for as a scene or a mesh is parsed once while its stamp holds: what
+    file asked for as a scene or a mesh is parsed once while its stamp holds (once with
+    its textures, once without): what
     ``trimesh.load`` makes of ``force`` (the scene, or its meshes concatenated) is made of
     the kept scene, a copy each time."""
     path = Path(path)
@@ -111,14 +120,14 @@ def load_mesh(path: str | os.PathLike, shown: str | None = None, **kwargs):
     force = kwargs.get("force")
     key = None
     if force in ("scene", "mesh"):
-        key = mesh_cache.key_of(path, _read_alike(path, {k: v for k, v in kwargs.items()
-                                                          if k != "force"}))
+        key = mesh_cache.key_of(path, _read_alike(path, {
+            **{k: v for k, v in kwargs.items() if k != "force"}, "textures": textures}))
     if key is None:
-        loaded, unit, read = _read(path, shown, kwargs)
+        loaded, unit, read = _read(path, shown, kwargs, textures)
         return in_metres(loaded, unit), read
     kept = mesh_cache.get(key)
     if kept is None:
-        kept = _read(path, shown, {**kwargs, "force": "scene"})
+        kept = _read(path, shown, {**kwargs, "force": "scene"}, textures)
         mesh_cache.put(key, kept)
     scene, unit, read = kept
     if force == "mesh":  # what trimesh.load(force="mesh") makes of the same scene
@@ -137,15 +146,15 @@ def _read_alike(path: Path, options: dict) -> dict:
             if k != "skip_materials" and (k, v) != ("ignore_broken", True)}
 
 
-def _read(path: Path, shown: str, kwargs: dict):
+def _read(path: Path, shown: str, kwargs: dict, textures: bool):
     """(what trimesh.load gives for ``kwargs``, the file's unit in metres, the files it
-    read besides the mesh)."""
+    read besides the mesh; ``textures``: as :func:`load_mesh`)."""
     read: list[Path] = []
     scan_mesh(path, shown)
     kind = compressed_kind(path)
     # Anchored at the real file: what it names is taken below the folder it really lies
     # in (trimesh then follows every link of a name and keeps it below that folder).
-    resolver = BoundedResolver(Path(os.path.realpath(path)), read)
+    resolver = BoundedResolver(Path(os.path.realpath(path)), read, textures)
     if kind is None:
         with open(path, "rb", opener=_no_blocking) as handle:
             data = handle.read(max_mesh_bytes() + 1)

@@ -102,11 +102,15 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
     others configure another variant (ROSbot: mecanum_drive_controller.yaml beside the
     diff_drive_controller.yaml its plain wheels name); where it names none, those its
     launch runs for the variant built (:mod:`.control_variants`; the launch files it read
-    are added to ``consulted``)."""
+    are added to ``consulted``); and the files it names outside such packages, last
+    (gz_ros2_control's demos keep theirs in gz_ros2_control_demos), each a YAML file within
+    the folders a robot may name files in (:meth:`~mobile_car.packages.search.
+    PackageSearch.confined`, as its meshes are)."""
     from ..packages.asset_roots import link_out_of, repository_of
     from .control_variants import launch_choice
 
     named = _named_parameters(loaded) if named_only else set()
+    seen: set[Path] = set()
     for name in _description_packages(loaded):
         stem = next(name[: -len(s)] for s in SUFFIXES if name.endswith(s))
         for suffix in suffixes:
@@ -123,8 +127,27 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
                 else:
                     problems.append(f"{display_path(path)}: not read ({why})")
             chosen = [path for path in kept if path.resolve() in named]
+            seen |= {path.resolve() for path in kept}
             yield chosen or (launch_choice(loaded, root, kept, consulted) if named_only
                              else kept)
+    outside = [path for path in sorted(named - seen) if _named_file(loaded, path, problems)]
+    if outside:
+        yield outside
+
+
+def _named_file(loaded, path: Path, problems: list[str]) -> bool:
+    """Whether a parameters file the robot names outside its control packages is read:
+    a YAML file within the robot's allowed folders (else ``problems`` says why not)."""
+    from ..packages.asset_roots import OutsideRootsError
+
+    if path.suffix not in (".yaml", ".yml"):
+        return False
+    try:
+        loaded.search.confined(str(path), path)
+    except OutsideRootsError as error:
+        problems.append(f"{display_path(path)}: not read ({error.message})")
+        return False
+    return path.is_file()
 
 
 def _named_parameters(loaded) -> set[Path]:
@@ -158,7 +181,8 @@ def _description_packages(loaded) -> list[str]:
 
 def yaml_mappings(path: Path, problems: list[str], contains: str | None = None) -> list[dict]:
     """key -> (key node, value node) of every mapping in the YAML file (bounded read, the
-    bounded loader); ``contains``: a word the file must hold to be parsed at all (most
+    bounded composer; a key given twice keeps its last value, as ROS reads it);
+    ``contains``: a word the file must hold to be parsed at all (most
     files of a control package name no controller a reader looks for). Each file is read
     and parsed once in a process while its stamp holds (:data:`_READ`): the declarations,
     mecanum, the multiplier and the stack's comparison all ask for the same files."""
@@ -196,10 +220,10 @@ class _YamlFile:
     def parse(self) -> None:
         import yaml
 
-        from ..config.bounded_yaml import compose_and_load
+        from ..config.bounded_yaml import compose
 
         try:
-            node, _ = compose_and_load(self.text)
+            node = compose(self.text)
         except yaml.YAMLError as error:
             self.mappings = error
             return

@@ -9,8 +9,12 @@ FLOOR_TOLERANCE of the robot's lowest point): a head's swivel (upright), a casto
 swivel (upright), a dummy wheel in the air (Hunter 2's, 5 mm up) or a bicycle model's
 virtual wheel (steer_bot's, 75 mm up) is not one. A wheel is on the left if its centre
 has y > 0, on the right if y < 0. Above a wheel (between it and the root) may sit an
-upright hinge: a ``revolute`` one is a steering joint, a ``continuous`` one a castor's
-swivel (that wheel is a castor, not a drive wheel). A wheel below another wheel is a
+upright hinge: a ``revolute`` one is a steering joint, and so is a ``continuous`` one that
+something turns (a ``<transmission>`` or a ``<ros2_control>`` command interface) about an
+axis through its wheel (the gz_ros2_control Ackermann demo's steering joints, the MIT
+racecar's right hinge); any other ``continuous`` one is a castor's swivel, free or not
+(AgileX Tracer writes a transmission for each castor's), its wheel trailing behind its
+axis (that wheel is a castor, not a drive wheel). A wheel below another wheel is a
 roller of an omni or mecanum wheel; a small one on a level wheel's rim makes that wheel a
 mecanum hub (:mod:`.mecanum`). The kinds:
 
@@ -65,6 +69,9 @@ UPRIGHT = 0.9       # |z| of an axis in the root frame above which a hinge steer
 SIDE_EPSILON = 1e-6  # m: a wheel closer than this to the centre line is on neither side
 ACKERMANN_X_TOLERANCE = 0.05  # of the wheelbase: the steering pivots stand side by side
 FLOOR_TOLERANCE = 0.003  # m: a wheel's tyre this close to the robot's lowest point touches
+# of a wheel's radius: a continuous hinge whose axis passes further from the wheel's centre
+# is a castor's swivel, the wheel trailing behind it (Tracer's: 0.58), not a steering joint
+STEER_TRAIL = 0.1
 # A declared virtual joint stands for the axle nearest its x: the wheels within this share
 # of a wheel's radius of the nearest (steer_bot's share its axle, Hunter 2's is 0.14 m off).
 VIRTUAL_X_TOLERANCE = 0.5
@@ -72,10 +79,12 @@ CENTRE_SHARE = 0.1  # of the nearest side wheel's |y|: a declared joint this nea
 GEOMETRY = "geometry: a wheel that touches the floor"
 
 
-def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
+def find_tree(mj, model, data, joints: dict, lowest: dict, turned=frozenset()) -> Tree:
     """The wheels, steering joints, rollers and castor wheels of a compiled model
     (``joints``: URDF joint name -> element, the robot's own joints; ``lowest``: geom ->
-    the z of its lowest point, :func:`.model.lowest_points`)."""
+    the z of its lowest point, :func:`.model.lowest_points`; ``turned``: the joints an
+    actuator turns (:func:`actuated_joints`): a continuous upright hinge among them whose
+    axis passes through its wheel steers, any other swivels)."""
     names = {model.joint(j).name for j in range(model.njnt)}
     rolling = [_wheel(mj, model, data, joints, name) for name, element in joints.items()
                if element.get("type") == "continuous" and name in names]
@@ -125,7 +134,8 @@ def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
             body = int(model.body_parentid[body])
         if below_wheel:
             rollers.append(wheel.joint)
-        elif hinge is not None and joints[hinge].get("type") == "continuous":
+        elif (hinge is not None and joints[hinge].get("type") == "continuous"
+              and not _steers_about_itself(model, data, hinge, wheel, turned)):
             castors.append(wheel.link)
         else:
             wheel.steering = hinge
@@ -147,6 +157,19 @@ def find_tree(mj, model, data, joints: dict, lowest: dict) -> Tree:
     return Tree(wheels, steering, rollers, castors, odd, joints,
                 lambda name: _wheel(mj, model, data, joints, name), not_wheels=not_wheels,
                 roller_grip={hub: grip for hub, grip in grips.items() if grip is not None})
+
+
+def _steers_about_itself(model, data, hinge: str, wheel: Wheel, turned) -> bool:
+    """Whether a continuous upright ``hinge`` above ``wheel`` steers it: an actuator turns
+    it, about an axis through the wheel's centre (a castor's wheel trails behind its
+    swivel's axis)."""
+    if hinge not in turned:
+        return False
+    joint = model.joint(hinge).id
+    offset = data.xpos[wheel.body_id] - data.xanchor[joint]
+    axis = data.xaxis[joint]
+    trail = np.linalg.norm(offset - np.dot(offset, axis) * axis)
+    return trail <= STEER_TRAIL * wheel.radius
 
 
 def _not_a_wheel(model, data, wheel: Wheel, lowest: dict, floor: float) -> str | None:
@@ -551,7 +574,7 @@ def _wheel(mj, model, data, joints, name) -> Wheel:
 
     def number(key):
         return parse_number(limit.get(key)) if limit is not None else None
-    radius = max((rolling_radius(mj, model, g) for g in geoms), default=0.0)
+    radius = max((rolling_radius(mj, model, g, data, joint_id) for g in geoms), default=0.0)
     return Wheel(name, model.body(body).name, joint_id, body, geoms, radius,
                  float(data.xpos[body][0]), float(data.xpos[body][1]), number("effort"),
                  number("velocity"))
@@ -564,9 +587,12 @@ def _steering(model, data, element, name: str, wheel: Wheel) -> Steering:
     def number(key):
         return parse_number(limit.get(key)) if limit is not None else None
     anchor = data.xanchor[joint_id]
+    # a continuous joint turns without end: urdfdom drops its <limit lower/upper>
+    endless = element.get("type") == "continuous"
     return Steering(name, joint_id, wheel, float(anchor[0]), float(anchor[1]),
-                    1.0 if data.xaxis[joint_id][2] > 0 else -1.0, number("lower"),
-                    number("upper"), number("effort"))
+                    1.0 if data.xaxis[joint_id][2] > 0 else -1.0,
+                    None if endless else number("lower"), None if endless else number("upper"),
+                    number("effort"))
 
 
 def _upright_hinge(mj, model, data, body: int) -> str | None:
@@ -584,9 +610,22 @@ def _child(element, tag):
     return None
 
 
-def rolling_radius(mj, model, g) -> float:
+def rolling_radius(mj, model, g, data=None, joint_id: int | None = None) -> float:
+    """The radius geom ``g`` rolls on: a cylinder's, sphere's or capsule's own; a mesh's
+    farthest vertex from the wheel joint's axis (``joint_id``, placed by ``data``), not its
+    bounding sphere, which reaches the corners of its box: AgileX Tracer's 121 x 84 mm
+    mesh tyre was 95 mm for 60.5 mm, and drive and spin failed on a 36% 'wheel slip' that
+    was the radius's; else the bounding sphere."""
     kind, size = mj.mjtGeom(int(model.geom_type[g])), model.geom_size[g]
     if kind in (mj.mjtGeom.mjGEOM_CYLINDER, mj.mjtGeom.mjGEOM_SPHERE,
                 mj.mjtGeom.mjGEOM_CAPSULE):
         return float(size[0])
+    if kind == mj.mjtGeom.mjGEOM_MESH and data is not None and joint_id is not None:
+        mesh = model.geom_dataid[g]
+        start, count = model.mesh_vertadr[mesh], model.mesh_vertnum[mesh]
+        points = (model.mesh_vert[start:start + count] @ data.geom_xmat[g].reshape(3, 3).T
+                  + data.geom_xpos[g] - data.xanchor[joint_id])
+        axis = data.xaxis[joint_id]
+        across = points - np.outer(points @ axis, axis)
+        return float(np.sqrt((across ** 2).sum(axis=1).max()))
     return float(model.geom_rbound[g])

@@ -69,7 +69,7 @@ def _mujoco_mesh(path: Path) -> Path:
     from ..load.mesh_reader import load_mesh
 
     try:
-        mesh, _ = load_mesh(path, str(path), force="mesh")
+        mesh, _ = load_mesh(path, str(path), textures=False, force="mesh")
     except (InputError, OSError):
         raise
     except Exception as exc:  # trimesh raises anything on a file it cannot parse

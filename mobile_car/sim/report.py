@@ -188,8 +188,9 @@ def text_table(report: SimReport) -> list[str]:
     if report.held:
         lines.append(f"  held still at 0, not simulated: {', '.join(report.held)}")
     if report.lint_errors or report.error:
-        lines.append(f"  lint   FAILED  {report.error or ''}" + "; ".join(
-            f"{d.rule} {d.message}" for d in report.lint_errors))
+        lines.append("  lint   FAILED  " + "; ".join(
+            ([report.error] if report.error else [])
+            + [f"{d.rule} {d.message}" for d in report.lint_errors]))
     for scenario in report.scenarios:
         lines.append(f"  {scenario.name:<6} {scenario.status.upper()}"
                      + (f"  {scenario.message()}" if scenario.status != "passed" else ""))

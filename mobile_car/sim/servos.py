@@ -56,7 +56,7 @@ def fit_drive(mj, shape, data, joints: dict, sources: DriveSources, lowest: dict
     lowest points, :func:`.model.lowest_points`) with its driven wheels' motor figures and
     servo gains, or (None, why there is none); what ``mcar export --to mjcf`` gives MuJoCo
     users too."""
-    tree = find_tree(mj, shape, data, joints, lowest)
+    tree = find_tree(mj, shape, data, joints, lowest, sources.actuated)
     drive, why = choose_drive(tree, sources.actuated, left, right, kind,
                               sources.declarations(joints), sources.mecanum)
     if drive is not None:

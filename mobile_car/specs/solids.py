@@ -58,7 +58,7 @@ def mesh(path, scale: tuple) -> Solid:
     from ..load.mesh_reader import load_mesh
 
     try:
-        loaded, _read = load_mesh(path, str(path), force="mesh")
+        loaded, _read = load_mesh(path, str(path), textures=False, force="mesh")
     except InputError as error:
         raise NoVolume(error.message) from None
     except Exception as error:  # trimesh raises anything on a file it cannot parse

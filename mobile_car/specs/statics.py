@@ -28,7 +28,7 @@ def statics_section(checked, sim, options: dict | None = None) -> Section:
     """The statics of a checked robot (a CheckResult) and sim's model of it at rest;
     ``options``: ``friction`` (the tyres' mu where the description gives none),
     ``proof`` (False: no MuJoCo runs)."""
-    from ..sim.vehicle import FIXED_TO_THE_WORLD, anchored
+    from ..sim.vehicle import FIXED_TO_THE_WORLD, anchored, not_a_vehicle
     from .support import stance
 
     options = options or {}
@@ -48,7 +48,10 @@ def statics_section(checked, sim, options: dict | None = None) -> Section:
         prove_tilt(sim, found, result, statics)
         prove_climb(sim, found, result, statics)
     elif sim.drive is None:
-        result.notes.append("not a vehicle: no tilt or climb proof (they hold and drive its "
+        # a vehicle sim drives no kind of (Curiosity's four steered corners) is still one
+        what = "not a vehicle" if not_a_vehicle(checked.robot, checked.rest) is not None \
+            else f"no drive sim drives ({sim.why_no_drive})"
+        result.notes.append(f"{what}: no tilt or climb proof (they hold and drive its "
                             "wheels)")
     from .statics_rules import judge
 

@@ -62,3 +62,36 @@ def test_check_names_the_macro_in_a_urdf_that_kept_an_unprefixed_call(cli, tmp_p
         "this package, called without the xacro: prefix? xacro 2 copies such calls "
         "unexpanded: write <xacro:chassis ...> [W201]")
     assert lines[1].endswith("robot.urdf:4: warning: unknown element <wheel> in <robot> [W201]")
+
+
+def test_an_sdf_element_named_like_a_macro_is_not_blamed_when_xacro_stops(run_mcar, tmp_path):
+    # Husarion Panther: a macro 'imu' writes a <gazebo><sensor> holding SDF's <imu>; when
+    # xacro stopped on a missing include, that <imu> was reported as an unprefixed call.
+    robot = tmp_path / "r.urdf.xacro"
+    robot.write_text(HEAD + '<xacro:macro name="imu" params="frame">\n'
+                     '  <gazebo reference="${frame}">\n'
+                     '    <sensor name="imu" type="imu"><imu><noise/></imu></sensor>\n'
+                     '  </gazebo>\n'
+                     '</xacro:macro>\n'
+                     '<link name="base"/>\n'
+                     '<xacro:imu frame="base"/>\n'
+                     '<xacro:include filename="missing.urdf.xacro"/>\n'
+                     '</robot>\n')
+    result = run_mcar("build", robot, cwd=tmp_path)
+    assert result.returncode == 1
+    assert "calls macro" not in result.stderr
+    assert result.stderr.splitlines()[0] == (
+        "r.urdf.xacro:9: error: cannot read missing.urdf.xacro: No such file or directory")
+
+
+def test_an_unprefixed_call_is_located_past_an_sdf_element_of_its_name(run_mcar, tmp_path):
+    robot = tmp_path / "r.urdf.xacro"
+    robot.write_text(HEAD + '<xacro:macro name="imu" params="n"><link name="${n}"/>'
+                     '</xacro:macro>\n<link name="base"/>\n'
+                     '<gazebo><sensor name="s" type="imu"><imu/></sensor></gazebo>\n'
+                     '<imu n="arm"/>\n</robot>\n')
+    result = run_mcar("build", robot, cwd=tmp_path)
+    assert result.returncode == 1
+    assert result.stderr.splitlines()[0] == (
+        "r.urdf.xacro:5: error: <imu> calls macro 'imu' without the xacro: prefix; xacro 2 "
+        "copies it into the URDF unexpanded: write <xacro:imu ...>")

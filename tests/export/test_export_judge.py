@@ -108,7 +108,9 @@ def test_an_export_whose_motors_were_taken_out_fails_verify(tmp_path):
 def test_a_steering_joint_with_equal_limits_is_judged_as_the_revolute_joint_it_is(run_mcar,
                                                                                   tmp_path):
     """Hunter 2 steers on revolute joints limited 0 to 0, which MuJoCo reads as hinges
-    without a range: the manifest's joint types keep them steering joints, not wheels."""
+    without a range: the manifest's joint types keep them steering joints, not castor
+    swivels, and so does its drive's steering (a joint the export steers steers, as a
+    continuous one an actuator turns does in sim)."""
     from sim.robot_makers import ackermann
 
     from mobile_car.errors import McarError
@@ -121,7 +123,9 @@ def test_a_steering_joint_with_equal_limits_is_judged_as_the_revolute_joint_it_i
     document = json.loads((tmp_path / "out/mcar-export.json").read_text())
     assert document["joint_types"]["front_left_steering_joint"] == "revolute"
     exported = Exported(**{k: document[k] for k in Exported.__dataclass_fields__})
-    exported.joint_types = {}  # read from MuJoCo's hinges alone: no steering joint found
+    exported.joint_types = {}  # read from MuJoCo's hinges alone: the drive's steering
+    assert verify_mjcf(tmp_path / "out", exported)[-1].startswith("turn passed as mcar sim")
+    exported.drive["steering"] = []  # and without it: no steering joint found
     with pytest.raises(McarError, match="the manifest's drive does not fit the model: "
                                         "--drive ackermann: no steering joints"):
         verify_mjcf(tmp_path / "out", exported)

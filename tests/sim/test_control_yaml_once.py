@@ -16,15 +16,15 @@ from mobile_car.config import bounded_yaml
 
 @pytest.fixture
 def parses(monkeypatch):
-    """The texts compose_and_load is given, in order."""
+    """The texts compose (ROS's reading: the last of a repeated key) is given, in order."""
     given = []
-    original = bounded_yaml.compose_and_load
+    original = bounded_yaml.compose
 
-    def counted(text, numbers_as_text=False):
+    def counted(text):
         given.append(text)
-        return original(text, numbers_as_text)
+        return original(text)
 
-    monkeypatch.setattr(bounded_yaml, "compose_and_load", counted)
+    monkeypatch.setattr(bounded_yaml, "compose", counted)
     return given
 
 

@@ -43,6 +43,11 @@ def test_a_tensor_not_positive_definite_is_named_with_its_line(run_mcar, robots)
     assert ("antenna.urdf: error: MuJoCo refuses 1 link (E305/E310 above); --fix-inertia "
             "makes it physical") in result.stderr
     assert "positive eigenvalues" not in result.stderr  # MuJoCo's own words, no link named
+    # the report's lint line: the refusal, then each link's, one "; " between each
+    # (the gz_ros2_control Ackermann demo's read "...makes them physicalE310 link ...")
+    assert ("  lint   FAILED  MuJoCo refuses 1 link (E305/E310 above); --fix-inertia makes it "
+            "physical; E310 link antenna_link: inertia is not positive definite") \
+        in result.stdout
 
 
 def test_fix_inertia_puts_the_nearest_physical_tensor_and_says_so(run_mcar, robots):

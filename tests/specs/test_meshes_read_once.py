@@ -37,13 +37,16 @@ def test_three_posts_of_one_collada_file_are_read_once_with_the_same_figures(
     read = []
     reading = mesh_reader._read
 
-    def counted(mesh, shown, kwargs):
-        read.append(mesh.name)
-        return reading(mesh, shown, kwargs)
+    def counted(mesh, shown, kwargs, textures):
+        read.append((mesh.name, textures))
+        return reading(mesh, shown, kwargs, textures)
 
     monkeypatch.setattr(mesh_reader, "_read", counted)
     kept = _figures(compute(checked, {"proof": True}))
-    assert read == ["post.dae"]
+    # once for the readers of its geometry alone (sim's), once with its textures (the
+    # sensors' scene, render's reader): a scene read without its images is not one to
+    # draw, and one read with them makes a texture atlas when joined into one mesh
+    assert sorted(read) == [("post.dae", False), ("post.dae", True)]
     assert any(key.startswith("sensors.") for key, _, _ in kept)
     read.clear()
     monkeypatch.setattr(mesh_cache, "kept", contextlib.nullcontext)

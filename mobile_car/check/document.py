@@ -40,7 +40,9 @@ def normalise_default_namespace(root) -> None:
 
 def check_doctype(data: bytes, report: Reporter) -> None:
     """E104: TinyXML reads ``<!DOCTYPE robot>``, but stops at an internal subset ``[...]``."""
-    match = _DOCTYPE_SUBSET_RE.search(data)
+    # A "!" is looked for first: memchr finds that none is there ten times faster than the
+    # pattern can (a file with no comment and no DOCTYPE has none).
+    match = b"!" in data and _DOCTYPE_SUBSET_RE.search(data)
     if match:
         report.add("E104", data.count(b"\n", 0, match.start()) + 1,
                    "DOCTYPE with an internal subset ([...] entity declarations): urdfdom's "

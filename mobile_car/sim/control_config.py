@@ -101,13 +101,17 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
     diff_drive_controller.yaml its plain wheels name)."""
     from ..packages.asset_roots import link_out_of, repository_of
 
-    named = _named_parameters(loaded) if named_only else set()
+    # The YAML the URDF names is looked for once a package is found: for a robot without
+    # one, searching its text (a 20,000-link URDF's 19 MB) would be for nothing.
+    named = None
     for name in _description_packages(loaded):
         stem = next(name[: -len(s)] for s in SUFFIXES if name.endswith(s))
         for suffix in suffixes:
             root = loaded.search.find_if_any(name if suffix is None else stem + suffix)
             if root is None:
                 continue
+            if named is None:
+                named = _named_parameters(loaded) if named_only else set()
             files = [path for folder in folders
                      for path in sorted(root.glob(f"{folder}/*.yaml" if folder else "*.yaml"))]
             repository, kept = repository_of(root), []

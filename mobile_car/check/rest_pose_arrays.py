@@ -201,33 +201,42 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict,
     joint_rotation, joint_shift = _rotations(joint_origins[:, 3:6]), joint_origins[:, 0:3]
     bodies, links, tags, numbers, meshes = [], [], [], [], {}
     inertial_rows, inertials = [], []
+    # Shape element -> its tag's number: the links read by one skeleton share their first
+    # one's elements (link_skeletons.py), whose tag lxml would make again for each.
+    tag_of: dict = {}
+    shapes_get = shapes_of.get
     for index, link in enumerate(robot.links):
-        held = shapes_of.get(link.name)
+        name = link.name
+        held = shapes_get(name)
         if held is None:
             continue
         if held.inertial is not None:
             inertial_rows.append(index)
             inertials.append(held)
         for order, (kind, element, xyz, rpy, dims) in enumerate(held.bodies):
-            tag = _TAGS.get(element.tag)
+            tag = tag_of.get(element)
+            if tag is None:
+                tag = tag_of[element] = _TAGS.get(element.tag, -1)
             if tag == 3:
                 known = own_box("mesh", dims, element, mesh_bounds)
                 if known is None:
                     continue
                 meshes[len(bodies)] = known[1]
                 dims = ZERO
-            elif tag is None:
+            elif tag < 0:
                 continue
-            bodies.append((link.name, kind, element, xyz, rpy, held, order))
+            bodies.append((name, kind, element, xyz, rpy, held, order))
             links.append(index)
             tags.append(tag)
-            numbers.append((*xyz, *rpy, *(dims * 3)[:3]))  # (r,) -> r r r; (r, l) -> r l r
+            numbers += xyz
+            numbers += rpy
+            numbers += (dims * 3)[:3]  # (r,) -> r r r; (r, l) -> r l r
     rotation = np.tile(np.eye(3), (count, 1, 1))
     shift = np.zeros((count, 3))
     rotation[children], shift[children] = joint_rotation, joint_shift
     rotation, shift = _compose(parent, rotation, shift)
     links, tags = np.array(links, dtype=int), np.array(tags, dtype=int)
-    numbers = _rows(numbers, 9)
+    numbers = np.fromiter(numbers, dtype=float, count=len(numbers)).reshape(-1, 9)
     body_shift, body_rotation = numbers[:, 0:3], _rotations(numbers[:, 3:6])
     dims = numbers[:, 6:9]
     # A shape's box in its own frame: a box's size, a cylinder's (r, length, r) as

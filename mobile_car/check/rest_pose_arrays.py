@@ -19,7 +19,6 @@ link of a small robot, so the verdicts and messages are the same
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from itertools import chain
 
 import numpy as np
@@ -31,20 +30,25 @@ from .rest_pose import ZERO, Shape, frame_of, own_box, own_elements
 _SLACK = 1.01  # candidates a hair beyond each bound: the link's own judgement decides
 
 
-@dataclass
 class ArraysPose:
-    low: np.ndarray          # (shapes, 3) boxes in the root's frame
-    high: np.ndarray
-    local_low: np.ndarray    # (shapes, 3) boxes in the link's frame
-    local_high: np.ndarray
-    own_low: np.ndarray      # (shapes, 3) boxes in the shape's own frame
-    own_high: np.ndarray
-    frames_low: np.ndarray   # (3,) around every link's origin
-    frames_high: np.ndarray
-    bodies: list             # per shape: (link, kind, element, xyz, rpy, LinkShapes, index)
-    tags: np.ndarray         # per shape: 0 box, 1 cylinder, 2 sphere, 3 mesh
-    dims: np.ndarray         # (shapes, 3): box size, (r, r, length), (r, r, r); meshes 0
-    judged: list = field(default_factory=list)  # (link, <inertial>, [Shape]) to judge
+    # A plain class, not a dataclass: never compared, and a dataclass costs the run that
+    # imports it the dataclasses module and the compiling of its methods (values.py).
+    def __init__(self, low: np.ndarray, high: np.ndarray, local_low: np.ndarray,
+                 local_high: np.ndarray, own_low: np.ndarray, own_high: np.ndarray,
+                 frames_low: np.ndarray, frames_high: np.ndarray, bodies: list,
+                 tags: np.ndarray, dims: np.ndarray, judged: list | None = None):
+        self.low = low                  # (shapes, 3) boxes in the root's frame
+        self.high = high
+        self.local_low = local_low      # (shapes, 3) boxes in the link's frame
+        self.local_high = local_high
+        self.own_low = own_low          # (shapes, 3) boxes in the shape's own frame
+        self.own_high = own_high
+        self.frames_low = frames_low    # (3,) around every link's origin
+        self.frames_high = frames_high
+        self.bodies = bodies  # per shape: (link, kind, element, xyz, rpy, LinkShapes, index)
+        self.tags = tags      # per shape: 0 box, 1 cylinder, 2 sphere, 3 mesh
+        self.dims = dims      # (shapes, 3): box size, (r, r, length), (r, r, r); meshes 0
+        self.judged = [] if judged is None else judged  # (link, <inertial>, [Shape]) to judge
 
     def extents(self) -> tuple | None:
         if not len(self.low):
@@ -177,19 +181,22 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict,
     names = {link.name: index for index, link in enumerate(robot.links)}
     count = len(names)
     origins = origins or {}
-    parent = np.arange(count)
-    joint_origins, children, turning, axes = [], [], [], []
+    # Gathered in lists and put into arrays at once: an item set in an array one by one
+    # costs more than a list's append.
+    parents, children, flat, turning, axes = [], [], [], [], []
+    origin_of = origins.get
     for joints in tree.children.values():
         for joint in joints:
             child = names[joint.child]
-            parent[child] = names[joint.parent]
+            parents.append(names[joint.parent])
             children.append(child)
-            origin = origins.get(joint)
+            origin = origin_of(joint)
             if origin is None:
                 origin = _origin(joint)
                 if origin is None:
                     return None
-            joint_origins.append(origin)
+            flat += origin[0]
+            flat += origin[1]
             if joint.type == "continuous":
                 turning.append(child)
                 axes.append(_axis_text(joint))
@@ -197,7 +204,9 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict,
         axes = _numbers(axes, 3)
     except ValueError:
         return None
-    joint_origins = _rows(list(chain.from_iterable(joint_origins)), 3).reshape(-1, 6)
+    parent = np.arange(count)
+    parent[children] = parents
+    joint_origins = np.fromiter(flat, dtype=float, count=len(flat)).reshape(-1, 6)
     joint_rotation, joint_shift = _rotations(joint_origins[:, 3:6]), joint_origins[:, 0:3]
     bodies, links, tags, numbers, meshes = [], [], [], [], {}
     inertial_rows, inertials = [], []

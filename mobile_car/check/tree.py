@@ -38,7 +38,13 @@ class KinematicTree:
 
     @property
     def two_parents(self) -> dict[str, list[Joint]]:
-        return {link: joints for link, joints in self.parent_joints.items() if len(joints) > 1}
+        # Worked out once (nothing changes a tree once built): a check asks five times,
+        # each a pass over every link of the robot.
+        found = self.__dict__.get("_two_parents")
+        if found is None:
+            found = self._two_parents = {link: joints for link, joints
+                                         in self.parent_joints.items() if len(joints) > 1}
+        return found
 
     @property
     def is_sound(self) -> bool:

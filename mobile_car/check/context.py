@@ -6,13 +6,12 @@ from xacro, a locator maps the element back to the xacro source where it can.
 
 Numbers are read quickly first: Python's ``float`` reads every number urdfdom reads, and
 a few more (``nan``, ``1_0``, a trailing space, a tab between numbers). Each text read
-that way is kept and proved, a few tens of thousands at a time and the last ones by
-:meth:`Reporter.numbers_confirmed`, in one pass over their joined bytes, to be spelled
-with digits, ``.eE+-`` and (in lists) spaces only, where Python and urdfdom read exactly
-alike. A document that fails the proof is checked again with urdfdom's grammar
-(:mod:`mobile_car.check.urdf_model`) throughout, so the verdicts are always urdfdom's; the
-quick way only saves the grammar's regular expression on the common spelling (much of
-checking a robot whose every number differs).
+that way is kept, and :meth:`Reporter.numbers_confirmed` then proves in one pass over
+their joined bytes that every one of them is spelled with digits, ``.eE+-`` and (in lists)
+spaces only, where Python and urdfdom read exactly alike. A document that fails the proof
+is checked again with urdfdom's grammar (:mod:`mobile_car.check.urdf_model`) throughout, so the
+verdicts are always urdfdom's; the quick way only saves the grammar's regular expression
+on the common spelling (much of checking a robot whose every number differs).
 """
 
 from __future__ import annotations
@@ -35,9 +34,6 @@ _LISTS_KEPT = 4096
 # must then consist of these bytes only.
 _SINGLE_BYTES = b"0123456789.eE+-,"
 _LIST_BYTES = _SINGLE_BYTES + b" "
-# Texts held, at most, before the spelling of those read so far is proved and they are let
-# go: a 20,000-link robot's ~400,000 texts held to the end were ~20 MB of its peak.
-_PROVE_AFTER = 1 << 15
 
 
 # Bounds of rule E117: numbers urdfdom reads but that no robot has, and that overflow
@@ -99,7 +95,6 @@ class Reporter:
         self._lists: dict[str, tuple[float, ...]] = {}
         # Keys found clean here; they join _CLEAN only once the numbers are confirmed.
         self._clean_here: set = set()
-        self._misspelled = False  # a text read so far failed the proof (_prove)
 
     def once_clean(self, key, check, *args) -> None:
         """Run ``check(*args)`` unless an element with the same ``key`` already passed it.
@@ -118,25 +113,18 @@ class Reporter:
         """True if urdfdom reads every number read so far as ``float`` did; then the
         values found clean here are remembered for the next inputs too."""
         if self.quick_numbers:
-            self._prove()
-            if self._misspelled:
+            singles = ",".join(self._read_singles).encode()
+            lists = ",".join(self._read_lists).encode()
+            if singles.translate(None, _SINGLE_BYTES) or lists.translate(None, _LIST_BYTES):
+                return False
+            # Texts read together (triples()): each one's three numbers one space apart.
+            triples = self._read_triples
+            if ",".join(triples).encode().translate(None, _LIST_BYTES) or \
+                    set(map(str.count, triples, repeat(" "))) - {2}:
                 return False
         if len(_CLEAN) < _CLEAN_LIMIT:
             _CLEAN.update(self._clean_here)
         return True
-
-    def _prove(self) -> None:
-        """Prove the spelling of the texts read since the last proof (see
-        :meth:`numbers_confirmed`), note a failure, and let the texts go."""
-        singles = ",".join(self._read_singles).encode()
-        lists = ",".join(self._read_lists).encode()
-        # Texts read together (triples()): each one's three numbers one space apart.
-        triples = self._read_triples
-        if singles.translate(None, _SINGLE_BYTES) or lists.translate(None, _LIST_BYTES) or \
-                ",".join(triples).encode().translate(None, _LIST_BYTES) or \
-                set(map(str.count, triples, repeat(" "))) - {2}:
-            self._misspelled = True
-        self._read_singles, self._read_lists, self._read_triples = [], [], []
 
     def add(self, rule: str, where, message: str) -> None:
         """Record ``rule`` at ``where``: an lxml element, or a line number, or None."""
@@ -213,8 +201,6 @@ class Reporter:
                     values = None
                 if values is not None:
                     self._read_triples += texts
-                    if len(self._read_triples) > _PROVE_AFTER:
-                        self._prove()
                     return values
         values = []
         for text in texts:
@@ -234,8 +220,6 @@ class Reporter:
                 values = None
             if values is not None:
                 self._read_singles += texts
-                if len(self._read_singles) > _PROVE_AFTER:
-                    self._prove()
                 return values
         values = tuple([self.value(text) for text in texts])
         return None if None in values else values

@@ -404,27 +404,6 @@ def test_lists_that_miscount_each_other_out_fail_the_proof_of_the_quick_reading(
     assert sound.numbers_confirmed()
 
 
-@pytest.mark.parametrize("reader", ["triples", "singles"])
-def test_a_misspelling_proved_early_still_fails_the_proof_at_the_end(reader):
-    """The texts read are proved a batch at a time (and let go): a misspelled one in the
-    first batch, thousands of sound ones after it, still fails the proof at the end."""
-    from mobile_car.check import context
-
-    bad, good = ("nan 0 0", "0 0 0.1") if reader == "triples" else ("nan", "0.1")
-    report = context.Reporter("robot.urdf")
-    read = getattr(report, reader)
-    assert read([bad]) is not None  # float reads it
-    for _ in range(2 * context._PROVE_AFTER // 100 + 1):
-        assert read([good] * 100) is not None
-    # let go as they were proved
-    assert len(report._read_triples) + len(report._read_singles) <= context._PROVE_AFTER
-    assert not report.numbers_confirmed()
-    sound = context.Reporter("robot.urdf")
-    for _ in range(2 * context._PROVE_AFTER // 100 + 1):
-        assert getattr(sound, reader)([good] * 100) is not None
-    assert sound.numbers_confirmed()
-
-
 @settings(max_examples=150, deadline=None,
           suppress_health_check=[HealthCheck.function_scoped_fixture])  # _check undoes its patches
 @given(place=st.sampled_from(sorted(NUMBER_PLACES) + sorted(LIST_PLACES)),

@@ -85,7 +85,8 @@ def find_controllers(loaded) -> tuple[list, list[str], list[Path]]:
 
 
 def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
-                     folders=("config", ""), named_only: bool = True):
+                     folders=("config", ""), named_only: bool = True,
+                     packages: list[str] | None = None):
     """Each control package's YAML files (at most MAX_FILES), nearest package first. A
     file that is a link out of the repository holding its package (or into its ``.git``)
     is not read, and said in ``problems``: a pull request commits
@@ -98,13 +99,14 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
     ``named_only``: where the robot names some of a package's files as its controllers'
     parameters (``<parameters>`` of its ros2_control or Gazebo plugin), only those: the
     others configure another variant (ROSbot: mecanum_drive_controller.yaml beside the
-    diff_drive_controller.yaml its plain wheels name)."""
+    diff_drive_controller.yaml its plain wheels name). ``packages``: the robot's
+    description packages (:func:`description_packages`), where the caller has them."""
     from ..packages.asset_roots import link_out_of, repository_of
 
     # The YAML the URDF names is looked for once a package is found: for a robot without
     # one, searching its text (a 20,000-link URDF's 19 MB) would be for nothing.
     named = None
-    for name in _description_packages(loaded):
+    for name in description_packages(loaded) if packages is None else packages:
         stem = next(name[: -len(s)] for s in SUFFIXES if name.endswith(s))
         for suffix in suffixes:
             root = loaded.search.find_if_any(name if suffix is None else stem + suffix)
@@ -142,7 +144,9 @@ def _named_parameters(loaded) -> set[Path]:
     return named
 
 
-def _description_packages(loaded) -> list[str]:
+def description_packages(loaded) -> list[str]:
+    """The robot's own package (an X_description or X_base one) and those its URDF's
+    ``package://`` URIs name (a search of its whole text)."""
     from ..packages.search import enclosing_package
 
     names = []

@@ -48,13 +48,15 @@ class Found:
 
 def find_package_yaml(loaded) -> Found:
     """The controller, Nav2 and laser_filters mappings of the robot's packages."""
-    from ..sim.control_config import control_packages, yaml_mappings
+    from ..sim.control_config import control_packages, description_packages, yaml_mappings
 
     found = Found()
-    controls = [p for files in control_packages(loaded, found.problems) for p in files]
+    packages = description_packages(loaded)  # (searched for once: the URDF's whole text)
+    controls = [p for files in control_packages(loaded, found.problems, packages=packages)
+                for p in files]
     navigation = [p for files in control_packages(loaded, found.problems,
                                                   NAVIGATION_SUFFIXES, NAVIGATION_FOLDERS,
-                                                  named_only=False)
+                                                  named_only=False, packages=packages)
                   for p in files]
     found.read = list(dict.fromkeys(controls + navigation))  # (an edit may make one relevant)
     found.absent = _absent_siblings(loaded)

@@ -269,8 +269,7 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict,
                       centre - half, centre + half, shift.min(axis=0), shift.max(axis=0),
                       bodies, tags, dims)
     doubtful = _doubtful(pose, links, count, np.array(turning, dtype=int), axes,
-                         np.array(inertial_rows, dtype=int), masses,
-                         _rows(moments, 9),
+                         np.array(inertial_rows, dtype=int), masses, _rows(moments, 9),
                          body_rotation)
     shapes: dict[str, list] = {}
     for i in np.flatnonzero(doubtful[links]).tolist():

@@ -188,13 +188,14 @@ class Reporter:
         read; silent. Unlike :meth:`values`, a number may come back infinite (1e400):
         the caller bounds every one of them."""
         if self.quick_numbers:
-            joined = " ".join(texts)
-            words = joined.split()
-            # Three words in all per text, each text's one space apart (two spaces apart
-            # or with spaces around, as urdfdom allows, one by one below); that each has
-            # three, not four here and two there, is proved with the spelling: every
-            # text has two spaces (numbers_confirmed).
-            if len(words) == 3 * len(texts) and joined.count(" ") == len(words) - 1:
+            # Cut at each space: three words in all per text, each text's one space apart
+            # (two spaces apart or with spaces around, as urdfdom allows, make an empty
+            # word, which float refuses: then one by one below); that each has three,
+            # not four here and two there, is proved with the spelling: every text has
+            # two spaces (numbers_confirmed). (Another white space float takes around a
+            # word fails the spelling.)
+            words = " ".join(texts).split(" ")
+            if len(words) == 3 * len(texts):
                 try:
                     values = tuple(map(float, words))
                 except ValueError:

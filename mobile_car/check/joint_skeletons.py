@@ -41,7 +41,8 @@ class JointSkeletons:
     def read(self, element) -> tuple | None:
         """(name, type, parent, child, tags of its parts, TEXTS) of the ``<joint>``
         ``element`` (None where absent), or None if this way cannot tell."""
-        pieces = etree.tostring(element, encoding="unicode", with_tail=False).split('"')
+        text = etree.tostring(element, encoding="unicode", with_tail=False)
+        pieces = text.split('"')
         skeleton = '"'.join(pieces[::2])
         plan = self._plans.get(skeleton, _UNKNOWN)
         if plan is _UNKNOWN:
@@ -53,9 +54,10 @@ class JointSkeletons:
         values = pieces[1::2]
         values.append(None)  # what an absent attribute reads
         names = plan[1](values)
-        for name in names:
-            if name is not None and "&" in name:
-                return None  # escaped: read as lxml reads it
+        if "&" in text:  # (one scan of the text: most joints have no escape anywhere)
+            for name in names:
+                if name is not None and "&" in name:
+                    return None  # escaped: read as lxml reads it
         return (*names, plan[2], plan[3](values))
 
 

@@ -23,6 +23,8 @@ the link to the walk, which reads it as lxml does.
 
 from __future__ import annotations
 
+from operator import itemgetter
+
 from lxml import etree
 
 from .context import Reporter
@@ -75,8 +77,8 @@ class _Plan:
     def __init__(self, pieces: int, triples: list, singles: list, bodies: list,
                  inertial: tuple | None, colours: list, twins: bool):
         self.pieces = pieces  # of the serialisation split at its quotes
-        self.triples = triples
-        self.singles = singles
+        self.triples = _picker(triples)  # values -> the texts of the triples, in order
+        self.singles = _picker(singles)
         self.bodies = bodies  # (kind, path of its shape, shape tag, scaled, at, at_single)
         self.inertial = inertial  # (index of the <inertial>, at, at_single) or None
         self.colours = colours  # (index of the name, of the rgba or None)
@@ -136,13 +138,23 @@ class _Plan:
                 inertial = (element[inertial[0]], *inertial[1:])
         else:
             bodies, inertial = model
-        gathered = ([values[i] for i in self.triples], [values[i] for i in self.singles],
-                    bodies, inertial, colours)
+        gathered = (self.triples(values), self.singles(values), bodies, inertial, colours)
         held = judge(gathered, report, materials, top_level, moving, is_root,
                      None if model is None else element)
         if held is not None and model is None and self.twins:
             self.model = bodies, inertial
         return held
+
+
+def _picker(indices: list[int]):
+    """values -> the tuple of the values at ``indices`` (one C call: itemgetter, which
+    gives a lone value for one index, and cannot be made for none)."""
+    if len(indices) > 1:
+        return itemgetter(*indices)
+    if indices:
+        index = indices[0]
+        return lambda values: (values[index],)
+    return lambda values: ()
 
 
 def _path(shape) -> tuple[int, int, int]:

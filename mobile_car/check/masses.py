@@ -53,6 +53,7 @@ def check_masses(robot, tree, held: dict, mesh_bounds: dict, report: Reporter) -
     # The robot the wheels carry: all of it but its wheels (two 1000 kg wheels must not
     # each count the other as the robot).
     rest = total - sum(masses[name] for name in wheels)
+    tags: dict = {}  # shape element -> its tag (_density)
     for name, mass in masses.items():
         shapes = held[name]
         if name in wheels and 0 < rest < mass / WHEEL_OVER_REST:
@@ -61,7 +62,7 @@ def check_masses(robot, tree, held: dict, mesh_bounds: dict, report: Reporter) -
                        f"{rest:.3g} kg of the robot without its wheels: no wheel built is "
                        f"over {WHEEL_OVER_REST:g} times its robot (a unit or a digit wrong?)")
             continue
-        _density(name, mass, shapes, mesh_bounds, report)
+        _density(name, mass, shapes, mesh_bounds, report, tags)
 
 
 def _mass_element(shapes):
@@ -72,16 +73,43 @@ def _mass_element(shapes):
     return firsts(inertial).get("mass", inertial)
 
 
-def _density(name: str, mass: float, shapes, mesh_bounds: dict, report: Reporter) -> None:
+def _density(name: str, mass: float, shapes, mesh_bounds: dict, report: Reporter,
+             tags: dict) -> None:
+    """E119 if ``mass`` is denser or lighter than its collision shapes can be; ``tags``
+    keeps each shape element's tag (the links read by one skeleton share their first
+    one's elements: lxml would make the tag again for each)."""
+    largest, smallest = 0.0, 0.0  # the volume the shapes could have at most, at least
+    across = 0.0
+    for kind, shape, _xyz, _rpy, dims in shapes.bodies:
+        tag = tags.get(shape)
+        if tag is None:
+            tag = tags[shape] = shape.tag
+        if tag != "box" and tag != "cylinder" and tag != "sphere":
+            _density_of_meshes(name, mass, shapes, mesh_bounds, report)
+            return
+        if kind != "collision":
+            continue
+        # own_box's sizes without building its box: what a 20,000-link robot saves
+        if min(dims) <= 0:
+            return
+        volume = _volume(tag, dims)
+        across = max(across, *dims) if tag == "box" else max(across, 2 * dims[0], dims[-1])
+        largest += volume
+        smallest = max(smallest, volume)
+    _judge_density(name, mass, shapes, largest, smallest, across, report)
+
+
+def _density_of_meshes(name: str, mass: float, shapes, mesh_bounds: dict,
+                       report: Reporter) -> None:
+    """:func:`_density` of a link with a shape other than a box, cylinder or sphere."""
     if shapes.twin is not None and any(body[1].tag == "mesh" for body in shapes.bodies):
         shapes = own_elements(shapes)  # a mesh's bounds are known by its own element
     bodies = [b for b in shapes.bodies if b[0] == "collision"]
-    largest, smallest = 0.0, 0.0  # the volume the shapes could have at most, at least
+    largest, smallest = 0.0, 0.0
     across = 0.0
     for _kind, shape, _xyz, _rpy, dims in bodies:
         tag = shape.tag
         if tag == "box" or tag == "cylinder" or tag == "sphere":
-            # own_box's sizes without building its box: what a 20,000-link robot saves
             if min(dims) <= 0:
                 return
             volume = _volume(tag, dims)
@@ -97,6 +125,11 @@ def _density(name: str, mass: float, shapes, mesh_bounds: dict, report: Reporter
         across = max(across, *(h - lo for lo, h in zip(low, high, strict=True)))
         x, y, z = box[0]
         largest += x * y * z  # its box: a mesh's volume is at most that
+    _judge_density(name, mass, shapes, largest, smallest, across, report)
+
+
+def _judge_density(name: str, mass: float, shapes, largest: float, smallest: float,
+                   across: float, report: Reporter) -> None:
     if largest <= 0 or across < PLACEHOLDER:
         return
     if mass / largest > DENSEST:

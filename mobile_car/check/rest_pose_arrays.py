@@ -19,9 +19,6 @@ link of a small robot, so the verdicts and messages are the same
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from itertools import chain
-
 import numpy as np
 
 from . import plausibility as rules
@@ -31,20 +28,25 @@ from .rest_pose import ZERO, Shape, frame_of, own_box, own_elements
 _SLACK = 1.01  # candidates a hair beyond each bound: the link's own judgement decides
 
 
-@dataclass
 class ArraysPose:
-    low: np.ndarray          # (shapes, 3) boxes in the root's frame
-    high: np.ndarray
-    local_low: np.ndarray    # (shapes, 3) boxes in the link's frame
-    local_high: np.ndarray
-    own_low: np.ndarray      # (shapes, 3) boxes in the shape's own frame
-    own_high: np.ndarray
-    frames_low: np.ndarray   # (3,) around every link's origin
-    frames_high: np.ndarray
-    bodies: list             # per shape: (link, kind, element, xyz, rpy, LinkShapes, index)
-    tags: np.ndarray         # per shape: 0 box, 1 cylinder, 2 sphere, 3 mesh
-    dims: np.ndarray         # (shapes, 3): box size, (r, r, length), (r, r, r); meshes 0
-    judged: list = field(default_factory=list)  # (link, <inertial>, [Shape]) to judge
+    # A plain class, not a dataclass: never compared, and a dataclass costs the run that
+    # imports it the dataclasses module and the compiling of its methods (values.py).
+    def __init__(self, low: np.ndarray, high: np.ndarray, local_low: np.ndarray,
+                 local_high: np.ndarray, own_low: np.ndarray, own_high: np.ndarray,
+                 frames_low: np.ndarray, frames_high: np.ndarray, bodies: list,
+                 tags: np.ndarray, dims: np.ndarray, judged: list | None = None):
+        self.low = low                  # (shapes, 3) boxes in the root's frame
+        self.high = high
+        self.local_low = local_low      # (shapes, 3) boxes in the link's frame
+        self.local_high = local_high
+        self.own_low = own_low          # (shapes, 3) boxes in the shape's own frame
+        self.own_high = own_high
+        self.frames_low = frames_low    # (3,) around every link's origin
+        self.frames_high = frames_high
+        self.bodies = bodies  # per shape: (link, kind, element, xyz, rpy, LinkShapes, index)
+        self.tags = tags      # per shape: 0 box, 1 cylinder, 2 sphere, 3 mesh
+        self.dims = dims      # (shapes, 3): box size, (r, r, length), (r, r, r); meshes 0
+        self.judged = [] if judged is None else judged  # (link, <inertial>, [Shape]) to judge
 
     def extents(self) -> tuple | None:
         if not len(self.low):
@@ -122,12 +124,12 @@ def _axis_text(joint) -> str:
     return "1 0 0" if axis is None else axis.get("xyz", "0 0 0")
 
 
-def _rows(rows: list, width: int) -> np.ndarray:
-    """(n, width) from n sequences of ``width`` floats each: one flat pass, which np.array
-    over a list of tuples is not (it first works out their nesting), a few hundredths of a
-    second on 20,000 links."""
-    return np.fromiter(chain.from_iterable(rows), dtype=float,
-                       count=width * len(rows)).reshape(-1, width)
+def _rows(flat: list, width: int) -> np.ndarray:
+    """(n, width) from the floats of n rows gathered one after the other in ``flat``
+    (each row's tuples added to one list as they are read): one pass, which np.array
+    over a list of tuples is not (it first works out their nesting), nor a chain over
+    them: a few hundredths of a second on 20,000 links."""
+    return np.fromiter(flat, dtype=float, count=len(flat)).reshape(-1, width)
 
 
 def _origin(joint) -> tuple | None:
@@ -177,19 +179,22 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict,
     names = {link.name: index for index, link in enumerate(robot.links)}
     count = len(names)
     origins = origins or {}
-    parent = np.arange(count)
-    joint_origins, children, turning, axes = [], [], [], []
+    # Gathered in lists and put into arrays at once: an item set in an array one by one
+    # costs more than a list's append.
+    parents, children, flat, turning, axes = [], [], [], [], []
+    origin_of = origins.get
     for joints in tree.children.values():
         for joint in joints:
             child = names[joint.child]
-            parent[child] = names[joint.parent]
+            parents.append(names[joint.parent])
             children.append(child)
-            origin = origins.get(joint)
+            origin = origin_of(joint)
             if origin is None:
                 origin = _origin(joint)
                 if origin is None:
                     return None
-            joint_origins.append(origin)
+            flat += origin[0]
+            flat += origin[1]
             if joint.type == "continuous":
                 turning.append(child)
                 axes.append(_axis_text(joint))
@@ -197,31 +202,46 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict,
         axes = _numbers(axes, 3)
     except ValueError:
         return None
-    joint_origins = _rows(list(chain.from_iterable(joint_origins)), 3).reshape(-1, 6)
+    parent = np.arange(count)
+    parent[children] = parents
+    joint_origins = _rows(flat, 6)
     joint_rotation, joint_shift = _rotations(joint_origins[:, 3:6]), joint_origins[:, 0:3]
     bodies, links, tags, numbers, meshes = [], [], [], [], {}
-    inertial_rows, inertials = [], []
+    inertial_rows, inertials, masses, moments = [], [], [], []  # moments: the six, then rpy
+    # Shape element -> its tag's number: the links read by one skeleton share their first
+    # one's elements (link_skeletons.py), whose tag lxml would make again for each.
+    tag_of: dict = {}
+    shapes_get = shapes_of.get
     for index, link in enumerate(robot.links):
-        held = shapes_of.get(link.name)
+        name = link.name
+        held = shapes_get(name)
         if held is None:
             continue
-        if held.inertial is not None:
+        inertial = held.inertial
+        if inertial is not None:
             inertial_rows.append(index)
             inertials.append(held)
+            masses.append(inertial[1])
+            moments += inertial[2]
+            moments += inertial[3]
         for order, (kind, element, xyz, rpy, dims) in enumerate(held.bodies):
-            tag = _TAGS.get(element.tag)
+            tag = tag_of.get(element)
+            if tag is None:
+                tag = tag_of[element] = _TAGS.get(element.tag, -1)
             if tag == 3:
                 known = own_box("mesh", dims, element, mesh_bounds)
                 if known is None:
                     continue
                 meshes[len(bodies)] = known[1]
                 dims = ZERO
-            elif tag is None:
+            elif tag < 0:
                 continue
-            bodies.append((link.name, kind, element, xyz, rpy, held, order))
+            bodies.append((name, kind, element, xyz, rpy, held, order))
             links.append(index)
             tags.append(tag)
-            numbers.append((*xyz, *rpy, *(dims * 3)[:3]))  # (r,) -> r r r; (r, l) -> r l r
+            numbers += xyz
+            numbers += rpy
+            numbers += (dims * 3)[:3]  # (r,) -> r r r; (r, l) -> r l r
     rotation = np.tile(np.eye(3), (count, 1, 1))
     shift = np.zeros((count, 3))
     rotation[children], shift[children] = joint_rotation, joint_shift
@@ -249,8 +269,8 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict,
                       centre - half, centre + half, shift.min(axis=0), shift.max(axis=0),
                       bodies, tags, dims)
     doubtful = _doubtful(pose, links, count, np.array(turning, dtype=int), axes,
-                         np.array(inertial_rows, dtype=int),
-                         [held.inertial for held in inertials], body_rotation)
+                         np.array(inertial_rows, dtype=int), masses, _rows(moments, 9),
+                         body_rotation)
     shapes: dict[str, list] = {}
     for i in np.flatnonzero(doubtful[links]).tolist():
         shapes.setdefault(bodies[i][0], []).append(pose.shape(i))
@@ -262,11 +282,12 @@ def rest_pose_arrays(robot, tree, shapes_of: dict, mesh_bounds: dict,
 
 
 def _doubtful(pose: ArraysPose, links: np.ndarray, count: int, turning: np.ndarray,
-              axes: np.ndarray, rows: np.ndarray, inertials: list,
+              axes: np.ndarray, rows: np.ndarray, masses: list, moments: np.ndarray,
               body_rotation: np.ndarray) -> np.ndarray:
     """Per link: True where its inertia is within _SLACK of a W213 or W214 bound, or
-    beyond one (its own judgement then decides). ``body_rotation``: each shape's
-    rotation in its link's frame."""
+    beyond one (its own judgement then decides). ``masses`` and ``moments``: per row of
+    ``rows``, its inertial's mass and nine numbers (the six moments, then its rpy), read
+    with the shapes. ``body_rotation``: each shape's rotation in its link's frame."""
     if not len(pose.tags):
         return np.zeros(count, dtype=bool)
     collision = np.array([body[1] == "collision" for body in pose.bodies], dtype=bool)
@@ -296,10 +317,9 @@ def _doubtful(pose: ArraysPose, links: np.ndarray, count: int, turning: np.ndarr
     doubtful = np.zeros(count, dtype=bool)
     if not len(rows):
         return doubtful
-    mass = np.array([inertial[1] for inertial in inertials], dtype=float)
-    moments = _rows([inertial[2] for inertial in inertials], 6)
-    turn = _rotations(_rows([inertial[3] for inertial in inertials], 3))
-    ixx, ixy, ixz, iyy, iyz, izz = moments.T
+    mass = np.array(masses, dtype=float)
+    turn = _rotations(moments[:, 6:9])
+    ixx, ixy, ixz, iyy, iyz, izz = moments[:, 0:6].T
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = (ixx + iyy + izz) / (mass * per_kg[rows])
         doubtful[rows] = ~((ratio * _SLACK <= rules.INERTIA_ABOVE)

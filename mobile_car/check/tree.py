@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections import defaultdict
 from collections.abc import Iterator
+from operator import attrgetter
 
 from ..names import shown
 from .urdf_model import axis_of, first_child, origin_of, parse_number
@@ -38,7 +39,13 @@ class KinematicTree:
 
     @property
     def two_parents(self) -> dict[str, list[Joint]]:
-        return {link: joints for link, joints in self.parent_joints.items() if len(joints) > 1}
+        # Worked out once (nothing changes a tree once built): a check asks five times,
+        # each a pass over every link of the robot.
+        found = self.__dict__.get("_two_parents")
+        if found is None:
+            found = self._two_parents = {link: joints for link, joints
+                                         in self.parent_joints.items() if len(joints) > 1}
+        return found
 
     @property
     def is_sound(self) -> bool:
@@ -64,7 +71,7 @@ def build_tree(robot: Robot) -> KinematicTree:
     defined = set(links)
     usable = [j for j in robot.joints
               if j.name is not None and j.parent in defined and j.child in defined]
-    usable.sort(key=lambda j: j.name)
+    usable.sort(key=attrgetter("name"))
     children: dict[str, list[Joint]] = defaultdict(list)
     parent_joints: dict[str, list[Joint]] = defaultdict(list)
     self_loops = []
@@ -83,7 +90,9 @@ def build_tree(robot: Robot) -> KinematicTree:
         below = tree.subtree(root)
         reached.update(below)
         sizes[root] = len(below)
-    if roots:
+    if len(roots) == 1:
+        tree.root = roots[0]
+    elif roots:
         # urdfdom refuses two roots; naming the biggest tree's root makes the others the
         # "not connected" ones, which is what a user means by a stray link.
         position = {name: i for i, name in enumerate(links)}

@@ -2,8 +2,9 @@
 at the robot's visuals with render's reader and simulate them with sim's), each file
 :func:`~.mesh_reader.load_mesh` reads is parsed once while its stamp holds for the
 readers of its geometry alone (textures left out) and once for render's (with them),
-however many ``<mesh>`` elements name it (Unitree Go1 names calf.dae four times). Outside it nothing is kept: a command that measures a large robot's meshes
-one by one does not hold them all.
+however many ``<mesh>`` elements name it (Unitree Go1 names calf.dae four times).
+Outside it nothing is kept: a command that measures a large robot's meshes one by one
+does not hold them all.
 
 No trimesh here: the commands that read no mesh import this module too.
 """

@@ -87,7 +87,7 @@ def find_controllers(loaded) -> tuple[list, list[str], list[Path]]:
 
 def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
                      folders=("config", ""), named_only: bool = True,
-                     consulted: list | None = None):
+                     consulted: list | None = None, packages: list[str] | None = None):
     """Each control package's YAML files (at most MAX_FILES), nearest package first. A
     file that is a link out of the repository holding its package (or into its ``.git``)
     is not read, and said in ``problems``: a pull request commits
@@ -105,18 +105,24 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
     are added to ``consulted``); and the files it names outside such packages, last
     (gz_ros2_control's demos keep theirs in gz_ros2_control_demos), each a YAML file within
     the folders a robot may name files in (:meth:`~mobile_car.packages.search.
-    PackageSearch.confined`, as its meshes are)."""
+    PackageSearch.confined`, as its meshes are). ``packages``: the robot's description
+    packages (:func:`description_packages`), where the caller has them."""
     from ..packages.asset_roots import link_out_of, repository_of
     from .control_variants import launch_choice
 
-    named = _named_parameters(loaded) if named_only else set()
+    # The YAML the URDF names is looked for once a package is found, or once its text
+    # holds a <parameters> at all: for a robot with neither, searching its text (a
+    # 20,000-link URDF's 19 MB) would be for nothing.
+    named = None
     seen: set[Path] = set()
-    for name in _description_packages(loaded):
+    for name in description_packages(loaded) if packages is None else packages:
         stem = next(name[: -len(s)] for s in SUFFIXES if name.endswith(s))
         for suffix in suffixes:
             root = loaded.search.find_if_any(name if suffix is None else stem + suffix)
             if root is None:
                 continue
+            if named is None:
+                named = _named_parameters(loaded) if named_only else set()
             files = [path for folder in folders
                      for path in sorted(root.glob(f"{folder}/*.yaml" if folder else "*.yaml"))]
             repository, kept = repository_of(root), []
@@ -130,6 +136,9 @@ def control_packages(loaded, problems: list[str], suffixes=CONTROL_SUFFIXES,
             seen |= {path.resolve() for path in kept}
             yield chosen or (launch_choice(loaded, root, kept, consulted) if named_only
                              else kept)
+    if named is None:
+        named = (_named_parameters(loaded) if named_only and b"<parameters" in loaded.urdf
+                 else set())
     outside = [path for path in sorted(named - seen) if _named_file(loaded, path, problems)]
     if outside:
         yield outside
@@ -167,7 +176,9 @@ def _named_parameters(loaded) -> set[Path]:
     return named
 
 
-def _description_packages(loaded) -> list[str]:
+def description_packages(loaded) -> list[str]:
+    """The robot's own package (an X_description or X_base one) and those its URDF's
+    ``package://`` URIs name (a search of its whole text)."""
     from ..packages.search import enclosing_package
 
     names = []

@@ -48,15 +48,17 @@ class Found:
 
 def find_package_yaml(loaded) -> Found:
     """The controller, Nav2 and laser_filters mappings of the robot's packages."""
-    from ..sim.control_config import control_packages, yaml_mappings
+    from ..sim.control_config import control_packages, description_packages, yaml_mappings
 
     found = Found()
     launches: list[Path] = []  # (what decided which variant's controllers are compared)
-    controls = [p for files in control_packages(loaded, found.problems, consulted=launches)
+    packages = description_packages(loaded)  # (searched for once: the URDF's whole text)
+    controls = [p for files in control_packages(loaded, found.problems, consulted=launches,
+                                                packages=packages)
                 for p in files]
     navigation = [p for files in control_packages(loaded, found.problems,
                                                   NAVIGATION_SUFFIXES, NAVIGATION_FOLDERS,
-                                                  named_only=False)
+                                                  named_only=False, packages=packages)
                   for p in files]
     yamls = list(dict.fromkeys(controls + navigation))
     found.read = list(dict.fromkeys(yamls + launches))  # (an edit may make one relevant)

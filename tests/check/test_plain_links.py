@@ -404,6 +404,25 @@ def test_lists_that_miscount_each_other_out_fail_the_proof_of_the_quick_reading(
     assert sound.numbers_confirmed()
 
 
+@pytest.mark.parametrize(("texts", "proved"), [
+    (["0 0 0.1", "0 1.5708 0"], True), (["0  0 0.1", "0 1 0"], True),
+    ([" 0 0 0.1", "0 1 0"], True), (["0 0 0.1 ", "0 1 0"], True), (["1e400 0 0"], True),
+    (["0 0 0", ""], True), ([], True), (["0\t0 0.1", "0 1 0"], False),
+    (["0 0 0.1\t", "0 1 0"], False), (["0 0 0.1\n"], False),
+    (["0 0", "0.1 0 1.5708 0"], False)], ids=repr)
+def test_lists_read_together_are_read_as_urdfdom_reads_them_or_fail_the_proof(texts, proved):
+    """Read together (cut at each space), lists of three give urdfdom's numbers (a number
+    beyond any bound, which the caller refuses, aside), or the proof of the quick reading
+    fails and the document is read urdfdom's way."""
+    from mobile_car.check.context import MAX_LENGTH, Reporter, within
+
+    quick, strict = Reporter("robot.urdf"), Reporter("robot.urdf", quick_numbers=False)
+    read, wanted = quick.triples(texts), strict.triples(texts)
+    assert quick.numbers_confirmed() == proved
+    if proved:
+        assert read == wanted or (wanted is None and not within(read, MAX_LENGTH))
+
+
 @settings(max_examples=150, deadline=None,
           suppress_health_check=[HealthCheck.function_scoped_fixture])  # _check undoes its patches
 @given(place=st.sampled_from(sorted(NUMBER_PLACES) + sorted(LIST_PLACES)),

@@ -135,7 +135,7 @@ def _density_of_meshes(name: str, mass: float, shapes, mesh_bounds: dict,
 
 def _judge_density(name: str, mass: float, shapes, largest: float, smallest: float,
                    across: float, mesh_bounds: dict, report: Reporter) -> None:
-    if largest <= 0 or across < PLACEHOLDER:
+    if largest <= 0 or across <= PLACEHOLDER:  # fits in the cube, its side included
         return
     if mass / largest > DENSEST:
         # (asked only then: a sound robot's links are judged without looking further)

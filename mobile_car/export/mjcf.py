@@ -174,10 +174,10 @@ def export_mjcf(loaded, folder: Path, options: MjcfOptions) -> Exported:
 
 def before_mujoco(root) -> list:
     """The inertias MuJoCo stops at without a fix of its own: a tensor that is not
-    positive definite, a moving link without mass nor collision geometry to take one
-    from (:mod:`mobile_car.check.mujoco_inertia`)."""
+    positive definite (or whose moments are under its 1e-14), a moving link without mass
+    nor collision geometry to take one from (:mod:`mobile_car.check.mujoco_inertia`)."""
     tensors = [r for r in refusals(root, massless=False)
-               if r.problem in ("not-positive", "no-inertia")]
+               if r.problem in ("not-positive", "tiny", "no-inertia")]
     return tensors + bare_massless(root)
 
 

@@ -47,7 +47,7 @@ class Rule(Value):
 _TABLE = [
     # The document
     Rule("E100", "xml-syntax", "not well-formed XML", "rejects, but for a misspelt "
-         "`<?xml ...?>` declaration, which its TinyXML skips"),
+         "`<?xml ...?>` declaration, or one after a comment, which its TinyXML skips"),
     Rule("E101", "no-robot", "the root element is not `<robot>`", "rejects"),
     Rule("E102", "robot-name", "`<robot>` has no name, or an empty one", "rejects if absent"),
     Rule("E103", "urdf-version", "`version` is not `1.0` (the only version urdfdom 3.0 reads)",

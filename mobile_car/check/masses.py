@@ -26,7 +26,10 @@ docs/rules.md):
   thinner than SHEET are a surface, not a volume: "too dense" is not said of them (iCub's
   feet collide by a 1 mm sole plate under their 0.38 kg, as a contact patch; a part is
   never that thin and that heavy), "too light" still is, as a sheet only makes the
-  volume smaller.
+  volume smaller. Nor is "too dense" said of a link whose visual shapes have room for
+  its mass (a mesh by its box): its collision shapes are then a contact stand-in smaller
+  than the part (Unitree H1's 2.7 kg hip links collide by a disc 4 cm across and 1 cm
+  thick), while a unit or digit wrong makes the mass too much for both.
 
 Masses in kg, lengths in m.
 """
@@ -141,8 +144,13 @@ def _judge_density(name: str, mass: float, shapes, largest: float, smallest: flo
         # (asked only then: a sound robot's links are judged without looking further)
         if _thickest(shapes, mesh_bounds) < SHEET:
             return  # a contact surface, not the part's volume
+        drawn = _visual_volume(shapes, mesh_bounds)
+        if drawn is not None and mass / drawn <= DENSEST:
+            return  # its collision shapes are a contact stand-in, its visuals the part
+        visuals = f" and visual shapes of {_litres(drawn)}" if drawn else ""
+        densest = mass / max(largest, drawn or 0.0)
         report.add("E119", _mass_element(shapes), f"link '{name}': {mass:g} kg in its collision "
-                   f"shapes of {_litres(largest)} is {mass / largest:.3g} kg/m³ at least, "
+                   f"shapes of {_litres(largest)}{visuals} is {densest:.3g} kg/m³ at least, "
                    f"denser than any material (osmium: 22 590 kg/m³; the bound is {DENSEST:g}): a "
                    "unit or a digit wrong?")
     elif smallest > 0 and mass > TOKEN_MASS and mass / smallest < LIGHTEST:
@@ -150,6 +158,26 @@ def _judge_density(name: str, mass: float, shapes, largest: float, smallest: flo
                    f"shapes of {_litres(smallest)} or more is {mass / smallest:.3g} kg/m³ at most, "
                    f"lighter than any solid (air: 1.2 kg/m³; the bound is {LIGHTEST:g}): "
                    "a unit or a digit wrong?")
+
+
+def _visual_volume(shapes, mesh_bounds: dict) -> float | None:
+    """The most volume the link's visual shapes could have (a mesh by its box), or None
+    when it has none or one of unknown size."""
+    volume = 0.0
+    for kind, shape, _xyz, _rpy, dims in shapes.bodies:
+        if kind != "visual":
+            continue
+        if shape.tag in ("box", "cylinder", "sphere"):
+            if min(dims) <= 0:
+                return None
+            volume += _volume(shape.tag, dims)
+            continue
+        box = own_box(shape.tag, dims, shape, mesh_bounds)
+        if box is None:
+            return None
+        x, y, z = box[0]
+        volume += x * y * z
+    return volume or None
 
 
 def _volume(tag: str, dims: tuple) -> float:

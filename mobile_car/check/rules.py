@@ -87,7 +87,8 @@ _TABLE = [
          "25 000 kg/m³ (osmium: 22 590) or, over 1 g, lighter than 1 kg/m³ (air: 1.2) in the "
          "volume of its collision shapes (a link with none not judged; a mesh by its box; shapes "
          "that fit in a 2 cm cube are a placeholder, not judged; shapes all under 2 mm thick are "
-         "a contact surface, not called too dense)",
+         "a contact surface, not called too dense; nor is a link whose visual shapes have room "
+         "for its mass)",
          "accepts"),
     # Joints
     Rule("E120", "joint-type", "a joint without a type, or of an unknown type", "rejects"),

@@ -133,13 +133,11 @@ def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = Fal
 def mujoco_spec(mj, prepared: Prepared, label: str):
     """MuJoCo's reading of the prepared URDF (visuals and every link kept), its meshes
     found in the assets' folder."""
-    from ..sim.model import unique_geom_names
+    from ..sim.model import compiler_extension, unique_geom_names
 
     root = prepared.root
     unique_geom_names(root)
-    extension = etree.SubElement(root, "mujoco")
-    etree.SubElement(extension, "compiler", discardvisual="false", fusestatic="false",
-                     inertiafromgeom="false", balanceinertia="false", strippath="false")
+    extension = compiler_extension(root, discardvisual="false")
     try:
         spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
     except ValueError as error:

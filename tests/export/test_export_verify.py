@@ -241,6 +241,22 @@ def test_moments_under_mujocos_smallest_are_named_and_fixed(run_mcar, tmp_path):
     assert "verified: mass 0.7 kg, the description's 0.7 kg" in fixed.stderr
 
 
+def test_the_descriptions_own_mujoco_block_gives_way_to_mcars(run_mcar, tmp_path):
+    # Unitree's G1 and H1 carry MuJoCo's URDF extension for their own mesh folder: mcar's
+    # was added beside it, and MuJoCo refused the robot ("repeated element: 'mujoco'")
+    urdf = two_wheeler().replace(
+        "<robot name=\"two_wheeler\">",
+        "<robot name=\"two_wheeler\">\n  <mujoco>\n    <compiler meshdir=\"../meshes\" "
+        "discardvisual=\"false\"/>\n  </mujoco>", 1)
+    assert urdf.count("<mujoco>") == 1
+    (tmp_path / "unitreeish.urdf").write_text(urdf)
+    result = run_mcar("export", "unitreeish.urdf", "--to", "mjcf", "-o", "out", "--verify",
+                      cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "verified: mass 0.7 kg, the description's 0.7 kg" in result.stderr
+    assert "meshdir" not in (tmp_path / "out" / "two_wheeler.xml").read_text()
+
+
 ARM_ON_A_BARE_BASE = """<?xml version="1.0"?>
 <robot name="bolted_arm">
   <link name="base_link"><collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>

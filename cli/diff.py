@@ -10,6 +10,7 @@ from pathlib import Path
 import click
 
 from mobile_car.errors import EXIT_PROBLEMS, EXIT_USAGE, InputError, McarError, UsageError
+from mobile_car.load.inputs import is_urdf_name
 from mobile_car.names import shown_lines
 from mobile_car.render.options import RENDERER_ENV, RENDERERS
 
@@ -294,4 +295,5 @@ def _side_inputs(root: Path, rev: str, inside: Path, top: Path, names, cwd, pack
 
 def _looks_like_file(name: str, cwd: Path) -> bool:
     """A path (in this tree or another side's), not a part name."""
-    return (cwd / name).exists() or "/" in name or name.endswith((".urdf", ".xacro"))
+    return (cwd / name).exists() or "/" in name or name.endswith(".xacro") or \
+        is_urdf_name(name)

@@ -21,7 +21,11 @@ NUMERIC_ATTRS = ("xyz", "rpy", "size", "scale", "rgba", "radius", "length", "val
 # XML turns a tab or line break inside an attribute value into a space (lxml does);
 # TinyXML keeps it, and urdfdom then cannot read the numbers. Only the raw text shows it.
 _RAW_WHITESPACE = (rb"[\s\"'](" + "|".join(NUMERIC_ATTRS).encode() + rb")\s*=\s*"
-                   rb"(?:\"[^\"\t\n\r<]*[\t\n\r][^\"]*\"|'[^'\t\n\r<]*[\t\n\r][^']*')")
+                   rb"(?:\"([^\"\t\n\r<]*[\t\n\r][^\"]*)\"|'([^'\t\n\r<]*[\t\n\r][^']*)')")
+# Attributes that hold one number: Reporter.number reads them as lxml gives them (a tab or
+# line break turned into a space), which urdfdom reads as it reads TinyXML's text: a
+# number may follow whitespace, nothing may follow it.
+_LIST_ATTRS = frozenset(("xyz", "rpy", "size", "scale", "rgba"))
 _DOCTYPE_SUBSET_RE = re.compile(rb"<!DOCTYPE[^>\[]*\[")
 # A line break followed, on its line, by a quote that ends a value: a value spans lines.
 # Faster than _RAW_WHITESPACE, which runs only when this finds something. From Python
@@ -108,12 +112,21 @@ def check_xacro_leftovers(root, data: bytes, report: Reporter) -> bool:
     return False
 
 
+def _urdfdom_refuses(raw: bytes) -> bool:
+    """Whether urdfdom fails on the tabs or line breaks of a list of numbers: it splits the
+    text on spaces, and reads each piece with ``istream >> double``, which skips whitespace
+    before a number, and wants nothing after it ("0 0\n0.1" fails, "\n0 0 0.1" is read)."""
+    return any(any(c in piece.lstrip(b"\t\n\r") for c in (b"\t", b"\n", b"\r"))
+               or not piece.strip(b"\t\n\r") for piece in raw.split(b" ") if piece)
+
+
 def check_raw_whitespace(root, data: bytes, report: Reporter) -> None:
     """E114 for numbers separated by tabs or line breaks in the raw text (lost by lxml)."""
     if b"\t" not in data and b"\r" not in data and not _LINE_BREAK_IN_VALUE_RE.search(data):
         return
     hits = [(data.count(b"\n", 0, m.start(1)) + 1, m.group(1).decode())
-            for m in re.finditer(_RAW_WHITESPACE, data)]
+            for m in re.finditer(_RAW_WHITESPACE, data)
+            if m.group(1).decode() in _LIST_ATTRS and _urdfdom_refuses(m.group(2) or m.group(3))]
     if not hits:
         return
     by_line = {}

@@ -22,7 +22,14 @@ docs/rules.md):
   sensor (Gazebo needs one), not a part someone weighed. Shapes that all fit in a
   PLACEHOLDER cube are not judged either: released robots give their IMUs and sensor
   mounts a 1 mm or 1 cm box and a real mass (PR2's accelerometers, Summit XL's laser
-  base, LIMO's IMU), a stand-in, not a claim about the part's size.
+  base, LIMO's IMU), a stand-in, not a claim about the part's size. Shapes that are all
+  thinner than SHEET are a surface, not a volume: "too dense" is not said of them (iCub's
+  feet collide by a 1 mm sole plate under their 0.38 kg, as a contact patch; a part is
+  never that thin and that heavy), "too light" still is, as a sheet only makes the
+  volume smaller. Nor is "too dense" said of a link whose visual shapes have room for
+  its mass (a mesh by its box): its collision shapes are then a contact stand-in smaller
+  than the part (Unitree H1's 2.7 kg hip links collide by a disc 4 cm across and 1 cm
+  thick), while a unit or digit wrong makes the mass too much for both.
 
 Masses in kg, lengths in m.
 """
@@ -40,6 +47,7 @@ DENSEST = 25_000.0
 LIGHTEST = 1.0
 TOKEN_MASS = 0.001
 PLACEHOLDER = 0.02  # m: shapes that all fit in a cube of this side are a placeholder
+SHEET = 0.002  # m: shapes all thinner than this are a contact surface, not a volume
 
 
 def check_masses(robot, tree, held: dict, mesh_bounds: dict, report: Reporter) -> None:
@@ -96,7 +104,7 @@ def _density(name: str, mass: float, shapes, mesh_bounds: dict, report: Reporter
         across = max(across, *dims) if tag == "box" else max(across, 2 * dims[0], dims[-1])
         largest += volume
         smallest = max(smallest, volume)
-    _judge_density(name, mass, shapes, largest, smallest, across, report)
+    _judge_density(name, mass, shapes, largest, smallest, across, mesh_bounds, report)
 
 
 def _density_of_meshes(name: str, mass: float, shapes, mesh_bounds: dict,
@@ -125,16 +133,24 @@ def _density_of_meshes(name: str, mass: float, shapes, mesh_bounds: dict,
         across = max(across, *(h - lo for lo, h in zip(low, high, strict=True)))
         x, y, z = box[0]
         largest += x * y * z  # its box: a mesh's volume is at most that
-    _judge_density(name, mass, shapes, largest, smallest, across, report)
+    _judge_density(name, mass, shapes, largest, smallest, across, mesh_bounds, report)
 
 
 def _judge_density(name: str, mass: float, shapes, largest: float, smallest: float,
-                   across: float, report: Reporter) -> None:
-    if largest <= 0 or across < PLACEHOLDER:
+                   across: float, mesh_bounds: dict, report: Reporter) -> None:
+    if largest <= 0 or across <= PLACEHOLDER:  # fits in the cube, its side included
         return
     if mass / largest > DENSEST:
+        # (asked only then: a sound robot's links are judged without looking further)
+        if _thickest(shapes, mesh_bounds) < SHEET:
+            return  # a contact surface, not the part's volume
+        drawn = _visual_volume(shapes, mesh_bounds)
+        if drawn is not None and mass / drawn <= DENSEST:
+            return  # its collision shapes are a contact stand-in, its visuals the part
+        visuals = f" and visual shapes of {_litres(drawn)}" if drawn else ""
+        densest = mass / max(largest, drawn or 0.0)
         report.add("E119", _mass_element(shapes), f"link '{name}': {mass:g} kg in its collision "
-                   f"shapes of {_litres(largest)} is {mass / largest:.3g} kg/m³ at least, "
+                   f"shapes of {_litres(largest)}{visuals} is {densest:.3g} kg/m³ at least, "
                    f"denser than any material (osmium: 22 590 kg/m³; the bound is {DENSEST:g}): a "
                    "unit or a digit wrong?")
     elif smallest > 0 and mass > TOKEN_MASS and mass / smallest < LIGHTEST:
@@ -142,6 +158,26 @@ def _judge_density(name: str, mass: float, shapes, largest: float, smallest: flo
                    f"shapes of {_litres(smallest)} or more is {mass / smallest:.3g} kg/m³ at most, "
                    f"lighter than any solid (air: 1.2 kg/m³; the bound is {LIGHTEST:g}): "
                    "a unit or a digit wrong?")
+
+
+def _visual_volume(shapes, mesh_bounds: dict) -> float | None:
+    """The most volume the link's visual shapes could have (a mesh by its box), or None
+    when it has none or one of unknown size."""
+    volume = 0.0
+    for kind, shape, _xyz, _rpy, dims in shapes.bodies:
+        if kind != "visual":
+            continue
+        if shape.tag in ("box", "cylinder", "sphere"):
+            if min(dims) <= 0:
+                return None
+            volume += _volume(shape.tag, dims)
+            continue
+        box = own_box(shape.tag, dims, shape, mesh_bounds)
+        if box is None:
+            return None
+        x, y, z = box[0]
+        volume += x * y * z
+    return volume or None
 
 
 def _volume(tag: str, dims: tuple) -> float:
@@ -153,6 +189,33 @@ def _volume(tag: str, dims: tuple) -> float:
         radius, length = dims
         return pi * radius * radius * length
     return 4 / 3 * pi * dims[0] ** 3
+
+
+def _thickest(shapes, mesh_bounds: dict) -> float:
+    """The largest of the collision shapes' thinnest sides (a mesh by its box; one of
+    unknown size counts as thick)."""
+    thickest = 0.0
+    for kind, shape, _xyz, _rpy, dims in shapes.bodies:
+        if kind != "collision":
+            continue
+        tag = shape.tag
+        if tag == "box" or tag == "cylinder" or tag == "sphere":
+            thickest = max(thickest, _thinnest(tag, dims))
+            continue
+        box = own_box(tag, dims, shape, mesh_bounds)
+        if box is None:
+            return float("inf")
+        thickest = max(thickest, min(box[0]))
+    return thickest
+
+
+def _thinnest(tag: str, dims: tuple) -> float:
+    """The thinnest side of a box, cylinder or sphere."""
+    if tag == "box":
+        return min(dims)
+    if tag == "cylinder":
+        return min(2 * dims[0], dims[1])
+    return 2 * dims[0]
 
 
 def _litres(volume: float) -> str:

@@ -1,7 +1,8 @@
 """Inertias MuJoCo refuses, found in the URDF before MuJoCo reads it, and made physical.
 
 MuJoCo stops at the first body whose tensor is not positive definite ("inertia must have
-positive eigenvalues", PMB2's antennas), whose principal moments break the triangle
+positive eigenvalues", PMB2's antennas; a moment under MUJOCO_EPS is not positive to it
+either: Valkyrie's virtual frames, 3.3e-22 kg m²), whose principal moments break the triangle
 inequality (``A + B >= C``, which no rigid body breaks: PR2's), or that moves without mass
 (PR2's ``*_gripper_l_finger_tip_frame``, frames on a prismatic joint). ``mcar check`` only
 warns of the first two (W204, W205): urdfdom, rviz and Gazebo load them. Here each link is
@@ -16,7 +17,9 @@ found at once, so that ``mcar sim`` and ``mcar export`` name every one of them, 
   TOKEN_MASS kg with the inertia of a solid sphere of TOKEN_RADIUS, small beside any part
   and enough for MuJoCo to move it;
 * a moving link with a mass but a tensor of zeros (and nothing fixed to it with one):
-  the inertia of a solid sphere of its mass and TOKEN_RADIUS.
+  the inertia of a solid sphere of its mass and TOKEN_RADIUS;
+* a tensor whose moments are positive but under MUJOCO_EPS: the same sphere's, at least
+  SMALLEST_FIX about each axis.
 
 A tensor of all zeros is a massless frame's, which MuJoCo accepts on a link that does not
 move. Masses in kg, moments in kg m², lengths in m.
@@ -31,13 +34,18 @@ from .urdf_model import parse_number
 
 TOKEN_MASS = 0.001
 TOKEN_RADIUS = 0.01
+# MuJoCo's URDF reader gives every tensor as fullinertia, whose smallest principal moment
+# must be at least mjEPS (mjuu_fullInertia in user_util.cc: "inertia must have positive
+# eigenvalues", on a link that does not move too; 1e-14 compiles, 1e-15 does not).
+MUJOCO_EPS = 1e-14
+SMALLEST_FIX = 100 * MUJOCO_EPS
 _INSIDE = 1e-3  # how far towards the mean a projected tensor is moved off the edge
 
 
 @dataclass
 class Refusal:
     link: str
-    problem: str  # "not-positive", "triangle", "no-inertia" or "massless"
+    problem: str  # "not-positive", "tiny", "triangle", "no-inertia" or "massless"
     element: object  # the <inertia> (a tensor), or the <link> (no mass)
     moments: tuple[float, ...] = ()
 
@@ -51,6 +59,9 @@ class Refusal:
         if self.problem == "not-positive":
             return (f"link {self.link}: inertia is not positive definite (principal moments "
                     f"{shown} kg m²)")
+        if self.problem == "tiny":
+            return (f"link {self.link}: principal moments {shown} kg m², the smallest under "
+                    f"the {MUJOCO_EPS:g} MuJoCo takes as positive")
         a, b, c = self.moments
         return (f"link {self.link}: principal moments {shown} kg m² break A + B >= C "
                 f"({_g(a)} + {_g(b)} < {_g(c)})")
@@ -75,6 +86,8 @@ def refusals(root, massless: bool = True) -> list[Refusal]:
         diagonal = values[1] == values[2] == values[4] == 0
         if a <= 1e-12 * scale:
             found.append(Refusal(link.get("name"), "not-positive", inertia, moments))
+        elif a < MUJOCO_EPS:
+            found.append(Refusal(link.get("name"), "tiny", inertia, moments))
         elif a + b < (c if diagonal else c * (1 - 1e-9)):
             found.append(Refusal(link.get("name"), "triangle", inertia, moments))
     for name, link, problem in _moving_without(root):
@@ -108,17 +121,21 @@ def make_physical(root, found: list[Refusal]) -> list[str]:
                          "solid sphere), as MuJoCo needs a mass to move it")
             continue
         inertia = link.find("inertial/inertia")
-        if item.problem == "no-inertia":
+        if item.problem in ("no-inertia", "tiny"):
             element = link.find("inertial/mass")
             # (its mass may be on a link fixed below it: a token's then, all the same)
             mass = (parse_number(element.get("value")) if element is not None else 0) or 0.0
             mass = mass if mass > 0 else TOKEN_MASS
             moment = 0.4 * mass * TOKEN_RADIUS ** 2
+            if item.problem == "tiny":
+                moment = max(moment, SMALLEST_FIX)
             for name in INERTIA:
                 inertia.set(name, f"{moment:.9g}" if name in ("ixx", "iyy", "izz") else "0")
-            lines.append(f"link {item.link}: moves with {mass:g} kg but an inertia of zeros; "
-                         f"given that of a {TOKEN_RADIUS * 100:g} cm solid sphere of its mass "
-                         f"({moment:.4g} kg m² about each axis)")
+            what = ("moves with {:g} kg but an inertia of zeros" if item.problem == "no-inertia"
+                    else "has {:g} kg and principal moments under MuJoCo's " +
+                    f"{MUJOCO_EPS:g} kg m²").format(mass)
+            lines.append(f"link {item.link}: {what}; given that of a {TOKEN_RADIUS * 100:g} cm "
+                         f"solid sphere of its mass ({moment:.4g} kg m² about each axis)")
             continue
         values = _tensor(inertia)
         if values is None:

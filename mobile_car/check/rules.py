@@ -47,7 +47,7 @@ class Rule(Value):
 _TABLE = [
     # The document
     Rule("E100", "xml-syntax", "not well-formed XML", "rejects, but for a misspelt "
-         "`<?xml ...?>` declaration, which its TinyXML skips"),
+         "`<?xml ...?>` declaration, or one after a comment, which its TinyXML skips"),
     Rule("E101", "no-robot", "the root element is not `<robot>`", "rejects"),
     Rule("E102", "robot-name", "`<robot>` has no name, or an empty one", "rejects if absent"),
     Rule("E103", "urdf-version", "`version` is not `1.0` (the only version urdfdom 3.0 reads)",
@@ -86,7 +86,9 @@ _TABLE = [
          "continuous joint turns) over 5 times the robot without its wheels, or a link denser than "
          "25 000 kg/m³ (osmium: 22 590) or, over 1 g, lighter than 1 kg/m³ (air: 1.2) in the "
          "volume of its collision shapes (a link with none not judged; a mesh by its box; shapes "
-         "that fit in a 2 cm cube are a placeholder, not judged)",
+         "that fit in a 2 cm cube are a placeholder, not judged; shapes all under 2 mm thick are "
+         "a contact surface, not called too dense; nor is a link whose visual shapes have room "
+         "for its mass)",
          "accepts"),
     # Joints
     Rule("E120", "joint-type", "a joint without a type, or of an unknown type", "rejects"),

@@ -3,7 +3,7 @@
 An element's vocabulary depends on its name only (a ``<material>`` in a ``<visual>`` is
 spelled like a top-level one, an ``<origin>`` is the same in a joint and in a visual), so
 :data:`SPECS` is keyed by element name. Extension elements (``<gazebo>``,
-``<transmission>``, ``<ros2_control>``, ``<sensor>``) may hold anything.
+``<transmission>``, ``<ros2_control>``, ``<sensor>``, ``<mujoco>``) may hold anything.
 """
 
 from __future__ import annotations
@@ -33,7 +33,9 @@ def _leaf(*attrs: str) -> Spec:
     return Spec(frozenset(attrs))
 
 
-EXTENSIONS = frozenset({"gazebo", "transmission", "ros2_control", "sensor"})
+# <mujoco> is MuJoCo's URDF extension (compiler, option and size for its URDF reader),
+# which Unitree's G1 and H1 and Skydio's X2 carry.
+EXTENSIONS = frozenset({"gazebo", "transmission", "ros2_control", "sensor", "mujoco"})
 SHAPES = {"box": _leaf("size"), "cylinder": _leaf("radius", "length"), "sphere": _leaf("radius"),
           "mesh": _leaf("filename", "scale")}
 ORIGIN = _leaf("xyz", "rpy")

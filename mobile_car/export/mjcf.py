@@ -133,13 +133,11 @@ def prepare(loaded, folder: Path, readable=MUJOCO_READS, keep_extras: bool = Fal
 def mujoco_spec(mj, prepared: Prepared, label: str):
     """MuJoCo's reading of the prepared URDF (visuals and every link kept), its meshes
     found in the assets' folder."""
-    from ..sim.model import unique_geom_names
+    from ..sim.model import compiler_extension, unique_geom_names
 
     root = prepared.root
     unique_geom_names(root)
-    extension = etree.SubElement(root, "mujoco")
-    etree.SubElement(extension, "compiler", discardvisual="false", fusestatic="false",
-                     inertiafromgeom="false", balanceinertia="false", strippath="false")
+    extension = compiler_extension(root, discardvisual="false")
     try:
         spec = mj.MjSpec.from_string(etree.tostring(root, encoding="unicode"))
     except ValueError as error:
@@ -174,10 +172,10 @@ def export_mjcf(loaded, folder: Path, options: MjcfOptions) -> Exported:
 
 def before_mujoco(root) -> list:
     """The inertias MuJoCo stops at without a fix of its own: a tensor that is not
-    positive definite, a moving link without mass nor collision geometry to take one
-    from (:mod:`mobile_car.check.mujoco_inertia`)."""
+    positive definite (or whose moments are under its 1e-14), a moving link without mass
+    nor collision geometry to take one from (:mod:`mobile_car.check.mujoco_inertia`)."""
     tensors = [r for r in refusals(root, massless=False)
-               if r.problem in ("not-positive", "no-inertia")]
+               if r.problem in ("not-positive", "tiny", "no-inertia")]
     return tensors + bare_massless(root)
 
 

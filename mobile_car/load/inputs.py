@@ -24,6 +24,13 @@ STDIN = "-"
 STDIN_LABEL = "<stdin>"
 
 
+def is_urdf_name(name: str) -> bool:
+    """A URDF by its name: ``.urdf`` in any case, as check_urdf and xacro take any name;
+    the SolidWorks exporter (sw_urdf_exporter) writes ``robots/NAME.URDF``, which Robotiq's
+    2F-85 and the BarrettHand descriptions ship."""
+    return name.lower().endswith(".urdf")
+
+
 def parse_mapping_args(words: list[str]) -> dict[str, str]:
     """``NAME:=VALUE`` words as the ``xacro`` command reads them (its own
     ``load_mappings``): whitespace around name and value is dropped, an empty value

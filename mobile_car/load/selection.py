@@ -16,7 +16,7 @@ import stat
 from pathlib import Path
 
 from ..errors import UsageError
-from .inputs import STDIN, RobotInput, display_path
+from .inputs import STDIN, RobotInput, display_path, is_urdf_name
 
 
 class Selection:
@@ -93,7 +93,7 @@ def package_parts(root: Path) -> list[str]:
 
 
 def _looks_like_file(name: str) -> bool:
-    return "/" in name or name.endswith((".urdf", ".xacro"))
+    return "/" in name or name.endswith(".xacro") or is_urdf_name(name)
 
 
 def _folder(folder: Path, skipped: list) -> list[RobotInput]:

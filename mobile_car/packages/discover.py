@@ -38,7 +38,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..load.bounded import open_regular, read_text_quietly
-from ..load.inputs import input_limit_mb
+from ..load.inputs import input_limit_mb, is_urdf_name
 from ..values import Value
 from .asset_roots import link_out_of, real_path
 from .file_shape import FileShape, file_shape, include_target
@@ -188,7 +188,7 @@ def _links_out(files: list[Path], folder: Path) -> dict[Path, str]:
 
 
 def _is_candidate(path: Path) -> bool:
-    return path.name.endswith((".urdf", ".xacro"))
+    return path.name.endswith(".xacro") or is_urdf_name(path.name)
 
 
 def _why_not_a_robot(path: Path, shape: FileShape | None, included: dict[Path, Path],
@@ -299,7 +299,8 @@ def package_macros(folder: Path) -> frozenset[str]:
 
 def _output_file_name(name: str) -> str:
     name = name[: -len(".xacro")] if name.endswith(".xacro") else name
-    return name if name.endswith(".urdf") else name + ".urdf"
+    # NAME.URDF is built into NAME.urdf, as every output is named
+    return name[: -len(".urdf")] + ".urdf" if is_urdf_name(name) else name + ".urdf"
 
 
 def output_name(source: Path, base: Path) -> Path:

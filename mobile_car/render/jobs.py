@@ -40,7 +40,8 @@ def picture_name(path: Path | None) -> str:
         return "stdin.png"
     name = path.name
     for suffix in URDF_SUFFIXES:
-        if name.endswith(suffix) and len(name) > len(suffix):
+        # .urdf in any case (NAME.URDF -> NAME.png); xacro's suffix is always lower case
+        if name.lower().endswith(suffix) and len(name) > len(suffix):
             name = name[: -len(suffix)]
             break
     return name + ".png"

@@ -83,7 +83,8 @@ def refused_inertias(checked) -> list[SimDiagnostic]:
     without naming its link."""
     locate = Locator(checked)
     return [_at(locate, "E310", item.element, f"{item.describe()}: MuJoCo refuses it; "
-                + ("--fix-inertia gives it a small sphere's" if item.problem == "no-inertia"
+                + ("--fix-inertia gives it a small sphere's"
+                   if item.problem in ("no-inertia", "tiny")
                    else "--fix-inertia puts the nearest physical tensor in its place"))
             for item in refusals(checked.robot.element, massless=False)]
 

@@ -482,9 +482,22 @@ def unique_geom_names(root) -> None:
 def _compiler_options(root) -> None:
     """The description's own masses and every link a body: no inertia from geometry, no
     fixed link fused into its parent, no tensor balanced behind the user's back."""
+    compiler_extension(root, discardvisual="true")
+
+
+def compiler_extension(root, **options: str):
+    """mcar's ``<mujoco><compiler/></mujoco>`` in the URDF ``root`` (``options`` over the
+    description's own masses and links, as :func:`_compiler_options` says), in place of
+    any the description has: MuJoCo refuses two ("repeated element: 'mujoco'"), and
+    Unitree's G1 and H1 carry one for their own meshdir, which mcar's mesh paths replace.
+    Returns the element added."""
+    for element in root.findall("mujoco"):
+        root.remove(element)
     extension = etree.SubElement(root, "mujoco")
-    etree.SubElement(extension, "compiler", discardvisual="true", fusestatic="false",
-                     inertiafromgeom="false", balanceinertia="false", strippath="false")
+    etree.SubElement(extension, "compiler", **{
+        "discardvisual": "true", "fusestatic": "false", "inertiafromgeom": "false",
+        "balanceinertia": "false", "strippath": "false", **options})
+    return extension
 
 
 def jointed_model(urdf: bytes, label: str) -> tuple[object, list[str]]:

@@ -123,7 +123,7 @@ def _placeholder(bodies: list, bounds: dict) -> bool:
             return False
         low, high = box[1]
         across = max(across, *(h - lo for lo, h in zip(low, high, strict=True)))
-    return across < PLACEHOLDER
+    return across <= PLACEHOLDER  # fits in the cube, its side included
 
 
 def _mass(inertial) -> float | None:

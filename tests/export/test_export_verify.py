@@ -211,6 +211,52 @@ def test_a_moving_link_without_mass_gets_one_from_its_geometry(run_mcar, tmp_pat
            "links" in fixed.stderr
 
 
+# Valkyrie's virtual frames (val_description valkyrie_A.urdf): 1e-7 kg, moments 3.3e-22 kg m².
+# Positive, so check does not warn, but under the 1e-14 MuJoCo's fullinertia takes as positive
+# (its URDF reader gives every tensor so): the compile stopped at the first, unnamed.
+TINY_FRAME = """
+  <link name="imu_frame">
+    <inertial><mass value="1e-07"/>
+      <inertia ixx="3.3333e-22" ixy="0" ixz="0" iyy="3.3333e-22" iyz="0" izz="5e-22"/>
+    </inertial>
+  </link>
+  <joint name="imu_joint" type="fixed"><parent link="base_link"/><child link="imu_frame"/>
+    <origin xyz="0 0 0.1"/></joint>"""
+
+
+def test_moments_under_mujocos_smallest_are_named_and_fixed(run_mcar, tmp_path):
+    (tmp_path / "val.urdf").write_text(two_wheeler(extra=TINY_FRAME))
+    refused = run_mcar("export", "val.urdf", "--to", "mjcf", "-o", "out", cwd=tmp_path)
+    assert refused.returncode == 1
+    assert refused.stderr.splitlines()[1:] == [
+        "  link imu_frame: principal moments 3.333e-22, 3.333e-22, 5e-22 kg m², the smallest "
+        "under the 1e-14 MuJoCo takes as positive (val.urdf:39)"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["val.urdf"]
+    fixed = run_mcar("export", "val.urdf", "--to", "mjcf", "-o", "out", "--fix-inertia",
+                     "--verify", cwd=tmp_path)
+    assert fixed.returncode == 0, fixed.stderr
+    assert ("val.urdf: warning: link imu_frame: has 1e-07 kg and principal moments under "
+            "MuJoCo's 1e-14 kg m²; given that of a 1 cm solid sphere of its mass (4e-12 kg m² "
+            "about each axis)") in fixed.stderr
+    assert "verified: mass 0.7 kg, the description's 0.7 kg" in fixed.stderr
+
+
+def test_the_descriptions_own_mujoco_block_gives_way_to_mcars(run_mcar, tmp_path):
+    # Unitree's G1 and H1 carry MuJoCo's URDF extension for their own mesh folder: mcar's
+    # was added beside it, and MuJoCo refused the robot ("repeated element: 'mujoco'")
+    urdf = two_wheeler().replace(
+        "<robot name=\"two_wheeler\">",
+        "<robot name=\"two_wheeler\">\n  <mujoco>\n    <compiler meshdir=\"../meshes\" "
+        "discardvisual=\"false\"/>\n  </mujoco>", 1)
+    assert urdf.count("<mujoco>") == 1
+    (tmp_path / "unitreeish.urdf").write_text(urdf)
+    result = run_mcar("export", "unitreeish.urdf", "--to", "mjcf", "-o", "out", "--verify",
+                      cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "verified: mass 0.7 kg, the description's 0.7 kg" in result.stderr
+    assert "meshdir" not in (tmp_path / "out" / "two_wheeler.xml").read_text()
+
+
 ARM_ON_A_BARE_BASE = """<?xml version="1.0"?>
 <robot name="bolted_arm">
   <link name="base_link"><collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>

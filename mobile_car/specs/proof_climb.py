@@ -25,7 +25,22 @@ lone driven wheel of the robot's climbs with 0.96-0.97 of its grip (tan θ)
 (:mod:`.proof_grip`), and linorobot2, ROSbot XL and Ridgeback, whose figure is 35.3°,
 slid back at 34.3°. A mecanum robot climbs 1° under the slope the statics give at that
 share (the rig is run for the robot's own wheel, load and servo), and not 1° over its
-figure: a figure of twice the grip (54.7°) is still refuted."""
+figure: a figure of twice the grip (54.7°) is still refuted.
+
+So does any robot whose climb its tyres' grip binds, not its motors (the figure "limited
+by traction"): Leo Rover and Husarion Panther, 45° at μ 1, slid back at 44°. Their figure
+is right (MuJoCo loads their wheels as the statics do, to 0.5 N, and the braked robot
+slides at 45.03°), but at SERVO_STIFFER four wheels held at one speed bounce once the
+uphill pair slips (Leo's rear loads swung 0-36 N where the statics' 17 N rest) and the
+robot gives out at 40.8° (Panther 42°, a 20 kg skid-steer box 40.8°); at
+SERVO_STIFFER_GRIP, as for mecanum wheels (3 to 10 times give the same within 0.7°), at
+44.1°, 42.7° and 43.1°. A lone tyre, like a lone mecanum wheel, pushes with a share of its
+grip that falls with its load (Panther's: 0.977 under its quarter of the weight, 0.943
+under the 25 kg a rear wheel carries at 45°), so the proof runs the rig
+(:func:`.proof_grip.tyre_share`) for the most loaded driven wheel at the figure's slope
+and drives the robot 1° under the statics at that share. A robot its motors bind is
+proven as before: its servos are SERVO_STIFFER times sim's, the share changes nothing,
+no rig runs."""
 
 from __future__ import annotations
 
@@ -41,15 +56,17 @@ PROGRESS = 0.8      # of r·ω·t
 STEEPEST = 88.0     # deg: no slope over it is tried
 SERVO_STIFFER = 20.0
 SERVO_STIFFER_MECANUM = 5.0
+SERVO_STIFFER_GRIP = 5.0  # a robot whose climb its grip binds: as a mecanum one's
 GRAVITY = 9.81
 
 
 def prove_climb(sim, found, section, statics) -> None:
     """Fill statics.climb's proof (nothing to prove without a figure; a robot that tips
     backward first cannot show it: a note says so, the tilt proved the tip). A mecanum
-    robot climbs under the slope its wheels reach at the share of their grip a lone one
-    pushes with in MuJoCo (:mod:`.proof_grip`), the statics' own sum (``statics``, the
-    figures' :class:`.statics.Statics`) at that share."""
+    robot, and a robot its grip binds, climbs under the slope its wheels reach at the
+    share of their grip a lone one pushes with in MuJoCo (:mod:`.proof_grip`), the
+    statics' own sum (``statics``, the figures' :class:`.statics.Statics`) at that
+    share."""
     figure = section.figure("statics.climb")
     if figure is None or figure.value is None:
         return
@@ -61,19 +78,25 @@ def prove_climb(sim, found, section, statics) -> None:
                              "climb")
         return
     reach, under_what = angle, ""
+    gripped = sim.drive.kind != "mecanum" and statics.grip_binds
     if sim.drive.kind == "mecanum":
         share = _mecanum_share(sim, found)
         reach = round(math.degrees(statics.climb_angle(grip_share=share)), 4)
         under_what = (f" the {reach:.1f}° its wheels reach at the {share:.3f} of their grip"
                       " a lone one pushes with in MuJoCo")
+    elif gripped:
+        share = _tyre_share(sim, found, statics, angle)
+        reach = round(math.degrees(statics.climb_angle(grip_share=share)), 4)
+        under_what = (f" the {reach:.1f}° its wheels reach at the {share:.3f} of their grip"
+                      " its most loaded one alone pushes with in MuJoCo")
     lines, agrees = [], True
     under = reach - MARGIN
     if under > 0:
-        ratio = climb(sim, found, under)
+        ratio = climb(sim, found, under, gripped)
         agrees &= ratio >= PROGRESS
         lines.append(f"at {under:.1f}° it went up at {100 * ratio:.0f}% of r·ω")
     if angle + MARGIN < STEEPEST:
-        ratio = climb(sim, found, angle + MARGIN)
+        ratio = climb(sim, found, angle + MARGIN, gripped)
         agrees &= ratio < PROGRESS
         lines.append(f"at {angle + MARGIN:.1f}° {100 * ratio:.0f}%")
     if not lines:
@@ -100,16 +123,46 @@ def _mecanum_share(sim, found) -> float:
                        SERVO_STIFFER_MECANUM, (DRIVE, MEASURE, PROGRESS))
 
 
-def climb(sim, found, slope_deg: float) -> float:
+def _tyre_share(sim, found, statics, angle: float) -> float:
+    """The share of its grip the most loaded driven wheel (at the figure's slope, as the
+    statics load it) pushes with alone, carrying that load, driven as :func:`climb`
+    drives it (:func:`.proof_grip.tyre_share`)."""
+    from ..sim.run import command_speed
+    from .proof_grip import tyre_share
+    from .proof_tilt import proof_model
+    from .slopes import loads_of, reach
+
+    x, y, h = found.com
+    edge = reach(statics.polygon, (x, y), math.pi)  # the statics' own rearward shift
+    shift = min(h * math.tan(math.radians(angle)), max(0.0, edge - 1e-9))
+    loads: dict[int, float] = {}
+    for contact, share in zip(found.contacts, loads_of(found.contacts, (x - shift, y)),
+                              strict=True):
+        if contact.role == "driven":
+            loads[contact.body] = loads.get(contact.body, 0.0) + share * found.mass
+    loaded = [w for w in sim.drive.driven if loads.get(w.body_id, 0.0) > 0]
+    if not loaded:
+        return 1.0
+    wheel = max(loaded, key=lambda w: loads[w.body_id])
+    model, _ = proof_model(sim, found, resting=False)
+    omega = min(command_speed(sim), CRAWL / sim.drive.radius)
+    gain = float(model.actuator_gainprm[wheel.actuator_id][0]) * SERVO_STIFFER_GRIP
+    return tyre_share(model, sim, wheel, loads[wheel.body_id], omega, gain,
+                      (DRIVE, MEASURE, PROGRESS))
+
+
+def climb(sim, found, slope_deg: float, gripped: bool = False) -> float:
     """The robot's speed up a slope of ``slope_deg`` at the end of the drive, as a share
-    of r·ω (negative: it went down)."""
+    of r·ω (negative: it went down); ``gripped``: a robot whose climb its grip binds,
+    its servos SERVO_STIFFER_GRIP times sim's gain."""
     from ..sim.run import SETTLE_TIME, Run, command_speed, forward_sign, ramped
     from .proof_tilt import proof_model
 
     model, copied = proof_model(sim, found, resting=False)
     theta = math.radians(slope_deg)
     model.opt.gravity[:] = [-GRAVITY * math.sin(theta), 0.0, -GRAVITY * math.cos(theta)]
-    stiffer = SERVO_STIFFER_MECANUM if sim.drive.kind == "mecanum" else SERVO_STIFFER
+    stiffer = SERVO_STIFFER_MECANUM if sim.drive.kind == "mecanum" else \
+        SERVO_STIFFER_GRIP if gripped else SERVO_STIFFER
     for wheel in sim.drive.driven:
         model.actuator_gainprm[wheel.actuator_id][0] *= stiffer
         model.actuator_biasprm[wheel.actuator_id][2] *= stiffer

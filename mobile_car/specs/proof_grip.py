@@ -1,6 +1,6 @@
-"""The share of its grip a driven mecanum wheel pushes with in MuJoCo, measured on the robot's
-own wheel alone: what the climb proof expects a mecanum robot to give out at
-(docs/specs.md, "Climb").
+"""The share of its grip a driven mecanum wheel, or tyre, pushes with in MuJoCo, measured on
+the robot's own wheel alone: what the climb proof expects a mecanum robot, or one whose
+climb its grip binds, to give out at (docs/specs.md, "Climb").
 
 MuJoCo's contacts, as the proofs set them, hold to Coulomb's law: on the climb proof's
 parameters a block of μ 1 slides at 45.000° and a gripping capsule at 45° to the slope at
@@ -19,7 +19,17 @@ up the slope and up off the floor, nothing else. It is driven up slopes as the c
 drives the robot (the slope from the start, SETTLE_TIME still, the ramp, the crawl, its
 speed over the proof's last MEASURE s, climbing at PROGRESS of r·ω); the steepest slope it
 climbs, found by BISECTIONS halvings between the slope FLOOR of its grip holds and the one
-its whole grip holds, over the latter (tan θ) is the share."""
+its whole grip holds, over the latter (tan θ) is the share.
+
+A tyre (:func:`tyre_share`, for a robot whose climb its grip binds) is rigged the same
+way with the wheel's own colliding geoms (the sphere sim rounds a cylinder into, a mesh
+tyre's mesh) and each one's contact settings against a floor with the model's floor's,
+which MuJoCo mixes as on the robot, and its joint's damping and friction. It gives out
+short of its grip as a mecanum wheel does: Panther's climbs with 0.977 of it under a
+quarter of the robot and 0.943 under the 25 kg its rear wheel carries at 45°, Leo's
+with 0.983 under 2.4 kg, on servos 5 times sim's gain; at 20 times, under a quarter of
+the robot, Panther's with 0.937 and Leo's with 0.951 (docs/specs.md, "Grip-bound
+climb")."""
 
 from __future__ import annotations
 
@@ -52,11 +62,16 @@ def driven_share(model, wheel, load: float, omega: float, gain: float,
     proof's (seconds driven after the settle, the last seconds measured, the share of
     r·ω that climbs)."""
     rig = _Rig(model, wheel, load, gain)
-    holds = rig.coulomb()
+    return _share(lambda slope: rig.climbs(slope, omega, drive), rig.coulomb())
+
+
+def _share(climbs, holds: float) -> float:
+    """tan of the steepest slope ``climbs(slope rad)`` is true of, bisected between the
+    slopes FLOOR of ``holds`` (tan θ) and ``holds`` hold, over ``holds``."""
     low, high = math.atan(FLOOR * holds), math.atan(holds)
     for _ in range(BISECTIONS):
         middle = 0.5 * (low + high)
-        if rig.climbs(middle, omega, drive):
+        if climbs(middle):
             low = middle
         else:
             high = middle
@@ -141,24 +156,119 @@ class _Rig:
         (:func:`driven_share`) judges the robot."""
         import numpy as np
 
-        from ..sim.run import SETTLE_TIME, ramp
-
-        seconds, measure, progress = drive
-        mj, model = self.mj, self.model
-        data = mj.MjData(model)
-        model.opt.gravity[:] = [-GRAVITY * math.sin(slope), 0.0, -GRAVITY * math.cos(slope)]
         turn, turned = np.zeros(4), np.zeros(4)
-        steps = int(round((SETTLE_TIME + seconds) / model.opt.timestep))
-        measured = steps - int(round(measure / model.opt.timestep))
-        start = 0.0
-        for step in range(steps):
-            if step == measured:
-                start = float(data.qpos[0])
-            data.ctrl[0] = ramp(data.time) * omega  # about +y: rolls it up the slope (+x)
-            half = -0.5 * float(data.qpos[2])  # the capsule turned back by the wheel's angle
+
+        def roller(data) -> None:  # the capsule turned back by the wheel's angle
+            half = -0.5 * float(data.qpos[2])
             turn[0], turn[2] = math.cos(half), math.sin(half)
-            mj.mju_mulQuat(turned, turn, self.rest)
-            model.geom_quat[self.tyre] = turned
-            mj.mj_step(model, data)
-        expected = self.radius * omega * measure
-        return (float(data.qpos[0]) - start) >= progress * expected
+            self.mj.mju_mulQuat(turned, turn, self.rest)
+            self.model.geom_quat[self.tyre] = turned
+
+        return _climbs(self.mj, self.model, self.radius, slope, omega, drive, roller)
+
+
+def _climbs(mj, model, radius: float, slope: float, omega: float, drive: tuple,
+            each_step=None) -> bool:
+    """Whether a rig (a carriage sliding along x and z, its wheel's servo the first
+    actuator) goes up ``slope`` (rad) as the climb proof's ``drive`` judges the robot;
+    ``each_step(data)`` before every step."""
+    from ..sim.run import SETTLE_TIME, ramp
+
+    seconds, measure, progress = drive
+    data = mj.MjData(model)
+    model.opt.gravity[:] = [-GRAVITY * math.sin(slope), 0.0, -GRAVITY * math.cos(slope)]
+    steps = int(round((SETTLE_TIME + seconds) / model.opt.timestep))
+    measured = steps - int(round(measure / model.opt.timestep))
+    start = 0.0
+    for step in range(steps):
+        if step == measured:
+            start = float(data.qpos[0])
+        data.ctrl[0] = ramp(data.time) * omega  # about +y: rolls it up the slope (+x)
+        if each_step is not None:
+            each_step(data)
+        mj.mj_step(model, data)
+    expected = radius * omega * measure
+    return (float(data.qpos[0]) - start) >= progress * expected
+
+
+def tyre_share(model, sim, wheel, load: float, omega: float, gain: float,
+               drive: tuple) -> float:
+    """:func:`driven_share` for a wheel that rolls on its own geoms (a tyre, not a
+    mecanum wheel's gripping capsule): the share (0..1) of its grip, the friction its
+    geoms have in ``model``, that it climbs with under ``load`` kg. ``sim``: the SimModel
+    (its floor and the geoms the robot stands on)."""
+    rig = _TyreRig(model, sim, wheel, load, gain)
+    return _share(lambda slope: _climbs(rig.mj, rig.model, rig.radius, slope, omega, drive),
+                  rig.mu)
+
+
+class _TyreRig:
+    """A lone wheel on its carriage as :class:`_Rig`, touching the floor with the wheel's
+    own geoms (the spheres sim rounds cylinders into, its meshes), each with its contact
+    settings, on a floor with the model's floor's: MuJoCo mixes them as on the robot. The
+    axle keeps the joint's damping and friction (Leo's 0.31 N·m)."""
+
+    def __init__(self, model, sim, wheel, load: float, gain: float):
+        import numpy as np
+
+        from ..sim.engine import mujoco
+
+        self.mj = mj = mujoco()
+        self.radius = float(wheel.radius)
+        dof = model.jnt_dofadr[wheel.joint_id]
+        geoms = [g for g in sim.support_geoms if model.geom_bodyid[g] == wheel.body_id]
+        self.mu = max(float(model.geom_friction[g][0]) for g in geoms)
+        spec = mj.MjSpec()
+        spec.option.timestep = model.opt.timestep
+        spec.option.integrator = model.opt.integrator
+        spec.option.cone = model.opt.cone
+        spec.option.impratio = model.opt.impratio
+        floor = spec.worldbody.add_geom(type=mj.mjtGeom.mjGEOM_PLANE, size=[1, 1, 1])
+        _contact_like(floor, model, sim.floor_geom)
+        cart = spec.worldbody.add_body(pos=[0, 0, self.radius])
+        cart.add_joint(type=mj.mjtJoint.mjJNT_SLIDE, axis=[1, 0, 0])
+        cart.add_joint(type=mj.mjtJoint.mjJNT_SLIDE, axis=[0, 0, 1])
+        spinning = float(model.body_mass[wheel.body_id])
+        cart.add_geom(type=mj.mjtGeom.mjGEOM_SPHERE, size=[0.01, 0, 0], contype=0,
+                      conaffinity=0, mass=max(load - spinning, 1e-3))
+        body = cart.add_body(mass=max(spinning, 1e-3),
+                             inertia=[float(v) for v in model.body_inertia[wheel.body_id]])
+        body.add_joint(name="axle", type=mj.mjtJoint.mjJNT_HINGE, axis=[0, 1, 0],
+                       armature=float(model.dof_armature[dof]),
+                       damping=float(model.dof_damping[dof]),
+                       frictionloss=float(model.dof_frictionloss[dof]))
+        # The wheel's frame turned so that its joint's axis is the rig's y, the geoms
+        # placed from the joint's anchor.
+        onto_z, turn = np.zeros(4), np.zeros(4)
+        mj.mju_quatZ2Vec(onto_z, np.array(model.jnt_axis[wheel.joint_id], float))
+        mj.mju_negQuat(onto_z, onto_z)
+        mj.mju_mulQuat(turn, np.array([math.sqrt(0.5), -math.sqrt(0.5), 0.0, 0.0]), onto_z)
+        anchor = model.jnt_pos[wheel.joint_id]
+        for g in geoms:
+            pos, quat = np.zeros(3), np.zeros(4)
+            mj.mju_rotVecQuat(pos, model.geom_pos[g] - anchor, turn)
+            mj.mju_mulQuat(quat, turn, model.geom_quat[g])
+            tyre = body.add_geom(type=mj.mjtGeom(int(model.geom_type[g])), mass=0,
+                                 size=[float(v) for v in model.geom_size[g]],
+                                 pos=[float(v) for v in pos], quat=[float(v) for v in quat])
+            if model.geom_type[g] == mj.mjtGeom.mjGEOM_MESH:
+                mesh = model.geom_dataid[g]
+                first, count = model.mesh_vertadr[mesh], model.mesh_vertnum[mesh]
+                spec.add_mesh(name=f"tyre{g}", uservert=[
+                    float(v) for v in model.mesh_vert[first:first + count].ravel()])
+                tyre.meshname = f"tyre{g}"
+            _contact_like(tyre, model, g)
+        servo = spec.add_actuator(target="axle", trntype=mj.mjtTrn.mjTRN_JOINT)
+        servo.set_to_velocity(kv=gain)
+        self.model = spec.compile()
+
+
+def _contact_like(geom, model, g: int) -> None:
+    """Give the spec's ``geom`` the contact settings of ``model``'s geom ``g``."""
+    geom.contype, geom.conaffinity = int(model.geom_contype[g]), int(model.geom_conaffinity[g])
+    geom.condim, geom.priority = int(model.geom_condim[g]), int(model.geom_priority[g])
+    geom.friction = [float(v) for v in model.geom_friction[g]]
+    geom.solref = [float(v) for v in model.geom_solref[g]]
+    geom.solimp = [float(v) for v in model.geom_solimp[g]]
+    geom.margin, geom.gap = float(model.geom_margin[g]), float(model.geom_gap[g])
+    geom.solmix = float(model.geom_solmix[g])

@@ -62,7 +62,8 @@ def statics_section(checked, sim, options: dict | None = None) -> Section:
 class Statics:
     """The figures of one stance; angles kept in rad until shown. After :meth:`figures`,
     ``slide_at`` and ``stand_at`` are the azimuths (deg) of the statics.slide and
-    statics.stand figures, which the tilt proof runs towards."""
+    statics.stand figures, which the tilt proof runs towards, and ``grip_binds`` whether
+    the climb figure is limited by traction alone (the climb proof's servos and share)."""
 
     directions = DIRECTIONS  # the tip figures' (and the tilt proof's) named azimuths
 
@@ -72,6 +73,7 @@ class Statics:
         self.com = found.com
         self._slides: dict[float, float] = {}  # azimuth (deg) -> slide angle: a search each
         self.slide_at = self.stand_at = None
+        self.grip_binds = False  # after figures(): the climb is the driven wheels' grip's
 
     def tip(self, azimuth_deg: float) -> float:
         return tip_angle(self.polygon, self.com, math.radians(azimuth_deg))
@@ -138,6 +140,7 @@ class Statics:
             limit = "the motors"
         elif abs(climb - by_traction) < 1e-4:
             limit = "traction"
+            self.grip_binds = True
             if sim.drive.kind == "mecanum":  # what binds is not the least-loaded wheel
                 limit += (" (every driven wheel at its grip along its rollers, μ·its load/√2"
                           " up the slope, front and rear alike: the load the slope moves"

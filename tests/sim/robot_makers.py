@@ -104,9 +104,11 @@ def two_wheeler(mass: float = 0.7, scale: float = 1.0, castors: int = 1, limit: 
 
 
 def skid_steer(per_side: int = 2, mass: float = 20.0, wheelbase: float = 0.4,
-               track: float = 0.45, radius: float = 0.1, extra: str = "") -> str:
+               track: float = 0.45, radius: float = 0.1, extra: str = "",
+               limit: str = "") -> str:
     """A box on ``per_side`` wheels a side, evenly spaced over ``wheelbase``, every wheel
-    on a continuous joint without <limit> (as Husky's and Jackal's)."""
+    on a continuous joint without <limit> (as Husky's and Jackal's) unless ``limit``
+    gives one."""
     width = 0.25 * radius
     wheel_mass = 0.05 * mass
     body_mass = mass - 2 * per_side * wheel_mass
@@ -118,7 +120,7 @@ def skid_steer(per_side: int = 2, mass: float = 20.0, wheelbase: float = 0.4,
     for name, x in zip(names, xs, strict=False):
         for side, sign in (("left", 1), ("right", -1)):
             parts.append(_wheel(f"{name}_{side}_wheel", "base_link", (x, sign * track / 2, 0),
-                                radius, width, wheel_mass))
+                                radius, width, wheel_mass, limit))
     parts.append(extra + "\n</robot>\n")
     return "".join(parts)
 

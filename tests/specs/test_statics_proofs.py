@@ -85,9 +85,15 @@ def test_it_climbs_1_degree_under_its_climb_angle_and_not_1_over(proven, robot, 
     climb = fig["statics.climb"]
     assert climb.source.startswith(f"limited by {limit}:")
     assert climb.proof.agrees, climb.proof
-    assert climb.proof.measured == pytest.approx(climb.value - 1.0)
     under, over = climb.proof.detail.split("; ")
-    assert under.startswith(f"at {climb.value - 1:.1f}° it went up at ")
+    if limit == "traction":  # 1° under the slope its wheels reach at the share of their
+        # grip a lone one climbs with (docs/specs.md, "Grip-bound climb"): 0.978, 26.0°
+        assert climb.proof.tolerance.startswith("climbs 1° under the 26.0° its wheels "
+                                                "reach at the 0.97"), climb.proof.tolerance
+        assert climb.proof.measured == pytest.approx(25.04, abs=0.05)
+    else:
+        assert climb.proof.measured == pytest.approx(climb.value - 1.0)
+    assert under.startswith(f"at {climb.proof.measured:.1f}° it went up at ")
     assert over.startswith(f"at {climb.value + 1:.1f}° -")  # it went down
 
 

@@ -10,21 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from PIL import Image
-
-OBJ = """mtllib quad.mtl
-v 0 0 0
-v 1 0 0
-v 1 1 0
-v 0 1 0
-vt 0 0
-vt 1 0
-vt 1 1
-vt 0 1
-usemtl skin
-f 1/1 2/2 3/3
-f 1/1 3/3 4/4
-"""
-MTL = "newmtl skin\nKd 1 1 1\nmap_Kd tex.png\n"
+from untrusted.test_textures import MTL, OBJ  # (the textured quad it draws)
 
 
 def _textured(tmp: Path) -> Path:

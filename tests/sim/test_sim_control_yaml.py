@@ -7,11 +7,8 @@ key ...)"), so spin no longer compared its measured multiplier with the controll
 from __future__ import annotations
 
 from sim.robot_makers import skid_steer
+from sim.test_sim_drives import PACKAGE_XML, SKID, rover_package
 
-SKID = {"wheelbase": 0.4, "track": 0.45, "radius": 0.1}
-PACKAGE_XML = ('<?xml version="1.0"?><package format="3"><name>{}</name><version>0.0.1'
-               '</version><description>d</description><maintainer email="t@example.com">t'
-               '</maintainer><license>BSD</license></package>\n')
 # as ROS 1's diff_drive_controller and robot_localization read it (Warthog's file)
 CONTROL_YAML = """rover_velocity_controller:
   type: "diff_drive_controller/DiffDriveController"
@@ -27,12 +24,7 @@ ekf_localization:
 
 def test_a_key_given_twice_keeps_its_last_value_and_the_file_is_read(cli, tmp_path,
                                                                      monkeypatch):
-    for name in ("rover_description", "rover_control"):
-        (tmp_path / name).mkdir()
-        (tmp_path / name / "package.xml").write_text(PACKAGE_XML.format(name))
-    (tmp_path / "rover_description" / "rover.urdf").write_text(skid_steer(**SKID))
-    (tmp_path / "rover_control" / "config").mkdir()
-    (tmp_path / "rover_control" / "config" / "control.yaml").write_text(CONTROL_YAML)
+    rover_package(tmp_path, CONTROL_YAML)
     monkeypatch.chdir(tmp_path)
     result = cli("sim", "rover_description/rover.urdf", "--package-path", tmp_path,
                  "--scenario", "spin", terminal_width=200)

@@ -221,6 +221,16 @@ def test_a_mecanum_base_with_roller_links_is_driven_as_mecanum(reports):
 PACKAGE_XML = ('<?xml version="1.0"?><package format="3"><name>{}</name><version>0.0.1'
                '</version><description>d</description><maintainer email="t@example.com">t'
                '</maintainer><license>BSD</license></package>\n')
+
+
+def rover_package(root, control_yaml: str) -> None:
+    """rover_description (a skid steer) and rover_control/config/control.yaml beside it."""
+    for name in ("rover_description", "rover_control"):
+        (root / name).mkdir()
+        (root / name / "package.xml").write_text(PACKAGE_XML.format(name))
+    (root / "rover_description" / "rover.urdf").write_text(skid_steer(**SKID))
+    (root / "rover_control" / "config").mkdir()
+    (root / "rover_control" / "config" / "control.yaml").write_text(control_yaml)
 CONTROL_YAML = """# as diff_drive_controller reads it (ROS 2)
 rover_base_controller:
   ros__parameters:
@@ -236,12 +246,7 @@ other_robot_controller:
 
 
 def test_spin_compares_with_the_multiplier_of_the_x_control_package(cli, tmp_path, monkeypatch):
-    for name in ("rover_description", "rover_control"):
-        (tmp_path / name).mkdir()
-        (tmp_path / name / "package.xml").write_text(PACKAGE_XML.format(name))
-    (tmp_path / "rover_description" / "rover.urdf").write_text(skid_steer(**SKID))
-    (tmp_path / "rover_control" / "config").mkdir()
-    (tmp_path / "rover_control" / "config" / "control.yaml").write_text(CONTROL_YAML)
+    rover_package(tmp_path, CONTROL_YAML)
     (tmp_path / "rover_control" / "config" / "broken.yaml").write_text("a: [\n")
     monkeypatch.chdir(tmp_path)
     result = cli("sim", "rover_description/rover.urdf", "--package-path", tmp_path,

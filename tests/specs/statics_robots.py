@@ -77,3 +77,31 @@ def box_on_wheels(wheelbase=0.4, track=0.4, radius=0.05, body_mass=9.6, wheel_ma
                                 wheel_mass, limit, mu))
     parts.append("\n</robot>\n")
     return "".join(parts)
+
+
+def climb_proof(robot_text, tmp_path, grip_times: float = 1.0):
+    """(statics.climb with its proof, the sim model, the stance) of the robot
+    ``robot_text``, its figures computed with ``grip_times`` the wheels' grip and the
+    motors' force (MuJoCo keeps the robot's own): a figure made wrong on purpose, for the
+    proof to refute; the climb proof alone (no tilt proofs)."""
+    import pytest
+
+    from mobile_car.specs import statics as statics_module
+    from mobile_car.specs.figures import Section
+    from mobile_car.specs.proof_climb import prove_climb
+    from mobile_car.specs.support import stance
+
+    path = tmp_path / "robot.urdf"
+    path.write_text(robot_text)
+    _, sim = checked_and_sim(path)
+    found = stance(sim, sim.friction, None)
+    grip, motors = statics_module.grip_along, statics_module._motor_forces
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(statics_module, "grip_along",
+                      lambda c, ux, uy: grip_times * grip(c, ux, uy))
+        patch.setattr(statics_module, "_motor_forces", lambda sim: {
+            body: (grip_times * force, wheel) for body, (force, wheel) in motors(sim).items()})
+        statics = statics_module.Statics(found, sim)
+        section = Section("statics", figures=statics.figures())
+        prove_climb(sim, found, section, statics)
+    return section.figure("statics.climb"), sim, found

@@ -11,34 +11,9 @@ from __future__ import annotations
 
 import pytest
 from sim.robot_makers import skid_steer
-from specs.statics_robots import checked_and_sim
+from specs.statics_robots import climb_proof
 
 LIMITED = '<limit effort="50" velocity="10"/>'  # 500 N at the rims for a 196 N robot
-
-
-def _climb_proof(robot_text, tmp_path, grip_times: float = 1.0):
-    """(statics.climb with its proof, the sim model, the stance) of ``robot_text``, its
-    figures computed with ``grip_times`` the tyres' grip and the motors' force (MuJoCo
-    keeps the robot's own); the climb proof alone."""
-    from mobile_car.specs import statics as statics_module
-    from mobile_car.specs.figures import Section
-    from mobile_car.specs.proof_climb import prove_climb
-    from mobile_car.specs.support import stance
-
-    path = tmp_path / "robot.urdf"
-    path.write_text(robot_text)
-    _, sim = checked_and_sim(path)
-    found = stance(sim, sim.friction, None)
-    grip, motors = statics_module.grip_along, statics_module._motor_forces
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(statics_module, "grip_along",
-                      lambda c, ux, uy: grip_times * grip(c, ux, uy))
-        patch.setattr(statics_module, "_motor_forces", lambda sim: {
-            body: (grip_times * force, wheel) for body, (force, wheel) in motors(sim).items()})
-        statics = statics_module.Statics(found, sim)
-        section = Section("statics", figures=statics.figures())
-        prove_climb(sim, found, section, statics)
-    return section.figure("statics.climb"), sim, found
 
 
 def test_skid_steer_bound_by_its_grip_climbs_the_share_mujoco_reaches(tmp_path):
@@ -47,7 +22,7 @@ def test_skid_steer_bound_by_its_grip_climbs_the_share_mujoco_reaches(tmp_path):
     43.1°), not 1° over. Before, driven 1° under the figure, it slid back."""
     from mobile_car.specs.proof_climb import PROGRESS, climb
 
-    figure, sim, found = _climb_proof(skid_steer(limit=LIMITED), tmp_path)
+    figure, sim, found = climb_proof(skid_steer(limit=LIMITED), tmp_path)
     assert figure.value == pytest.approx(45.0, abs=1e-3)
     assert figure.source.startswith("limited by traction: the motors hold any slope")
     proof = figure.proof
@@ -67,7 +42,7 @@ def test_the_climb_proof_refutes_a_figure_of_twice_a_skid_steers_grip(tmp_path):
     """The control: a figure of twice the grip (63.4°) is expected, by the same share,
     at 62°, and the robot, on its own grip, goes down 1° under (its wheelbase 0.7 m, so
     that it does not tip over backward first, at 57°)."""
-    figure, _, _ = _climb_proof(skid_steer(wheelbase=0.7, limit=LIMITED), tmp_path,
+    figure, _, _ = climb_proof(skid_steer(wheelbase=0.7, limit=LIMITED), tmp_path,
                                 grip_times=2.0)
     assert figure.value == pytest.approx(63.43, abs=0.01)  # atan(2)
     proof = figure.proof
@@ -80,7 +55,7 @@ def test_the_climb_proof_refutes_a_figure_of_twice_a_skid_steers_grip(tmp_path):
 def test_a_skid_steer_its_motors_bind_is_proven_as_before(tmp_path):
     """Without <limit> sim's default effort binds (40.6°): no share, sim's servos 20
     times their gain, the proof's text as it was."""
-    figure, _, _ = _climb_proof(skid_steer(), tmp_path)
+    figure, _, _ = climb_proof(skid_steer(), tmp_path)
     assert figure.value == pytest.approx(40.6463, abs=1e-3)
     assert figure.proof.tolerance == ("climbs 1° under, not 1° over (≥ 80% of r·ω up it "
                                       "after 2.5 s)")
@@ -143,7 +118,7 @@ def test_mujoco_loads_the_wheels_as_the_statics_do_and_bounces_them_on_stiff_ser
 
     from mobile_car.specs.slopes import loads_of
 
-    _, sim, found = _climb_proof(skid_steer(limit=LIMITED), tmp_path)
+    _, sim, found = climb_proof(skid_steer(limit=LIMITED), tmp_path)
     slope = 42.46
     weight = found.mass * 9.81
     x, y, h = found.com

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import pytest
 from sim.robot_makers import PLANAR_MOVE, mecanum_wheels
-from specs.statics_robots import checked_and_sim
+from specs.statics_robots import checked_and_sim, climb_proof
 
 from mobile_car.specs.statics import statics_section
 
@@ -96,32 +96,6 @@ def test_mecanum_robot_climbs_to_its_rollers_grip(figures, robot):
     assert went[1].startswith("at 36.3° -"), went  # it slid back
 
 
-def _climb_proof(robot_text, tmp_path, grip_times: float = 1.0):
-    """(statics.climb with its proof, the sim model, the stance) of the robot
-    ``robot_text``, its figures computed with ``grip_times`` the rollers' grip and the
-    motors' default effort, which sim takes from it (MuJoCo keeps the robot's own); the
-    climb proof alone (no tilt proofs)."""
-    from mobile_car.specs import statics as statics_module
-    from mobile_car.specs.figures import Section
-    from mobile_car.specs.proof_climb import prove_climb
-    from mobile_car.specs.support import stance
-
-    path = tmp_path / "robot.urdf"
-    path.write_text(robot_text)
-    _, sim = checked_and_sim(path)
-    found = stance(sim, sim.friction, None)
-    grip, motors = statics_module.grip_along, statics_module._motor_forces
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(statics_module, "grip_along",
-                      lambda c, ux, uy: grip_times * grip(c, ux, uy))
-        patch.setattr(statics_module, "_motor_forces", lambda sim: {
-            body: (grip_times * force, wheel) for body, (force, wheel) in motors(sim).items()})
-        statics = statics_module.Statics(found, sim)
-        section = Section("statics", figures=statics.figures())
-        prove_climb(sim, found, section, statics)
-    return section.figure("statics.climb"), sim, found
-
-
 # linorobot2's shape: a high centre of mass on a short wheelbase, the front wheels left
 # with a fifth of the load at the climb angle (statics: 9.5 N of 47 N)
 TALL = mecanum_wheels(mass=12.0, wheelbase=0.24, track=0.3, lift=1.0, wheel_mu=0.01,
@@ -136,7 +110,7 @@ def test_mecanum_robot_with_its_load_on_the_rear_climbs_the_share_mujoco_reaches
     the figure."""
     from mobile_car.specs.proof_climb import PROGRESS, climb
 
-    figure, sim, found = _climb_proof(TALL, tmp_path)
+    figure, sim, found = climb_proof(TALL, tmp_path)
     assert figure.value == pytest.approx(35.26, abs=0.01)
     proof = figure.proof
     assert proof.agrees, proof
@@ -153,7 +127,7 @@ def test_mecanum_robot_with_its_load_on_the_rear_climbs_the_share_mujoco_reaches
 def test_the_climb_proof_still_refutes_a_figure_of_twice_the_grip(tmp_path):
     """The control: a figure computed with twice the rollers' grip (54.7°) is expected,
     by the same share, at 53.9°, and the robot, on its own grip, goes down 1° under."""
-    figure, _, _ = _climb_proof(ROBOTS["planar_move"], tmp_path, grip_times=2.0)
+    figure, _, _ = climb_proof(ROBOTS["planar_move"], tmp_path, grip_times=2.0)
     assert figure.value == pytest.approx(54.74, abs=0.01)  # atan(2/√2)
     proof = figure.proof
     assert not proof.agrees and proof.measured is None, proof

@@ -132,13 +132,12 @@ def test_each_mesh_is_smoothed_once_though_a_marker_is_sized_by_the_rest(monkeyp
     again for the bounds (with more meshes than the smoothing cache holds, OpenArm's
     bimanual robot smoothed every mesh twice)."""
     import mobile_car.render.scene as scene_module
-    smoothed = []
+    smoothed, smooth_shade = [], scene_module.smooth_shade
 
     def counting(mesh, angle):
         smoothed.append(len(mesh.faces))
-        return scene_module.smooth_shade.__wrapped__(mesh, angle)
+        return smooth_shade(mesh, angle)
 
-    counting.__wrapped__ = scene_module.smooth_shade
     monkeypatch.setattr(scene_module, "smooth_shade", counting)
     monkeypatch.setattr(scene_module, "_SMOOTHED", {})
     monkeypatch.setattr(scene_module, "_SMOOTHED_LIMIT", 1)

@@ -83,7 +83,9 @@ class GLRenderer:
             self.program["to_view"].write(
                 camera.rotation.astype(np.float32).T.copy().tobytes())
             vertices = np.hstack([scene.positions, scene.normals, scene.colors])
-            buffer = self.ctx.buffer(np.ascontiguousarray(vertices, dtype=np.float32).tobytes())
+            # handed over as the array itself: a copy as bytes first was 40 bytes a corner
+            # more (100 MB for OpenArm's bimanual robot) for the same buffer
+            buffer = self.ctx.buffer(np.ascontiguousarray(vertices, dtype=np.float32))
             array = self.ctx.vertex_array(
                 self.program, [(buffer, "3f 3f 4f", "in_position", "in_normal", "in_color")])
             try:

@@ -293,12 +293,23 @@ def _sized_markers(markers: list[Piece], bounds) -> list[Piece]:
 def _flatten(placed: Iterator[Piece], link_colors: dict[str, tuple],
              with_links: bool = False, frames=()) -> Scene:
     placed = list(placed)
+    # Each piece is shaped once: the sizes of the placeholders and of the frame axes come
+    # from the bounds of the pieces shaped before them, and smoothing a mesh again for
+    # those bounds (once per pass, past the smoothing cache's size) was most of the time.
+    shapes: dict[int, tuple | None] = {}
+
+    def shape(piece: Piece) -> tuple | None:
+        if id(piece) not in shapes:
+            shapes[id(piece)] = _primitive_corners(piece, link_colors) \
+                if piece.primitive is not None else _mesh_corners(piece, link_colors)
+        return shapes[id(piece)]
+
     markers = [piece for piece in placed if piece.placeholder and not piece.sized]
     if markers:
         placed = [piece for piece in placed if not (piece.placeholder and not piece.sized)]
-        placed += _sized_markers(markers, _flatten(iter(placed), link_colors).bounds)
+        placed += _sized_markers(markers, _bounds(placed, shape))
     if frames:  # axes sized by the rest of the robot
-        length = axis_length(frames, _flatten(iter(placed), link_colors).bounds)
+        length = axis_length(frames, _bounds(placed, shape))
         placed += [Piece(frame.link, transform, primitive="box", rgba=rgba, overlay=True)
                    for frame in frames for transform, rgba in axis_boxes(frame, length)]
     shaped = []
@@ -307,10 +318,7 @@ def _flatten(placed: Iterator[Piece], link_colors: dict[str, tuple],
     # were drawn sorted by name (geometry_10 before geometry_2).
     for index in sorted(range(len(placed)), key=str):
         piece = placed[index]
-        if piece.primitive is not None:
-            corners = _primitive_corners(piece, link_colors)
-        else:
-            corners = _mesh_corners(piece, link_colors)
+        corners = shape(piece)
         if corners is not None:
             shaped.append((piece.transform, corners, piece.link))
     # Written straight into the float32 arrays the renderer takes: a robot of 10,000
@@ -324,10 +332,9 @@ def _flatten(placed: Iterator[Piece], link_colors: dict[str, tuple],
     start = 0
     for transform, (local_positions, local_normals, corner_colors), link in shaped:
         end = start + len(local_positions)
-        linear, offset = transform[:3, :3], transform[:3, 3]
-        positions[start:end] = local_positions @ linear.T + offset
+        positions[start:end] = _placed(local_positions, transform)
         # Normals go with the inverse transpose, which also covers scaled meshes.
-        turned = local_normals @ np.linalg.inv(linear)
+        turned = local_normals @ np.linalg.inv(transform[:3, :3])
         normals[start:end] = turned / np.maximum(
             np.linalg.norm(turned, axis=1, keepdims=True), 1e-12)
         colors[start:end] = corner_colors
@@ -335,3 +342,23 @@ def _flatten(placed: Iterator[Piece], link_colors: dict[str, tuple],
             link_of[start:end] = names.setdefault(link, len(names))
         start = end
     return Scene(positions, normals, colors, link_of, tuple(names))
+
+
+def _placed(local_positions: np.ndarray, transform: np.ndarray) -> np.ndarray:
+    """Corner positions in the world, in float64 (stored as float32 by the caller)."""
+    return local_positions @ transform[:3, :3].T + transform[:3, 3]
+
+
+def _bounds(placed: list[Piece], shape) -> np.ndarray | None:
+    """What ``Scene.bounds`` of these pieces would be, without building their scene."""
+    low, high = [], []
+    for piece in placed:
+        corners = shape(piece)
+        if corners is not None and len(corners[0]):
+            # float32 first, as the scene stores them, so the bounds agree to the bit
+            world = _placed(corners[0], piece.transform).astype(np.float32)
+            low.append(world.min(axis=0))
+            high.append(world.max(axis=0))
+    if not low:
+        return None
+    return np.array([np.min(low, axis=0), np.max(high, axis=0)], dtype=float)

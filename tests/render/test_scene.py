@@ -127,6 +127,36 @@ def test_a_missing_mesh_takes_the_size_and_place_of_its_link_s_collision_shapes(
     assert scene.bounds == pytest.approx(np.array([[-0.2, -0.1, -0.01], [0.35, 0.1, 0.1]]))
 
 
+def test_each_mesh_is_smoothed_once_though_a_marker_is_sized_by_the_rest(monkeypatch):
+    """The marker's size needs the bounds of the other pieces: they are shaped once, not
+    again for the bounds (with more meshes than the smoothing cache holds, OpenArm's
+    bimanual robot smoothed every mesh twice)."""
+    import mobile_car.render.scene as scene_module
+    smoothed, smooth_shade = [], scene_module.smooth_shade
+
+    def counting(mesh, angle):
+        smoothed.append(len(mesh.faces))
+        return smooth_shade(mesh, angle)
+
+    monkeypatch.setattr(scene_module, "smooth_shade", counting)
+    monkeypatch.setattr(scene_module, "_SMOOTHED", {})
+    monkeypatch.setattr(scene_module, "_SMOOTHED_LIMIT", 1)
+    monkeypatch.setattr(scene_module, "_UNIT_CORNERS", {})
+    motor = ('<visual><geometry><mesh filename="package://render_test_parts/meshes/motor.stl"'
+             ' scale="0.001 0.001 0.001"/></geometry><material name="{0}"><color rgba="{1}"/>'
+             '</material></visual>')
+    text = ('<robot name="r"><link name="a">' + motor.format("red", "1 0 0 1") + '</link>'
+            '<link name="b">' + motor.format("blue", "0 0 1 1") + '</link>'
+            '<link name="c"><visual><geometry><mesh filename="package://nowhere_pkg/m.stl"/>'
+            '</geometry></visual></link>'
+            '<joint name="j" type="fixed"><parent link="a"/><child link="b"/>'
+            '<origin xyz="0.1 0 0"/></joint><joint name="k" type="fixed"><parent link="a"/>'
+            '<child link="c"/></joint></robot>')
+    scene = scene_of(PKG / "models/inline.urdf", text=text)
+    assert {PLACEHOLDER, urdf_rgba(1, 0, 0, 1), urdf_rgba(0, 0, 1, 1)} == colours(scene)
+    assert len(smoothed) == 3  # the red motor, the blue one, the marker's unit box
+
+
 def test_malformed_xml_names_its_line():
     with pytest.raises(RenderError) as caught:
         scene_of(PKG / "models/inline.urdf", text='<robot name="r">\n<link name="a">\n</robot>')

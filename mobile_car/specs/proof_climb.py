@@ -79,16 +79,12 @@ def prove_climb(sim, found, section, statics) -> None:
         return
     reach, under_what = angle, ""
     gripped = sim.drive.kind != "mecanum" and statics.grip_binds
-    if sim.drive.kind == "mecanum":
-        share = _mecanum_share(sim, found)
+    if sim.drive.kind == "mecanum" or gripped:
+        share, whose = ((_mecanum_share(sim, found), "a lone one") if not gripped else
+                        (_tyre_share(sim, found, statics, angle), "its most loaded one alone"))
         reach = round(math.degrees(statics.climb_angle(grip_share=share)), 4)
         under_what = (f" the {reach:.1f}° its wheels reach at the {share:.3f} of their grip"
-                      " a lone one pushes with in MuJoCo")
-    elif gripped:
-        share = _tyre_share(sim, found, statics, angle)
-        reach = round(math.degrees(statics.climb_angle(grip_share=share)), 4)
-        under_what = (f" the {reach:.1f}° its wheels reach at the {share:.3f} of their grip"
-                      " its most loaded one alone pushes with in MuJoCo")
+                      f" {whose} pushes with in MuJoCo")
     lines, agrees = [], True
     under = reach - MARGIN
     if under > 0:
@@ -110,7 +106,6 @@ def prove_climb(sim, found, section, statics) -> None:
 def _mecanum_share(sim, found) -> float:
     """The least share of its grip a lone driven wheel of the robot pushes with, each
     carrying its part of the weight, driven as :func:`climb` drives them."""
-    from ..sim.run import command_speed
     from .proof_grip import least_share
     from .proof_tilt import proof_model
 
@@ -118,7 +113,7 @@ def _mecanum_share(sim, found) -> float:
     if not gripping:
         return 1.0
     model, _ = proof_model(sim, found, resting=False)
-    omega = min(command_speed(sim), CRAWL / sim.drive.radius)
+    omega = _crawl_speed(sim)
     return least_share(model, gripping, found.mass / len(sim.drive.driven), omega,
                        SERVO_STIFFER_MECANUM, (DRIVE, MEASURE, PROGRESS))
 
@@ -127,16 +122,11 @@ def _tyre_share(sim, found, statics, angle: float) -> float:
     """The share of its grip the most loaded driven wheel (at the figure's slope, as the
     statics load it) pushes with alone, carrying that load, driven as :func:`climb`
     drives it (:func:`.proof_grip.tyre_share`)."""
-    from ..sim.run import command_speed
     from .proof_grip import tyre_share
     from .proof_tilt import proof_model
-    from .slopes import loads_of, reach
 
-    x, y, h = found.com
-    edge = reach(statics.polygon, (x, y), math.pi)  # the statics' own rearward shift
-    shift = min(h * math.tan(math.radians(angle)), max(0.0, edge - 1e-9))
     loads: dict[int, float] = {}
-    for contact, share in zip(found.contacts, loads_of(found.contacts, (x - shift, y)),
+    for contact, share in zip(found.contacts, statics.loads_at(math.radians(angle)),
                               strict=True):
         if contact.role == "driven":
             loads[contact.body] = loads.get(contact.body, 0.0) + share * found.mass
@@ -145,17 +135,24 @@ def _tyre_share(sim, found, statics, angle: float) -> float:
         return 1.0
     wheel = max(loaded, key=lambda w: loads[w.body_id])
     model, _ = proof_model(sim, found, resting=False)
-    omega = min(command_speed(sim), CRAWL / sim.drive.radius)
+    omega = _crawl_speed(sim)
     gain = float(model.actuator_gainprm[wheel.actuator_id][0]) * SERVO_STIFFER_GRIP
     return tyre_share(model, sim, wheel, loads[wheel.body_id], omega, gain,
                       (DRIVE, MEASURE, PROGRESS))
+
+
+def _crawl_speed(sim) -> float:
+    """The wheels' command up the slope (rad/s): sim's, at most CRAWL at the rim."""
+    from ..sim.run import command_speed
+
+    return min(command_speed(sim), CRAWL / sim.drive.radius)
 
 
 def climb(sim, found, slope_deg: float, gripped: bool = False) -> float:
     """The robot's speed up a slope of ``slope_deg`` at the end of the drive, as a share
     of r·ω (negative: it went down); ``gripped``: a robot whose climb its grip binds,
     its servos SERVO_STIFFER_GRIP times sim's gain."""
-    from ..sim.run import SETTLE_TIME, Run, command_speed, forward_sign, ramped
+    from ..sim.run import SETTLE_TIME, Run, forward_sign, ramped
     from .proof_tilt import proof_model
 
     model, copied = proof_model(sim, found, resting=False)
@@ -167,7 +164,7 @@ def climb(sim, found, slope_deg: float, gripped: bool = False) -> float:
         model.actuator_gainprm[wheel.actuator_id][0] *= stiffer
         model.actuator_biasprm[wheel.actuator_id][2] *= stiffer
     run = Run(copied)
-    omega = min(command_speed(sim), CRAWL / sim.drive.radius)
+    omega = _crawl_speed(sim)
     commands = [(w.actuator_id, forward_sign(run, w) * omega) for w in sim.drive.driven]
     control = ramped(run, commands)
     run.step(SETTLE_TIME + DRIVE - MEASURE, control)

@@ -93,21 +93,10 @@ class _Rig:
         self.grip = (wheel.grip[0], wheel.grip[1])
         self.mu = (float(model.pair_friction[pair][0]), float(model.pair_friction[pair][1]))
         self.radius = float(wheel.radius)
-        spec = mj.MjSpec()
-        spec.option.timestep = model.opt.timestep
-        spec.option.integrator = model.opt.integrator
-        spec.option.cone = mj.mjtCone.mjCONE_ELLIPTIC
-        spec.option.impratio = model.opt.impratio
+        spec = _spec(mj, model, mj.mjtCone.mjCONE_ELLIPTIC)
         floor = spec.worldbody.add_geom(name="floor", type=mj.mjtGeom.mjGEOM_PLANE,
                                         size=[1, 1, 1], contype=0, conaffinity=0)
-        cart = spec.worldbody.add_body(name="cart", pos=[0, 0, self.radius])
-        cart.add_joint(type=mj.mjtJoint.mjJNT_SLIDE, axis=[1, 0, 0])
-        cart.add_joint(type=mj.mjtJoint.mjJNT_SLIDE, axis=[0, 0, 1])
-        spinning = float(model.body_mass[wheel.body_id])
-        cart.add_geom(type=mj.mjtGeom.mjGEOM_SPHERE, size=[0.01, 0, 0], contype=0,
-                      conaffinity=0, mass=max(load - spinning, 1e-3))
-        body = cart.add_body(name="wheel", mass=max(spinning, 1e-3),
-                             inertia=[float(v) for v in model.body_inertia[wheel.body_id]])
+        body = _carriage(mj, spec, model, wheel, load)
         body.add_joint(name="axle", type=mj.mjtJoint.mjJNT_HINGE, axis=[0, 1, 0],
                        armature=float(model.dof_armature[dof]))
         size = model.geom_size[capsule]
@@ -218,21 +207,10 @@ class _TyreRig:
         dof = model.jnt_dofadr[wheel.joint_id]
         geoms = [g for g in sim.support_geoms if model.geom_bodyid[g] == wheel.body_id]
         self.mu = max(float(model.geom_friction[g][0]) for g in geoms)
-        spec = mj.MjSpec()
-        spec.option.timestep = model.opt.timestep
-        spec.option.integrator = model.opt.integrator
-        spec.option.cone = model.opt.cone
-        spec.option.impratio = model.opt.impratio
+        spec = _spec(mj, model, model.opt.cone)
         floor = spec.worldbody.add_geom(type=mj.mjtGeom.mjGEOM_PLANE, size=[1, 1, 1])
         _contact_like(floor, model, sim.floor_geom)
-        cart = spec.worldbody.add_body(pos=[0, 0, self.radius])
-        cart.add_joint(type=mj.mjtJoint.mjJNT_SLIDE, axis=[1, 0, 0])
-        cart.add_joint(type=mj.mjtJoint.mjJNT_SLIDE, axis=[0, 0, 1])
-        spinning = float(model.body_mass[wheel.body_id])
-        cart.add_geom(type=mj.mjtGeom.mjGEOM_SPHERE, size=[0.01, 0, 0], contype=0,
-                      conaffinity=0, mass=max(load - spinning, 1e-3))
-        body = cart.add_body(mass=max(spinning, 1e-3),
-                             inertia=[float(v) for v in model.body_inertia[wheel.body_id]])
+        body = _carriage(mj, spec, model, wheel, load)
         body.add_joint(name="axle", type=mj.mjtJoint.mjJNT_HINGE, axis=[0, 1, 0],
                        armature=float(model.dof_armature[dof]),
                        damping=float(model.dof_damping[dof]),
@@ -261,6 +239,31 @@ class _TyreRig:
         servo = spec.add_actuator(target="axle", trntype=mj.mjtTrn.mjTRN_JOINT)
         servo.set_to_velocity(kv=gain)
         self.model = spec.compile()
+
+
+def _spec(mj, model, cone):
+    """An empty MjSpec with the proof model's time step, integrator and impratio, and
+    ``cone``."""
+    spec = mj.MjSpec()
+    spec.option.timestep = model.opt.timestep
+    spec.option.integrator = model.opt.integrator
+    spec.option.cone = cone
+    spec.option.impratio = model.opt.impratio
+    return spec
+
+
+def _carriage(mj, spec, model, wheel, load: float):
+    """The carriage every rig runs on, at the wheel's radius above the floor, sliding
+    along the slope (x) and off it (z), carrying ``load`` kg with the wheel: the wheel's
+    body (its mass and inertia), its axle still to add."""
+    cart = spec.worldbody.add_body(name="cart", pos=[0, 0, float(wheel.radius)])
+    cart.add_joint(type=mj.mjtJoint.mjJNT_SLIDE, axis=[1, 0, 0])
+    cart.add_joint(type=mj.mjtJoint.mjJNT_SLIDE, axis=[0, 0, 1])
+    spinning = float(model.body_mass[wheel.body_id])
+    cart.add_geom(type=mj.mjtGeom.mjGEOM_SPHERE, size=[0.01, 0, 0], contype=0,
+                  conaffinity=0, mass=max(load - spinning, 1e-3))
+    return cart.add_body(name="wheel", mass=max(spinning, 1e-3),
+                         inertia=[float(v) for v in model.body_inertia[wheel.body_id]])
 
 
 def _contact_like(geom, model, g: int) -> None:

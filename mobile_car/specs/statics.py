@@ -9,6 +9,7 @@ given in degrees, azimuths from forward (0) towards left (90)."""
 from __future__ import annotations
 
 import math
+from functools import cached_property
 
 from .figures import Figure, Section
 from .slopes import first_failure, hull, least_tip, loads_of, slide_angle, tip_angle
@@ -164,12 +165,9 @@ class Statics:
         found = self.found
         wheels = _motor_forces(self.sim)
         weight = found.mass * GRAVITY
-        x, y, h = self.com
-        edge = _reach_back(self)
 
         def push(theta) -> float:
-            d = min(h * math.tan(theta), max(0.0, edge - 1e-9))
-            shares, total = loads_of(found.contacts, (x - d, y)), 0.0
+            shares, total = self.loads_at(theta), 0.0
             per_body: dict[int, float] = {}
             for contact, share in zip(found.contacts, shares, strict=True):
                 if contact.role == "driven":  # (a mecanum wheel grips along its rollers)
@@ -183,6 +181,18 @@ class Statics:
             return total - math.sin(theta)
 
         return first_failure(lambda t: push(t) >= 0)
+
+    def loads_at(self, theta: float) -> list[float]:
+        """Each contact's share of the weight on a slope of ``theta`` (rad) faced
+        straight up: the centre of mass moved back by h·tan θ, at most to the polygon's
+        rear edge."""
+        x, y, h = self.com
+        shift = min(h * math.tan(theta), max(0.0, self._rear_reach - 1e-9))
+        return loads_of(self.found.contacts, (x - shift, y))
+
+    @cached_property
+    def _rear_reach(self) -> float:  # (the slope searches ask it at every step)
+        return _reach_back(self)
 
 
 def _motor_forces(sim) -> dict:

@@ -17,11 +17,11 @@ simply has no controller to read.
 from __future__ import annotations
 
 import math
-import os
 import re
 from pathlib import Path
 
 from ..errors import McarError
+from ..file_memo import FileMemo
 from ..load.inputs import display_path
 from ..values import Value
 
@@ -253,27 +253,13 @@ class _YamlFile:
         self.mappings = found
 
 
-# real path -> (its stamp, _YamlFile): within one process (a view server's reloads too),
-# a file edited since is read again; at most _MAX_KEPT files kept
-_READ: dict[str, tuple[list, _YamlFile]] = {}
-_MAX_KEPT = 256
+# each control file as read, within one process (a view server's reloads too): a file
+# edited since is read again
+_READ = FileMemo(256)
 
 
 def _read_yaml(path: Path) -> _YamlFile:
-    from ..freshness import identity
-
-    try:
-        real = os.path.realpath(path)
-        stamp = identity(os.stat(real))
-    except (OSError, ValueError):
-        return _YamlFile(path)  # (read_input says why)
-    kept = _READ.get(real)
-    if kept is not None and kept[0] == stamp:
-        return kept[1]
-    if len(_READ) >= _MAX_KEPT:
-        _READ.clear()
-    read = _READ[real] = (stamp, _YamlFile(path))
-    return read[1]
+    return _READ.get(path, lambda: _YamlFile(path))
 
 
 def _multipliers(path: Path, problems: list[str]) -> list[tuple[ControlConfig, set[str]]]:

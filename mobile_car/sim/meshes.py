@@ -19,6 +19,7 @@ from pathlib import Path
 
 from ..atomic import atomic_write
 from ..errors import InputError
+from ..file_memo import FileMemo
 from ..load.mesh_facts import binary_stl_triangles
 from ..load.mesh_limits import scan_mesh
 from ..record_seal import cache_dir
@@ -35,28 +36,12 @@ def mujoco_mesh(path: Path) -> Path:
     converted copy. InputError (MeshOverLimit, MeshBroken) or OSError with the reason
     when it cannot be read. Each file is measured and converted once in a process while
     its stamp holds (:data:`_converted`), however many ``<mesh>`` elements name it."""
-    from ..freshness import identity
-
-    try:
-        real = os.path.realpath(path)
-        stamp = identity(os.stat(real))
-    except (OSError, ValueError):
-        stamp = None  # (measuring it says why)
-    kept = _converted.get(real) if stamp is not None else None
-    if kept is not None and kept[0] == stamp and os.path.isfile(kept[1]):
-        return kept[1]
-    result = _mujoco_mesh(path)
-    if stamp is not None:
-        if len(_converted) >= _MAX_KEPT:
-            _converted.clear()
-        _converted[real] = (stamp, result)
-    return result
+    return _converted.get(path, lambda: _mujoco_mesh(path), still_good=os.path.isfile)
 
 
-# real path -> (its stamp, what mujoco_mesh gave): Unitree Go1 names calf.dae four times,
-# and sim's model and specs' ray scenes read the same visuals
-_converted: dict[str, tuple[list, Path]] = {}
-_MAX_KEPT = 1024
+# what mujoco_mesh gave for each file: Unitree Go1 names calf.dae four times, and sim's
+# model and specs' ray scenes read the same visuals
+_converted = FileMemo(1024)
 
 
 def _mujoco_mesh(path: Path) -> Path:

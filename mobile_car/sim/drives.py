@@ -610,17 +610,17 @@ def _child(element, tag):
     return None
 
 
-def rolling_radius(mj, model, g, data=None, joint_id: int | None = None) -> float:
+def rolling_radius(mj, model, g, data, joint_id: int) -> float:
     """The radius geom ``g`` rolls on: a cylinder's, sphere's or capsule's own; a mesh's
     farthest vertex from the wheel joint's axis (``joint_id``, placed by ``data``), not its
     bounding sphere, which reaches the corners of its box: AgileX Tracer's 121 x 84 mm
     mesh tyre was 95 mm for 60.5 mm, and drive and spin failed on a 36% 'wheel slip' that
-    was the radius's; else the bounding sphere."""
+    was the radius's; any other shape's bounding sphere."""
     kind, size = mj.mjtGeom(int(model.geom_type[g])), model.geom_size[g]
     if kind in (mj.mjtGeom.mjGEOM_CYLINDER, mj.mjtGeom.mjGEOM_SPHERE,
                 mj.mjtGeom.mjGEOM_CAPSULE):
         return float(size[0])
-    if kind == mj.mjtGeom.mjGEOM_MESH and data is not None and joint_id is not None:
+    if kind == mj.mjtGeom.mjGEOM_MESH:
         mesh = model.geom_dataid[g]
         start, count = model.mesh_vertadr[mesh], model.mesh_vertnum[mesh]
         points = (model.mesh_vert[start:start + count] @ data.geom_xmat[g].reshape(3, 3).T

@@ -116,23 +116,14 @@ def _density_of_meshes(name: str, mass: float, shapes, mesh_bounds: dict,
     largest, smallest = 0.0, 0.0
     across = 0.0
     for _kind, shape, _xyz, _rpy, dims in bodies:
-        tag = shape.tag
-        if tag == "box" or tag == "cylinder" or tag == "sphere":
-            if min(dims) <= 0:
-                return
-            volume = _volume(tag, dims)
-            across = max(across, *dims) if tag == "box" else \
-                max(across, 2 * dims[0], dims[-1])
-            largest += volume
-            smallest = max(smallest, volume)
-            continue
-        box = own_box(tag, dims, shape, mesh_bounds)  # (a mesh: the primitives are above)
-        if box is None:
+        extent = _extent(shape, dims, mesh_bounds)
+        if extent is None:
             return  # a mesh of unknown size, a size not positive: no volume to judge by
-        low, high = box[1]
-        across = max(across, *(h - lo for lo, h in zip(low, high, strict=True)))
-        x, y, z = box[0]
-        largest += x * y * z  # its box: a mesh's volume is at most that
+        volume, size = extent
+        across = max(across, size)
+        largest += volume
+        if shape.tag != "mesh":  # (a mesh's box is the most its volume can be, not least)
+            smallest = max(smallest, volume)
     _judge_density(name, mass, shapes, largest, smallest, across, mesh_bounds, report)
 
 
@@ -167,17 +158,26 @@ def _visual_volume(shapes, mesh_bounds: dict) -> float | None:
     for kind, shape, _xyz, _rpy, dims in shapes.bodies:
         if kind != "visual":
             continue
-        if shape.tag in ("box", "cylinder", "sphere"):
-            if min(dims) <= 0:
-                return None
-            volume += _volume(shape.tag, dims)
-            continue
-        box = own_box(shape.tag, dims, shape, mesh_bounds)
-        if box is None:
+        extent = _extent(shape, dims, mesh_bounds)
+        if extent is None:
             return None
-        x, y, z = box[0]
-        volume += x * y * z
+        volume += extent[0]
     return volume or None
+
+
+def _extent(shape, dims: tuple, mesh_bounds: dict) -> tuple[float, float] | None:
+    """(the most volume, the size across) of one shape: a box, cylinder or sphere by its
+    own sizes, a mesh by its box; None where its size is unknown or not positive."""
+    tag = shape.tag
+    if tag == "box" or tag == "cylinder" or tag == "sphere":
+        if min(dims) <= 0:
+            return None
+        return _volume(tag, dims), max(dims) if tag == "box" else max(2 * dims[0], dims[-1])
+    box = own_box(tag, dims, shape, mesh_bounds)
+    if box is None:
+        return None
+    (x, y, z), (low, high) = box
+    return x * y * z, max(h - lo for lo, h in zip(low, high, strict=True))
 
 
 def _volume(tag: str, dims: tuple) -> float:
